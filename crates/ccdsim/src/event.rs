@@ -1,0 +1,117 @@
+//! Events and their total order: (time, kind, lower id, higher id).
+
+use std::cmp::Ordering;
+
+/// What an event is between: two bodies, or a body and a wall.
+#[derive(Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Debug)]
+pub enum EventKind {
+    /// Two bodies touch. Orders before a wall event at the same time.
+    Body = 0,
+    /// A body touches a wall.
+    Wall = 1,
+}
+
+/// A collision at absolute simulated time `time` (seconds).
+///
+/// For [`EventKind::Body`], `a < b` are body indices (their positions in the scene's body
+/// list). For [`EventKind::Wall`], `a` is the body index and `b` the wall index.
+#[derive(Clone, Copy, Debug)]
+pub struct Event {
+    /// Absolute time of contact, seconds; never NaN.
+    pub time: f64,
+    /// Body–body or body–wall.
+    pub kind: EventKind,
+    /// Lower body index (body events) or the body (wall events).
+    pub a: u32,
+    /// Higher body index (body events) or the wall index (wall events).
+    pub b: u32,
+}
+
+impl Event {
+    /// A body–body event; orders the indices so that `a < b`.
+    #[must_use]
+    #[inline]
+    pub fn body(time: f64, i: usize, j: usize) -> Self {
+        debug_assert!(i != j && !time.is_nan());
+        let (a, b) = if i < j { (i, j) } else { (j, i) };
+        Event {
+            time,
+            kind: EventKind::Body,
+            a: a as u32,
+            b: b as u32,
+        }
+    }
+
+    /// A body–wall event between body `i` and wall `w`.
+    #[must_use]
+    #[inline]
+    pub fn wall(time: f64, i: usize, w: usize) -> Self {
+        debug_assert!(!time.is_nan());
+        Event {
+            time,
+            kind: EventKind::Wall,
+            a: i as u32,
+            b: w as u32,
+        }
+    }
+
+    /// The earlier of two optional events under the total order.
+    #[must_use]
+    #[inline]
+    pub fn earliest(x: Option<Event>, y: Option<Event>) -> Option<Event> {
+        match (x, y) {
+            (Some(p), Some(q)) => Some(if q < p { q } else { p }),
+            (p, None) => p,
+            (None, q) => q,
+        }
+    }
+}
+
+impl Ord for Event {
+    #[inline]
+    fn cmp(&self, o: &Self) -> Ordering {
+        self.time
+            .total_cmp(&o.time)
+            .then(self.kind.cmp(&o.kind))
+            .then(self.a.cmp(&o.a))
+            .then(self.b.cmp(&o.b))
+    }
+}
+impl PartialOrd for Event {
+    #[inline]
+    fn partial_cmp(&self, o: &Self) -> Option<Ordering> {
+        Some(self.cmp(o))
+    }
+}
+/// Equality is bit-for-bit on the time (via the total order), so `==` is the exactness test.
+impl PartialEq for Event {
+    #[inline]
+    fn eq(&self, o: &Self) -> bool {
+        self.cmp(o) == Ordering::Equal
+    }
+}
+impl Eq for Event {}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn order_is_time_kind_ids() {
+        let e1 = Event::body(1.0, 3, 2);
+        assert_eq!((e1.a, e1.b), (2, 3));
+        assert!(Event::body(1.0, 0, 5) < Event::wall(1.0, 0, 0));
+        assert!(Event::body(1.0, 0, 5) < Event::body(1.0, 1, 2));
+        assert!(Event::body(1.0, 1, 2) < Event::body(1.0, 1, 3));
+        assert!(Event::wall(0.5, 9, 9) < Event::body(1.0, 0, 1));
+        // -0.0 and 0.0 differ bit for bit, so they are ordered, not equal.
+        assert!(Event::body(-0.0, 0, 1) < Event::body(0.0, 0, 1));
+        assert_eq!(Event::earliest(Some(e1), None), Some(e1));
+        assert_eq!(
+            Event::earliest(Some(e1), Some(Event::wall(0.1, 0, 0)))
+                .unwrap()
+                .kind,
+            EventKind::Wall
+        );
+    }
+}

@@ -1,0 +1,57 @@
+//! The naive all-pairs finder: the reference every other finder is tested against.
+
+use super::{Finder, FinderError};
+use crate::event::Event;
+use crate::narrow::{toi_circle_circle, toi_circle_wall};
+use crate::world::World;
+
+/// Checks every body pair and every (body, wall) pair on every query: O(n²) per event,
+/// O(1) extra memory, obviously correct.
+#[derive(Clone, Debug, Default)]
+pub struct AllPairs;
+
+impl AllPairs {
+    /// A new all-pairs finder.
+    #[must_use]
+    pub fn new() -> Self {
+        AllPairs
+    }
+}
+
+/// The minimum event over all pairs of `world`: the definition of a correct answer.
+#[must_use]
+pub fn all_pairs_next_event<const D: usize>(world: &World<D>) -> Option<Event> {
+    let n = world.len();
+    let radii = world.radii();
+    let mut best: Option<Event> = None;
+    for i in 0..n {
+        let mi = world.motion(i);
+        for j in i + 1..n {
+            if let Some(t) = toi_circle_circle(&mi, radii[i], &world.motion(j), radii[j]) {
+                best = Event::earliest(best, Some(Event::body(t, i, j)));
+            }
+        }
+        for (w, wall) in world.walls().iter().enumerate() {
+            if let Some(t) = toi_circle_wall(&mi, radii[i], wall) {
+                best = Event::earliest(best, Some(Event::wall(t, i, w)));
+            }
+        }
+    }
+    best
+}
+
+impl<const D: usize> Finder<D> for AllPairs {
+    fn name(&self) -> &'static str {
+        "all-pairs"
+    }
+
+    fn init(&mut self, _world: &World<D>) -> Result<(), FinderError> {
+        Ok(())
+    }
+
+    fn update(&mut self, _world: &World<D>, _changed: &[usize]) {}
+
+    fn next_event(&mut self, world: &World<D>) -> Option<Event> {
+        all_pairs_next_event(world)
+    }
+}

@@ -1,0 +1,105 @@
+//! Next-event finders (broad phases) and their contract.
+//!
+//! # Contract
+//!
+//! A finder serves one [`World`]. It is given the world once through [`Finder::init`], told
+//! through [`Finder::update`] which bodies' stored states changed, and asked through
+//! [`Finder::next_event`] for the next event. That event must be exactly — bit for bit — the
+//! minimum under [`Event`]'s total order of
+//! [`toi_circle_circle`](crate::narrow::toi_circle_circle) over all body pairs and
+//! [`toi_circle_wall`](crate::narrow::toi_circle_wall) over all (body, wall) pairs, evaluated
+//! on the world's stored states: what [`AllPairs`] computes. Any internal bookkeeping (cell
+//! crossings, rebuilt trees) stays inside the finder.
+
+mod all_pairs;
+
+pub use all_pairs::AllPairs;
+
+use crate::event::Event;
+use crate::geom::Aabb;
+use crate::world::World;
+
+/// A broad phase that finds the next event of a world. Object safe.
+pub trait Finder<const D: usize>: Send {
+    /// The finder's name as the CLI knows it, e.g. `all-pairs`.
+    fn name(&self) -> &'static str;
+
+    /// Prepares for `world`; called before any other method and again whenever bodies or walls
+    /// are added or removed. Refuses worlds it cannot serve.
+    fn init(&mut self, world: &World<D>) -> Result<(), FinderError>;
+
+    /// Tells the finder that the stored states of `changed` were replaced (a collision or an
+    /// edit); every other body is as it was.
+    fn update(&mut self, world: &World<D>, changed: &[usize]);
+
+    /// The next event under the total order, or `None` when no event will ever happen.
+    fn next_event(&mut self, world: &World<D>) -> Option<Event>;
+
+    /// Boxes of the finder's spatial structure for the current state, for viewers; empty for
+    /// finders without one.
+    fn debug_boxes(&mut self, _world: &World<D>) -> Vec<DebugBox<D>> {
+        Vec::new()
+    }
+}
+
+/// One box of a finder's spatial structure, for drawing.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct DebugBox<const D: usize> {
+    /// The box, metres.
+    pub aabb: Aabb<D>,
+    /// Depth in the structure (0 = root); leaves are deepest.
+    pub depth: u32,
+    /// True for a box around a single body.
+    pub leaf: bool,
+}
+
+/// Why a finder cannot be made or cannot serve a world.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum FinderError {
+    /// No finder has this name.
+    #[error("unknown finder `{name}` (known: {known})")]
+    Unknown {
+        /// The name asked for.
+        name: String,
+        /// The known names, comma-separated.
+        known: String,
+    },
+    /// The finder cannot serve this world.
+    #[error("finder `{finder}` cannot run this scene: {why}")]
+    Unsupported {
+        /// The finder's name.
+        finder: &'static str,
+        /// Why.
+        why: String,
+    },
+    /// An option of the finder is out of range.
+    #[error("finder option `{option}`: {why}")]
+    Option {
+        /// The option.
+        option: &'static str,
+        /// Why.
+        why: String,
+    },
+}
+
+/// Options of all finders; each finder reads its own.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct FinderOptions {}
+
+/// Names of every finder [`make_finder`] knows.
+pub const FINDER_NAMES: &[&str] = &["all-pairs"];
+
+/// Makes the finder called `name`.
+pub fn make_finder<const D: usize>(
+    name: &str,
+    options: &FinderOptions,
+) -> Result<Box<dyn Finder<D>>, FinderError> {
+    let _ = options;
+    match name {
+        "all-pairs" => Ok(Box::new(AllPairs::new())),
+        _ => Err(FinderError::Unknown {
+            name: name.to_string(),
+            known: FINDER_NAMES.join(", "),
+        }),
+    }
+}

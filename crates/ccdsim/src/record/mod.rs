@@ -1,0 +1,105 @@
+//! Run files: the initial scene, then the event stream, written as the run goes.
+//!
+//! # Format (version 1, little-endian)
+//!
+//! | bytes | content |
+//! |---|---|
+//! | 8 | magic `CCDSIMRF` |
+//! | 4 | format version (`u32`) |
+//! | 4 | dimension `D` (`u32`) |
+//! | 8 | header length `h` (`u64`) |
+//! | h | the initial scene as JSON (the scene file format) |
+//! | … | fixed-size records of `21 + 32·D` bytes each |
+//!
+//! A record is: tag `u8` (1 body event, 2 wall event, 3 end of run), `a: u32`, `b: u32`,
+//! `t: f64`, then for two body slots the position at `t` and the velocity after the event
+//! (`D` `f64`s each; the second slot is zero for wall events and the end record), then an
+//! FNV-1a checksum (`u32`) of the record's preceding bytes. The end record's `t` is the time
+//! the run stopped at. Fixed-size records make the `k`-th event seekable in O(1).
+
+mod export;
+mod reader;
+mod writer;
+
+pub use export::{export_jsonl, ExportError};
+pub use reader::{open_run, AnyRunReader, RunReader, Tail};
+pub use writer::RunWriter;
+
+/// First 8 bytes of every run file.
+pub const MAGIC: [u8; 8] = *b"CCDSIMRF";
+/// Format version this build writes and reads.
+pub const VERSION: u32 = 1;
+/// Bytes before the header JSON.
+pub const PREAMBLE_LEN: usize = 24;
+
+pub(crate) const TAG_BODY: u8 = 1;
+pub(crate) const TAG_WALL: u8 = 2;
+pub(crate) const TAG_END: u8 = 3;
+
+/// Size in bytes of one record in a `D`-dimensional run file.
+#[must_use]
+pub const fn record_len(dim: usize) -> usize {
+    1 + 4 + 4 + 8 + 4 * 8 * dim + 4
+}
+
+pub(crate) fn fnv1a(bytes: &[u8]) -> u32 {
+    let mut h: u32 = 0x811c_9dc5;
+    for &b in bytes {
+        h ^= u32::from(b);
+        h = h.wrapping_mul(0x0100_0193);
+    }
+    h
+}
+
+/// Why a run file cannot be read or written.
+#[derive(Debug, thiserror::Error)]
+pub enum RecordError {
+    /// An I/O error, with the path.
+    #[error("{path}: {source}")]
+    Io {
+        /// The file.
+        path: String,
+        /// The error.
+        source: std::io::Error,
+    },
+    /// The file does not start with the magic value.
+    #[error("{0}: not a ccdsim run file (bad magic value)")]
+    NotARunFile(String),
+    /// The file was written by another format version.
+    #[error("{path}: run file format version {found}, this build reads version {supported}")]
+    Version {
+        /// The file.
+        path: String,
+        /// Version in the file.
+        found: u32,
+        /// Version this build reads.
+        supported: u32,
+    },
+    /// The header is cut short or its scene is invalid.
+    #[error("{path}: bad header: {why}")]
+    Header {
+        /// The file.
+        path: String,
+        /// What is wrong.
+        why: String,
+    },
+    /// A record in the middle of the file is damaged.
+    #[error("{path}: record {index} is corrupt ({why})")]
+    Corrupt {
+        /// The file.
+        path: String,
+        /// Record index (0-based).
+        index: u64,
+        /// What is wrong.
+        why: String,
+    },
+}
+
+/// One record of a run file.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum RunRecord<const D: usize> {
+    /// A resolved collision.
+    Event(crate::sim::Collision<D>),
+    /// The run stopped cleanly at this simulated time, seconds.
+    End(f64),
+}

@@ -1,0 +1,328 @@
+//! Reading run files, tolerating a truncated tail.
+
+use super::{
+    fnv1a, record_len, RecordError, RunRecord, MAGIC, PREAMBLE_LEN, TAG_BODY, TAG_END, TAG_WALL,
+    VERSION,
+};
+use crate::event::Event;
+use crate::geom::Vector;
+use crate::scene::Scene;
+use crate::sim::Collision;
+use std::fs::File;
+use std::io::{BufReader, Read, Seek, SeekFrom};
+use std::path::Path;
+
+/// How a run file ended.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Tail {
+    /// Not read to the end yet.
+    Unread,
+    /// It ends with an end record: the run stopped cleanly.
+    Complete,
+    /// It ends after a complete event without an end record (the run was killed or is still
+    /// being written).
+    NoEnd,
+    /// It ends with `bytes` bytes of an incomplete or torn record, which were ignored.
+    Truncated {
+        /// Bytes ignored.
+        bytes: u64,
+    },
+}
+
+/// Reads the records of a `D`-dimensional run file in order.
+pub struct RunReader<R: Read, const D: usize> {
+    input: R,
+    path: String,
+    scene: Scene<D>,
+    data_start: u64,
+    index: u64,
+    tail: Tail,
+    buf: Vec<u8>,
+}
+
+/// A run reader of either dimension.
+pub enum AnyRunReader {
+    /// A 2D run.
+    D2(RunReader<BufReader<File>, 2>),
+    /// A 3D run.
+    D3(RunReader<BufReader<File>, 3>),
+}
+
+/// Opens a run file of either dimension and reads its header.
+pub fn open_run(path: &Path) -> Result<AnyRunReader, RecordError> {
+    let name = path.display().to_string();
+    let io = |source| RecordError::Io {
+        path: name.clone(),
+        source,
+    };
+    let mut file = BufReader::with_capacity(1 << 16, File::open(path).map_err(io)?);
+    let (dim, json) = read_header(&mut file, &name)?;
+    let data_start = (PREAMBLE_LEN + json.len()) as u64;
+    Ok(match dim {
+        2 => AnyRunReader::D2(RunReader::from_parts(file, name, &json, data_start)?),
+        3 => AnyRunReader::D3(RunReader::from_parts(file, name, &json, data_start)?),
+        d => {
+            return Err(RecordError::Header {
+                path: name,
+                why: format!("dimension {d} is not 2 or 3"),
+            })
+        }
+    })
+}
+
+fn read_header<R: Read>(input: &mut R, name: &str) -> Result<(u32, String), RecordError> {
+    let mut pre = [0u8; PREAMBLE_LEN];
+    let got = read_full(input, &mut pre).map_err(|source| RecordError::Io {
+        path: name.into(),
+        source,
+    })?;
+    if got < 8 || pre[..8] != MAGIC {
+        return Err(RecordError::NotARunFile(name.into()));
+    }
+    if got < PREAMBLE_LEN {
+        return Err(RecordError::Header {
+            path: name.into(),
+            why: "file ends inside the preamble".into(),
+        });
+    }
+    let version = u32::from_le_bytes(pre[8..12].try_into().expect("4 bytes"));
+    if version != VERSION {
+        return Err(RecordError::Version {
+            path: name.into(),
+            found: version,
+            supported: VERSION,
+        });
+    }
+    let dim = u32::from_le_bytes(pre[12..16].try_into().expect("4 bytes"));
+    let len = u64::from_le_bytes(pre[16..24].try_into().expect("8 bytes"));
+    if len > (1 << 40) {
+        return Err(RecordError::Header {
+            path: name.into(),
+            why: format!("implausible header length {len}"),
+        });
+    }
+    let mut json = vec![0u8; len as usize];
+    let got = read_full(input, &mut json).map_err(|source| RecordError::Io {
+        path: name.into(),
+        source,
+    })?;
+    if got < json.len() {
+        return Err(RecordError::Header {
+            path: name.into(),
+            why: "file ends inside the scene header".into(),
+        });
+    }
+    let json = String::from_utf8(json).map_err(|_| RecordError::Header {
+        path: name.into(),
+        why: "scene header is not UTF-8".into(),
+    })?;
+    Ok((dim, json))
+}
+
+fn read_full<R: Read>(input: &mut R, buf: &mut [u8]) -> std::io::Result<usize> {
+    let mut got = 0;
+    while got < buf.len() {
+        match input.read(&mut buf[got..]) {
+            Ok(0) => break,
+            Ok(k) => got += k,
+            Err(e) if e.kind() == std::io::ErrorKind::Interrupted => {}
+            Err(e) => return Err(e),
+        }
+    }
+    Ok(got)
+}
+
+impl<R: Read, const D: usize> RunReader<R, D> {
+    /// Reads the header of a `D`-dimensional run from `input`; `name` is used in errors.
+    pub fn new(mut input: R, name: String) -> Result<Self, RecordError> {
+        let (dim, json) = read_header(&mut input, &name)?;
+        if dim as usize != D {
+            return Err(RecordError::Header {
+                path: name,
+                why: format!("the run is {dim}D, {D}D was expected"),
+            });
+        }
+        let start = (PREAMBLE_LEN + json.len()) as u64;
+        Self::from_parts(input, name, &json, start)
+    }
+
+    fn from_parts(
+        input: R,
+        path: String,
+        json: &str,
+        data_start: u64,
+    ) -> Result<Self, RecordError> {
+        let scene = Scene::<D>::from_json(json).map_err(|e| RecordError::Header {
+            path: path.clone(),
+            why: e.to_string(),
+        })?;
+        Ok(RunReader {
+            input,
+            path,
+            scene,
+            data_start,
+            index: 0,
+            tail: Tail::Unread,
+            buf: vec![0; record_len(D)],
+        })
+    }
+
+    /// The scene the run started from.
+    #[must_use]
+    pub fn scene(&self) -> &Scene<D> {
+        &self.scene
+    }
+
+    /// The file name given at opening.
+    #[must_use]
+    pub fn path(&self) -> &str {
+        &self.path
+    }
+
+    /// Byte offset of the first record.
+    #[must_use]
+    pub fn data_start(&self) -> u64 {
+        self.data_start
+    }
+
+    /// How the file ended; [`Tail::Unread`] until [`RunReader::next_record`] returned `None`.
+    #[must_use]
+    pub fn tail(&self) -> Tail {
+        self.tail
+    }
+
+    /// Records read so far.
+    #[must_use]
+    pub fn records_read(&self) -> u64 {
+        self.index
+    }
+
+    /// The next record; `Ok(None)` at the end of the file (see [`RunReader::tail`]).
+    /// A damaged record followed by more data is an error; a damaged last record is a
+    /// truncated tail.
+    pub fn next_record(&mut self) -> Result<Option<RunRecord<D>>, RecordError> {
+        if self.tail != Tail::Unread {
+            return Ok(None);
+        }
+        let got = read_full(&mut self.input, &mut self.buf).map_err(|source| RecordError::Io {
+            path: self.path.clone(),
+            source,
+        })?;
+        if got == 0 {
+            self.tail = Tail::NoEnd;
+            return Ok(None);
+        }
+        if got < self.buf.len() {
+            self.tail = Tail::Truncated { bytes: got as u64 };
+            return Ok(None);
+        }
+        match decode::<D>(&self.buf).and_then(|rec| self.check_indices(rec)) {
+            Ok(rec) => {
+                self.index += 1;
+                if let RunRecord::End(_) = rec {
+                    self.tail = Tail::Complete;
+                }
+                Ok(Some(rec))
+            }
+            Err(why) => {
+                // A torn last record is a truncated tail; damage followed by data is corruption.
+                let mut probe = [0u8; 1];
+                let more =
+                    read_full(&mut self.input, &mut probe).map_err(|source| RecordError::Io {
+                        path: self.path.clone(),
+                        source,
+                    })?;
+                if more == 0 {
+                    self.tail = Tail::Truncated { bytes: got as u64 };
+                    Ok(None)
+                } else {
+                    Err(RecordError::Corrupt {
+                        path: self.path.clone(),
+                        index: self.index,
+                        why,
+                    })
+                }
+            }
+        }
+    }
+
+    fn check_indices(&self, rec: RunRecord<D>) -> Result<RunRecord<D>, String> {
+        if let RunRecord::Event(c) = &rec {
+            let (n, w) = (
+                self.scene.bodies.len() as u32,
+                self.scene.walls.len() as u32,
+            );
+            let limit_b = match c.event.kind {
+                crate::event::EventKind::Body => n,
+                crate::event::EventKind::Wall => w,
+            };
+            if c.event.a >= n || c.event.b >= limit_b {
+                return Err(format!(
+                    "index out of range: a = {}, b = {}",
+                    c.event.a, c.event.b
+                ));
+            }
+        }
+        Ok(rec)
+    }
+
+    /// Reads every remaining collision; stops at the end record or the end of the file.
+    pub fn read_events(&mut self) -> Result<(Vec<Collision<D>>, Option<f64>), RecordError> {
+        let mut out = Vec::new();
+        while let Some(rec) = self.next_record()? {
+            match rec {
+                RunRecord::Event(c) => out.push(c),
+                RunRecord::End(t) => return Ok((out, Some(t))),
+            }
+        }
+        Ok((out, None))
+    }
+}
+
+impl<R: Read + Seek, const D: usize> RunReader<R, D> {
+    /// Moves to record `k` (0-based) so that the next read returns it.
+    pub fn seek_record(&mut self, k: u64) -> Result<(), RecordError> {
+        let off = self.data_start + k * record_len(D) as u64;
+        self.input
+            .seek(SeekFrom::Start(off))
+            .map_err(|source| RecordError::Io {
+                path: self.path.clone(),
+                source,
+            })?;
+        self.index = k;
+        self.tail = Tail::Unread;
+        Ok(())
+    }
+}
+
+fn decode<const D: usize>(buf: &[u8]) -> Result<RunRecord<D>, String> {
+    let n = buf.len();
+    let sum = u32::from_le_bytes(buf[n - 4..].try_into().expect("4 bytes"));
+    if fnv1a(&buf[..n - 4]) != sum {
+        return Err("checksum mismatch".into());
+    }
+    let u32_at = |k: usize| u32::from_le_bytes(buf[k..k + 4].try_into().expect("4 bytes"));
+    let f64_at = |k: usize| f64::from_le_bytes(buf[k..k + 8].try_into().expect("8 bytes"));
+    let (a, b, t) = (u32_at(1), u32_at(5), f64_at(9));
+    if t.is_nan() {
+        return Err("time is NaN".into());
+    }
+    let vec_at = |slot: usize| {
+        let mut v = Vector::<D>::ZERO;
+        for k in 0..D {
+            v[k] = f64_at(17 + 8 * (slot * D + k));
+        }
+        v
+    };
+    let c = |event| Collision {
+        event,
+        pos: [vec_at(0), vec_at(2)],
+        vel: [vec_at(1), vec_at(3)],
+    };
+    match buf[0] {
+        TAG_BODY if a < b => Ok(RunRecord::Event(c(Event::body(t, a as usize, b as usize)))),
+        TAG_WALL => Ok(RunRecord::Event(c(Event::wall(t, a as usize, b as usize)))),
+        TAG_END => Ok(RunRecord::End(t)),
+        tag => Err(format!("bad tag {tag} or body order {a} ≥ {b}")),
+    }
+}

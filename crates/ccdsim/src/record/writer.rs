@@ -1,0 +1,126 @@
+//! Writing run files with buffering, as the run goes.
+
+use super::{fnv1a, record_len, RecordError, MAGIC, TAG_BODY, TAG_END, TAG_WALL, VERSION};
+use crate::event::EventKind;
+use crate::scene::Scene;
+use crate::sim::Collision;
+use std::fs::File;
+use std::io::{BufWriter, Write};
+use std::path::Path;
+
+/// Appends records to a run file. The header is flushed at creation, so a run killed at any
+/// moment leaves a file that reads back to its last complete record.
+pub struct RunWriter<W: Write, const D: usize> {
+    out: BufWriter<W>,
+    path: String,
+    buf: Vec<u8>,
+    records: u64,
+}
+
+impl<const D: usize> RunWriter<File, D> {
+    /// Creates (or truncates) `path` and writes the header holding `scene`.
+    pub fn create(path: &Path, scene: &Scene<D>) -> Result<Self, RecordError> {
+        let name = path.display().to_string();
+        let file = File::create(path).map_err(|source| RecordError::Io {
+            path: name.clone(),
+            source,
+        })?;
+        Self::new(file, name, scene)
+    }
+}
+
+impl<W: Write, const D: usize> RunWriter<W, D> {
+    /// Writes the header holding `scene` to `out`; `name` is used in error messages.
+    pub fn new(out: W, name: String, scene: &Scene<D>) -> Result<Self, RecordError> {
+        let mut out = BufWriter::with_capacity(1 << 16, out);
+        let json = scene.to_json();
+        let io = |source| RecordError::Io {
+            path: name.clone(),
+            source,
+        };
+        let mut head = Vec::with_capacity(24 + json.len());
+        head.extend_from_slice(&MAGIC);
+        head.extend_from_slice(&VERSION.to_le_bytes());
+        head.extend_from_slice(&(D as u32).to_le_bytes());
+        head.extend_from_slice(&(json.len() as u64).to_le_bytes());
+        head.extend_from_slice(json.as_bytes());
+        out.write_all(&head).map_err(io)?;
+        out.flush().map_err(io)?;
+        Ok(RunWriter {
+            out,
+            path: name,
+            buf: Vec::with_capacity(record_len(D)),
+            records: 0,
+        })
+    }
+
+    /// Records written so far (events and end).
+    #[must_use]
+    pub fn records(&self) -> u64 {
+        self.records
+    }
+
+    fn put(
+        &mut self,
+        tag: u8,
+        a: u32,
+        b: u32,
+        t: f64,
+        vecs: [&[f64]; 4],
+    ) -> Result<(), RecordError> {
+        self.buf.clear();
+        self.buf.push(tag);
+        self.buf.extend_from_slice(&a.to_le_bytes());
+        self.buf.extend_from_slice(&b.to_le_bytes());
+        self.buf.extend_from_slice(&t.to_le_bytes());
+        for v in vecs {
+            for x in v {
+                self.buf.extend_from_slice(&x.to_le_bytes());
+            }
+        }
+        let sum = fnv1a(&self.buf);
+        self.buf.extend_from_slice(&sum.to_le_bytes());
+        debug_assert_eq!(self.buf.len(), record_len(D));
+        self.records += 1;
+        self.out
+            .write_all(&self.buf)
+            .map_err(|source| RecordError::Io {
+                path: self.path.clone(),
+                source,
+            })
+    }
+
+    /// Appends one collision.
+    pub fn write_event(&mut self, c: &Collision<D>) -> Result<(), RecordError> {
+        let tag = match c.event.kind {
+            EventKind::Body => TAG_BODY,
+            EventKind::Wall => TAG_WALL,
+        };
+        self.put(
+            tag,
+            c.event.a,
+            c.event.b,
+            c.event.time,
+            [&c.pos[0].0, &c.vel[0].0, &c.pos[1].0, &c.vel[1].0],
+        )
+    }
+
+    /// Writes the end record (the run stopped at `time`), flushes and returns the inner writer.
+    pub fn finish(mut self, time: f64) -> Result<W, RecordError> {
+        let z = [0.0; D];
+        self.put(TAG_END, 0, 0, time, [&z, &z, &z, &z])?;
+        let path = self.path.clone();
+        self.out.into_inner().map_err(|e| RecordError::Io {
+            path,
+            source: e.into_error(),
+        })
+    }
+
+    /// Pushes buffered records to the file.
+    pub fn flush(&mut self) -> Result<(), RecordError> {
+        self.out.flush().map_err(|source| RecordError::Io {
+            path: self.path.clone(),
+            source,
+        })
+    }
+}

@@ -1,0 +1,53 @@
+//! Collision response: impulses along the contact normal, with masses and restitution.
+
+use crate::narrow::wall_normal;
+use crate::world::World;
+
+/// Resolves a body–body collision at time `t`: both bodies are moved to `t` and receive
+/// equal and opposite impulses along the line of centres (walls are not involved).
+///
+/// Returns the overlap depth at contact relative to the sum of radii (0 when not overlapping).
+pub fn resolve_body_body<const D: usize>(world: &mut World<D>, i: usize, j: usize, t: f64) -> f64 {
+    let (pi, pj) = (world.position_at(i, t), world.position_at(j, t));
+    let (vi, vj) = (world.velocities()[i], world.velocities()[j]);
+    let (mi, mj) = (world.masses()[i], world.masses()[j]);
+    let d = pj - pi;
+    let dist = d.norm();
+    let sigma = world.radii()[i] + world.radii()[j];
+    let (mut vi2, mut vj2) = (vi, vj);
+    if dist > 0.0 {
+        let n = d * (1.0 / dist);
+        let vn = (vj - vi).dot(n);
+        if vn < 0.0 {
+            // Velocity changes J/mi and J/mj with J = −(1+e)·vn·mi·mj/(mi+mj), written as mass
+            // fractions so that equal masses exchange normal velocities exactly (m/2m = 0.5).
+            let k = (1.0 + world.restitution()) * vn;
+            vi2 = vi + n * (k * (mj / (mi + mj)));
+            vj2 = vj - n * (k * (mi / (mi + mj)));
+        }
+    }
+    world.set_state(i, pi, vi2, t);
+    world.set_state(j, pj, vj2, t);
+    ((sigma - dist) / sigma).max(0.0)
+}
+
+/// Resolves a collision of body `i` with wall `w` at time `t`: the body is moved to `t` and
+/// its normal velocity reflected (scaled by the restitution); the wall is immovable.
+///
+/// Returns the overlap depth at contact relative to the radius (0 when not overlapping).
+pub fn resolve_body_wall<const D: usize>(world: &mut World<D>, i: usize, w: usize, t: f64) -> f64 {
+    let p = world.position_at(i, t);
+    let v = world.velocities()[i];
+    let wall = world.walls()[w];
+    let r = world.radii()[i];
+    let mut v2 = v;
+    if let Some(n) = wall_normal(&wall, p) {
+        let vn = v.dot(n);
+        if vn < 0.0 {
+            v2 = v - n * ((1.0 + world.restitution()) * vn);
+        }
+    }
+    let clearance = crate::scene::wall_clearance(&wall, p);
+    world.set_state(i, p, v2, t);
+    ((r - clearance) / r).max(0.0)
+}

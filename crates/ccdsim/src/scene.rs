@@ -1,0 +1,698 @@
+//! Scene files: bodies, walls and settings; JSON parsing and validation with typed errors.
+//!
+//! A scene is what a run starts from. [`AnyScene::from_json`] parses a file of either
+//! dimension; [`Scene::validate`] checks everything the simulator relies on.
+
+use crate::geom::{ball_volume, Vector};
+use serde::{Deserialize, Serialize};
+use std::collections::HashMap;
+use std::fmt;
+
+/// One body as written in a scene: a circle (2D) or sphere (3D).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct BodySpec<const D: usize> {
+    /// Optional user id, unique within the scene; defaults to the body's index.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub id: Option<u64>,
+    /// Centre position at the scene's start time, metres.
+    pub pos: Vector<D>,
+    /// Velocity, metres per second.
+    pub vel: Vector<D>,
+    /// Radius, metres; strictly positive.
+    pub radius: f64,
+    /// Mass, kilograms; strictly positive. Defaults to unit density (the ball's area or volume).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub mass: Option<f64>,
+}
+
+impl<const D: usize> BodySpec<D> {
+    /// A body with unit-density mass and no explicit id.
+    #[must_use]
+    pub fn new(pos: Vector<D>, vel: Vector<D>, radius: f64) -> Self {
+        BodySpec {
+            id: None,
+            pos,
+            vel,
+            radius,
+            mass: None,
+        }
+    }
+
+    /// The mass to simulate with: the given one, or unit density.
+    #[must_use]
+    pub fn effective_mass(&self) -> f64 {
+        self.mass.unwrap_or_else(|| ball_volume::<D>(self.radius))
+    }
+}
+
+/// A static wall. Walls never move and have infinite mass.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(untagged)]
+pub enum Wall<const D: usize> {
+    /// A segment from `a` to `b` (the usual 2D wall). A body can touch it from either side or
+    /// at its end points.
+    Segment {
+        /// First end point.
+        a: Vector<D>,
+        /// Second end point.
+        b: Vector<D>,
+    },
+    /// A one-sided plane (the usual 3D wall; a line in 2D) through `point`. Bodies live on the
+    /// side `normal` points to; the normal need not be of unit length.
+    Plane {
+        /// Any point of the plane.
+        point: Vector<D>,
+        /// Direction towards the bodies' side.
+        normal: Vector<D>,
+    },
+}
+
+/// Global settings of a scene.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Settings {
+    /// Coefficient of restitution in `[0, 1]` for every collision; 1 is elastic.
+    #[serde(default = "one")]
+    pub restitution: f64,
+}
+
+fn one() -> f64 {
+    1.0
+}
+
+impl Default for Settings {
+    fn default() -> Self {
+        Settings { restitution: 1.0 }
+    }
+}
+
+/// A complete scene in `D` dimensions.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Scene<const D: usize> {
+    /// Global settings.
+    #[serde(default)]
+    pub settings: Settings,
+    /// Simulated time at which the bodies' positions hold, seconds.
+    #[serde(default)]
+    pub start_time: f64,
+    /// The bodies; a body's index in this list is its identity in events.
+    pub bodies: Vec<BodySpec<D>>,
+    /// The static walls; a wall's index in this list names it in events.
+    #[serde(default)]
+    pub walls: Vec<Wall<D>>,
+}
+
+impl<const D: usize> Default for Scene<D> {
+    fn default() -> Self {
+        Scene {
+            settings: Settings::default(),
+            start_time: 0.0,
+            bodies: Vec::new(),
+            walls: Vec::new(),
+        }
+    }
+}
+
+/// Why a scene was refused. Every message names the field or the body.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum SceneError {
+    /// The text is not JSON.
+    #[error("malformed JSON at line {line}, column {column}: {message}")]
+    Json {
+        /// 1-based line.
+        line: usize,
+        /// 1-based column.
+        column: usize,
+        /// What the parser said.
+        message: String,
+    },
+    /// A field is missing, of the wrong type or unknown.
+    #[error("field `{path}`: {message}")]
+    Field {
+        /// Path to the field, e.g. `bodies[3].radius`.
+        path: String,
+        /// What is wrong with it.
+        message: String,
+    },
+    /// `dim` is missing or not 2 or 3, or the scene does not have the dimension asked for.
+    #[error("field `dim`: {0}")]
+    Dimension(String),
+    /// A number is NaN or infinite.
+    #[error("field `{0}`: not a finite number")]
+    NonFinite(String),
+    /// A radius or mass is zero or negative.
+    #[error("field `{0}`: must be greater than zero")]
+    NonPositive(String),
+    /// The restitution is outside `[0, 1]`.
+    #[error("field `settings.restitution`: {0} is outside [0, 1]")]
+    Restitution(f64),
+    /// Two bodies share an id.
+    #[error("bodies {first} and {second}: duplicate id {id}")]
+    DuplicateId {
+        /// The id.
+        id: u64,
+        /// Index of its first holder.
+        first: usize,
+        /// Index of its second holder.
+        second: usize,
+    },
+    /// Two bodies overlap at the start.
+    #[error("{a} and {b} overlap by {depth:e} m")]
+    Overlap {
+        /// First body.
+        a: BodyName,
+        /// Second body.
+        b: BodyName,
+        /// Overlap depth, metres.
+        depth: f64,
+    },
+    /// A wall has zero length or a zero normal.
+    #[error("field `walls[{wall}]`: degenerate wall ({why})")]
+    DegenerateWall {
+        /// Wall index.
+        wall: usize,
+        /// What is degenerate.
+        why: &'static str,
+    },
+    /// A body overlaps a wall, or is behind a plane.
+    #[error("{body} crosses wall {wall}")]
+    CrossesWall {
+        /// The body.
+        body: BodyName,
+        /// Wall index.
+        wall: usize,
+    },
+    /// The walls form a closed table and a body is outside it.
+    #[error("{body} is outside the table formed by the walls")]
+    OutsideTable {
+        /// The body.
+        body: BodyName,
+    },
+    /// Reading the file failed.
+    #[error("{0}")]
+    Io(String),
+}
+
+/// A body named by index and id, for messages: `body 3 (id 7)`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct BodyName {
+    /// Index in the scene's body list.
+    pub index: usize,
+    /// The body's id.
+    pub id: u64,
+}
+
+impl fmt::Display for BodyName {
+    fn fmt(&self, f: &mut fmt::Formatter) -> fmt::Result {
+        if self.index as u64 == self.id {
+            write!(f, "body {}", self.index)
+        } else {
+            write!(f, "body {} (id {})", self.index, self.id)
+        }
+    }
+}
+
+impl<const D: usize> Scene<D> {
+    /// The id of body `i`: its explicit id or its index.
+    #[must_use]
+    pub fn id_of(&self, i: usize) -> u64 {
+        self.bodies[i].id.unwrap_or(i as u64)
+    }
+
+    fn name(&self, i: usize) -> BodyName {
+        BodyName {
+            index: i,
+            id: self.id_of(i),
+        }
+    }
+
+    /// Serialises the scene as JSON with its `dim` field.
+    #[must_use]
+    pub fn to_json(&self) -> String {
+        serde_json::to_string(&SceneOut {
+            dim: D,
+            scene: self,
+        })
+        .expect("scenes always serialise")
+    }
+
+    /// Serialises the scene as indented JSON with its `dim` field.
+    #[must_use]
+    pub fn to_json_pretty(&self) -> String {
+        serde_json::to_string_pretty(&SceneOut {
+            dim: D,
+            scene: self,
+        })
+        .expect("scenes always serialise")
+    }
+
+    /// Parses a scene of dimension `D` from JSON text (with a `dim` field equal to `D`).
+    pub fn from_json(text: &str) -> Result<Self, SceneError> {
+        let mut value = parse_value(text)?;
+        let dim = take_dim(&mut value)?;
+        if dim != D {
+            return Err(SceneError::Dimension(format!(
+                "the scene is {dim}D, {D}D was expected"
+            )));
+        }
+        let scene: Scene<D> = serde_path_to_error::deserialize(value).map_err(field_error)?;
+        scene.validate()?;
+        Ok(scene)
+    }
+
+    /// Checks every rule a run relies on: finite numbers, positive radii and masses,
+    /// restitution in `[0, 1]`, unique ids, non-degenerate walls, no body overlapping another
+    /// body or a wall, and (2D) every body inside the closed table the walls form, if any.
+    pub fn validate(&self) -> Result<(), SceneError> {
+        let r = self.settings.restitution;
+        if !r.is_finite() {
+            return Err(SceneError::NonFinite("settings.restitution".into()));
+        }
+        if !(0.0..=1.0).contains(&r) {
+            return Err(SceneError::Restitution(r));
+        }
+        if !self.start_time.is_finite() {
+            return Err(SceneError::NonFinite("start_time".into()));
+        }
+        for (w, wall) in self.walls.iter().enumerate() {
+            validate_wall(w, wall)?;
+        }
+        for (i, b) in self.bodies.iter().enumerate() {
+            let f = |name: &str| format!("bodies[{i}].{name}");
+            if !b.pos.is_finite() {
+                return Err(SceneError::NonFinite(f("pos")));
+            }
+            if !b.vel.is_finite() {
+                return Err(SceneError::NonFinite(f("vel")));
+            }
+            if !b.radius.is_finite() {
+                return Err(SceneError::NonFinite(f("radius")));
+            }
+            if b.radius <= 0.0 {
+                return Err(SceneError::NonPositive(f("radius")));
+            }
+            let m = b.effective_mass();
+            if !m.is_finite() {
+                return Err(SceneError::NonFinite(f("mass")));
+            }
+            if m <= 0.0 {
+                return Err(SceneError::NonPositive(f("mass")));
+            }
+        }
+        let mut seen: HashMap<u64, usize> = HashMap::with_capacity(self.bodies.len());
+        for i in 0..self.bodies.len() {
+            if let Some(first) = seen.insert(self.id_of(i), i) {
+                return Err(SceneError::DuplicateId {
+                    id: self.id_of(i),
+                    first,
+                    second: i,
+                });
+            }
+        }
+        if let Some((a, b, depth)) = first_overlap(&self.bodies) {
+            return Err(SceneError::Overlap {
+                a: self.name(a),
+                b: self.name(b),
+                depth,
+            });
+        }
+        for (i, b) in self.bodies.iter().enumerate() {
+            for (w, wall) in self.walls.iter().enumerate() {
+                if wall_clearance(wall, b.pos) < b.radius {
+                    return Err(SceneError::CrossesWall {
+                        body: self.name(i),
+                        wall: w,
+                    });
+                }
+            }
+        }
+        if D == 2 {
+            let loops = closed_segments(&self.walls);
+            if !loops.is_empty() {
+                for (i, b) in self.bodies.iter().enumerate() {
+                    if !inside_even_odd(&loops, b.pos[0], b.pos[1]) {
+                        return Err(SceneError::OutsideTable { body: self.name(i) });
+                    }
+                }
+            }
+        }
+        Ok(())
+    }
+}
+
+#[derive(Serialize)]
+struct SceneOut<'a, const D: usize> {
+    dim: usize,
+    #[serde(flatten)]
+    scene: &'a Scene<D>,
+}
+
+/// A scene of either dimension, as read from a file.
+#[derive(Clone, Debug, PartialEq)]
+pub enum AnyScene {
+    /// Circles in the plane.
+    D2(Scene<2>),
+    /// Spheres in space.
+    D3(Scene<3>),
+}
+
+impl AnyScene {
+    /// Parses and validates a scene; its `dim` field (2 or 3) picks the dimension.
+    pub fn from_json(text: &str) -> Result<Self, SceneError> {
+        let mut value = parse_value(text)?;
+        let dim = take_dim(&mut value)?;
+        let out = match dim {
+            2 => AnyScene::D2(serde_path_to_error::deserialize(value).map_err(field_error)?),
+            3 => AnyScene::D3(serde_path_to_error::deserialize(value).map_err(field_error)?),
+            d => return Err(SceneError::Dimension(format!("{d} is not 2 or 3"))),
+        };
+        match &out {
+            AnyScene::D2(s) => s.validate()?,
+            AnyScene::D3(s) => s.validate()?,
+        }
+        Ok(out)
+    }
+
+    /// Reads, parses and validates a scene file.
+    pub fn from_file(path: &std::path::Path) -> Result<Self, SceneError> {
+        let text = std::fs::read_to_string(path)
+            .map_err(|e| SceneError::Io(format!("cannot read {}: {e}", path.display())))?;
+        Self::from_json(&text)
+    }
+
+    /// The dimension, 2 or 3.
+    #[must_use]
+    pub fn dim(&self) -> usize {
+        match self {
+            AnyScene::D2(_) => 2,
+            AnyScene::D3(_) => 3,
+        }
+    }
+
+    /// Serialises as JSON with the `dim` field.
+    #[must_use]
+    pub fn to_json(&self) -> String {
+        match self {
+            AnyScene::D2(s) => s.to_json(),
+            AnyScene::D3(s) => s.to_json(),
+        }
+    }
+}
+
+impl From<Scene<2>> for AnyScene {
+    fn from(s: Scene<2>) -> Self {
+        AnyScene::D2(s)
+    }
+}
+impl From<Scene<3>> for AnyScene {
+    fn from(s: Scene<3>) -> Self {
+        AnyScene::D3(s)
+    }
+}
+
+fn parse_value(text: &str) -> Result<serde_json::Value, SceneError> {
+    serde_json::from_str(text).map_err(|e| SceneError::Json {
+        line: e.line(),
+        column: e.column(),
+        message: strip_position(&e.to_string()),
+    })
+}
+
+fn strip_position(msg: &str) -> String {
+    match msg.rfind(" at line ") {
+        Some(k) => msg[..k].to_string(),
+        None => msg.to_string(),
+    }
+}
+
+fn take_dim(value: &mut serde_json::Value) -> Result<usize, SceneError> {
+    let obj = value.as_object_mut().ok_or_else(|| SceneError::Field {
+        path: ".".into(),
+        message: "a scene is a JSON object".into(),
+    })?;
+    let dim = obj
+        .remove("dim")
+        .ok_or_else(|| SceneError::Dimension("missing (2 or 3)".into()))?;
+    match dim.as_u64() {
+        Some(d) => Ok(d as usize),
+        None => Err(SceneError::Dimension(format!("{dim} is not 2 or 3"))),
+    }
+}
+
+fn field_error(e: serde_path_to_error::Error<serde_json::Error>) -> SceneError {
+    let path = e.path().to_string();
+    SceneError::Field {
+        path,
+        message: strip_position(&e.into_inner().to_string()),
+    }
+}
+
+fn validate_wall<const D: usize>(w: usize, wall: &Wall<D>) -> Result<(), SceneError> {
+    match wall {
+        Wall::Segment { a, b } => {
+            if !a.is_finite() || !b.is_finite() {
+                return Err(SceneError::NonFinite(format!("walls[{w}]")));
+            }
+            if (*b - *a).norm_sq() == 0.0 {
+                return Err(SceneError::DegenerateWall {
+                    wall: w,
+                    why: "its end points coincide",
+                });
+            }
+        }
+        Wall::Plane { point, normal } => {
+            if !point.is_finite() || !normal.is_finite() {
+                return Err(SceneError::NonFinite(format!("walls[{w}]")));
+            }
+            if normal.norm_sq() == 0.0 {
+                return Err(SceneError::DegenerateWall {
+                    wall: w,
+                    why: "its normal is zero",
+                });
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Distance from `p` to the wall (signed for planes: negative behind it).
+#[must_use]
+pub fn wall_clearance<const D: usize>(wall: &Wall<D>, p: Vector<D>) -> f64 {
+    match *wall {
+        Wall::Segment { a, b } => {
+            let u = b - a;
+            let s = ((p - a).dot(u) / u.norm_sq()).clamp(0.0, 1.0);
+            (p - (a + u * s)).norm()
+        }
+        Wall::Plane { point, normal } => (p - point).dot(normal) / normal.norm(),
+    }
+}
+
+/// The first overlapping pair `(i, j)`, `i < j`, in lexicographic order, with its depth.
+fn first_overlap<const D: usize>(bodies: &[BodySpec<D>]) -> Option<(usize, usize, f64)> {
+    let max_r = bodies.iter().map(|b| b.radius).fold(0.0, f64::max);
+    if bodies.len() < 2 || max_r <= 0.0 {
+        return None;
+    }
+    let cell = 2.0 * max_r;
+    let key = |p: Vector<D>| {
+        let mut k = [0i64; D];
+        for d in 0..D {
+            k[d] = (p[d] / cell).floor() as i64;
+        }
+        k
+    };
+    let mut grid: HashMap<[i64; D], Vec<u32>> = HashMap::with_capacity(bodies.len());
+    for (i, b) in bodies.iter().enumerate() {
+        grid.entry(key(b.pos)).or_default().push(i as u32);
+    }
+    let neighbours = 3usize.pow(D as u32);
+    for (i, bi) in bodies.iter().enumerate() {
+        let k = key(bi.pos);
+        let mut best: Option<(usize, f64)> = None;
+        for code in 0..neighbours {
+            let mut nk = k;
+            let mut c = code;
+            for slot in nk.iter_mut() {
+                *slot += (c % 3) as i64 - 1;
+                c /= 3;
+            }
+            let Some(list) = grid.get(&nk) else { continue };
+            for &j in list {
+                let j = j as usize;
+                if j <= i {
+                    continue;
+                }
+                let bj = &bodies[j];
+                let sum = bi.radius + bj.radius;
+                let d = (bi.pos - bj.pos).norm();
+                if d < sum && best.is_none_or(|(bj0, _)| j < bj0) {
+                    best = Some((j, sum - d));
+                }
+            }
+        }
+        if let Some((j, depth)) = best {
+            return Some((i, j, depth));
+        }
+    }
+    None
+}
+
+/// Segments both of whose end points are shared with exactly one other segment end: the
+/// edges of closed polygons.
+fn closed_segments<const D: usize>(walls: &[Wall<D>]) -> Vec<(Vector<D>, Vector<D>)> {
+    let segs: Vec<(Vector<D>, Vector<D>)> = walls
+        .iter()
+        .filter_map(|w| match *w {
+            Wall::Segment { a, b } => Some((a, b)),
+            Wall::Plane { .. } => None,
+        })
+        .collect();
+    let bits = |v: Vector<D>| v.0.map(f64::to_bits);
+    let mut degree: HashMap<[u64; D], usize> = HashMap::new();
+    for (a, b) in &segs {
+        *degree.entry(bits(*a)).or_default() += 1;
+        *degree.entry(bits(*b)).or_default() += 1;
+    }
+    segs.into_iter()
+        .filter(|(a, b)| degree[&bits(*a)] == 2 && degree[&bits(*b)] == 2)
+        .collect()
+}
+
+fn inside_even_odd<const D: usize>(segs: &[(Vector<D>, Vector<D>)], x: f64, y: f64) -> bool {
+    let mut inside = false;
+    for (a, b) in segs {
+        let (ax, ay, bx, by) = (a[0], a[1], b[0], b[1]);
+        if (ay > y) != (by > y) {
+            let cross_x = ax + (y - ay) * (bx - ax) / (by - ay);
+            if x < cross_x {
+                inside = !inside;
+            }
+        }
+    }
+    inside
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn table() -> Vec<Wall<2>> {
+        let c = [[0.0, 0.0], [4.0, 0.0], [4.0, 2.0], [0.0, 2.0]];
+        (0..4)
+            .map(|k| Wall::Segment {
+                a: Vector(c[k]),
+                b: Vector(c[(k + 1) % 4]),
+            })
+            .collect()
+    }
+
+    fn scene(bodies: Vec<BodySpec<2>>) -> Scene<2> {
+        Scene {
+            bodies,
+            walls: table(),
+            ..Scene::default()
+        }
+    }
+
+    #[test]
+    fn good_scene_round_trips() {
+        let s = scene(vec![
+            BodySpec::new(Vector([1.0, 1.0]), Vector([1.0, 0.0]), 0.5),
+            BodySpec {
+                id: Some(9),
+                mass: Some(2.0),
+                ..BodySpec::new(Vector([3.0, 1.0]), Vector([0.0, 0.0]), 0.5)
+            },
+        ]);
+        s.validate().unwrap();
+        let back = AnyScene::from_json(&s.to_json()).unwrap();
+        assert_eq!(back, AnyScene::D2(s));
+    }
+
+    #[test]
+    fn rejects_each_class() {
+        let ok = || BodySpec::new(Vector([1.0, 1.0]), Vector([0.0, 0.0]), 0.5);
+        let mut b = ok();
+        b.radius = -1.0;
+        assert_eq!(
+            scene(vec![b]).validate(),
+            Err(SceneError::NonPositive("bodies[0].radius".into()))
+        );
+        let mut b = ok();
+        b.vel = Vector([f64::NAN, 0.0]);
+        assert_eq!(
+            scene(vec![b]).validate(),
+            Err(SceneError::NonFinite("bodies[0].vel".into()))
+        );
+        let b2 = BodySpec::new(Vector([1.5, 1.0]), Vector([0.0, 0.0]), 0.5);
+        assert!(matches!(
+            scene(vec![ok(), b2]).validate(),
+            Err(SceneError::Overlap { .. })
+        ));
+        let b3 = BodySpec::new(Vector([0.2, 1.0]), Vector([0.0, 0.0]), 0.5);
+        assert!(matches!(
+            scene(vec![b3]).validate(),
+            Err(SceneError::CrossesWall { wall: 3, .. })
+        ));
+        let b4 = BodySpec::new(Vector([9.0, 1.0]), Vector([0.0, 0.0]), 0.5);
+        assert!(matches!(
+            scene(vec![b4]).validate(),
+            Err(SceneError::OutsideTable { .. })
+        ));
+        let mut s = scene(vec![ok()]);
+        s.walls.push(Wall::Segment {
+            a: Vector([1.0, 1.0]),
+            b: Vector([1.0, 1.0]),
+        });
+        assert!(matches!(
+            s.validate(),
+            Err(SceneError::DegenerateWall { wall: 4, .. })
+        ));
+        let mut a = ok();
+        a.id = Some(1);
+        let mut c = BodySpec::new(Vector([3.0, 1.0]), Vector([0.0, 0.0]), 0.5);
+        c.id = Some(1);
+        assert!(matches!(
+            scene(vec![a, c]).validate(),
+            Err(SceneError::DuplicateId { id: 1, .. })
+        ));
+    }
+
+    #[test]
+    fn touching_bodies_are_allowed() {
+        let a = BodySpec::new(Vector([1.0, 1.0]), Vector([0.0, 0.0]), 0.5);
+        let b = BodySpec::new(Vector([2.0, 1.0]), Vector([0.0, 0.0]), 0.5);
+        scene(vec![a, b]).validate().unwrap();
+    }
+
+    #[test]
+    fn parse_errors_name_the_place() {
+        let e = AnyScene::from_json("{\"dim\": 2,\n \"bodies\": [}").unwrap_err();
+        assert!(matches!(e, SceneError::Json { line: 2, .. }), "{e}");
+        let e = AnyScene::from_json(r#"{"dim": 2, "bodies": [{"pos": [0,0], "vel": [0,0]}]}"#)
+            .unwrap_err();
+        assert_eq!(e.to_string(), "field `bodies[0]`: missing field `radius`");
+        let e = AnyScene::from_json(
+            r#"{"dim": 3, "bodies": [{"pos": [0,0], "vel": [0,0,0], "radius": 1}]}"#,
+        )
+        .unwrap_err();
+        assert!(e.to_string().starts_with("field `bodies[0].pos`"), "{e}");
+        let e = AnyScene::from_json(r#"{"dim": 4, "bodies": []}"#).unwrap_err();
+        assert!(matches!(e, SceneError::Dimension(_)));
+        let e = Scene::<3>::from_json(r#"{"dim": 2, "bodies": []}"#).unwrap_err();
+        assert!(matches!(e, SceneError::Dimension(_)));
+    }
+
+    #[test]
+    fn planes_are_one_sided() {
+        let wall = Wall::Plane {
+            point: Vector([0.0, 0.0, 0.0]),
+            normal: Vector([0.0, 0.0, 2.0]),
+        };
+        assert_eq!(wall_clearance(&wall, Vector([5.0, 1.0, 3.0])), 3.0);
+        assert_eq!(wall_clearance(&wall, Vector([5.0, 1.0, -3.0])), -3.0);
+    }
+}

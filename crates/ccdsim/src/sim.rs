@@ -1,0 +1,260 @@
+//! The simulation loop: find the next event, resolve it, tell the finder, repeat.
+
+use crate::event::{Event, EventKind};
+use crate::finder::{make_finder, Finder, FinderError, FinderOptions};
+use crate::geom::Vector;
+use crate::resolve::{resolve_body_body, resolve_body_wall};
+use crate::scene::{Scene, SceneError};
+use crate::world::World;
+
+/// A resolved collision: the event and the involved bodies' states right after it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Collision<const D: usize> {
+    /// The event that was resolved.
+    pub event: Event,
+    /// Positions at `event.time` of body `event.a` and (body events) body `event.b`.
+    pub pos: [Vector<D>; 2],
+    /// Velocities after the collision, in the same order.
+    pub vel: [Vector<D>; 2],
+}
+
+impl<const D: usize> Collision<D> {
+    /// Number of bodies involved: 2 for body events, 1 for wall events.
+    #[must_use]
+    pub fn body_count(&self) -> usize {
+        match self.event.kind {
+            EventKind::Body => 2,
+            EventKind::Wall => 1,
+        }
+    }
+}
+
+/// Counters kept while running.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Stats {
+    /// Events resolved (body and wall collisions).
+    pub events: u64,
+    /// Body–body collisions resolved.
+    pub body_collisions: u64,
+    /// Body–wall collisions resolved.
+    pub wall_collisions: u64,
+    /// Largest overlap seen at any contact, relative to the contact distance (`r_i + r_j`, or
+    /// `r` for walls).
+    pub max_overlap: f64,
+    /// Kinetic energy when the simulation was created, joules.
+    pub kinetic_energy_start: f64,
+}
+
+/// Why a simulation could not be created.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum SimError {
+    /// The scene is invalid.
+    #[error(transparent)]
+    Scene(#[from] SceneError),
+    /// The finder cannot be made or cannot serve the scene.
+    #[error(transparent)]
+    Finder(#[from] FinderError),
+    /// A body index is out of range or a value is not finite.
+    #[error("{0}")]
+    Input(String),
+}
+
+/// An exact event-driven simulation: a [`World`] and a [`Finder`].
+///
+/// ```
+/// use ccdsim::{Scene, BodySpec, Simulation, Vector};
+/// let scene = Scene::<2> {
+///     bodies: vec![
+///         BodySpec::new(Vector([0.0, 0.0]), Vector([1.0, 0.0]), 0.5),
+///         BodySpec::new(Vector([3.0, 0.0]), Vector([-1.0, 0.0]), 0.5),
+///     ],
+///     ..Scene::default()
+/// };
+/// let mut sim = Simulation::new(&scene, "all-pairs").unwrap();
+/// let hit = sim.step_event().unwrap();
+/// assert_eq!(hit.event.time, 1.0);
+/// assert_eq!(hit.vel, [Vector([-1.0, 0.0]), Vector([1.0, 0.0])]);
+/// assert!(sim.step_event().is_none()); // they fly apart for ever
+/// ```
+pub struct Simulation<const D: usize> {
+    world: World<D>,
+    finder: Box<dyn Finder<D>>,
+    pending: Option<Option<Event>>,
+    stats: Stats,
+}
+
+impl<const D: usize> Simulation<D> {
+    /// A simulation of `scene` with the finder called `finder` and default options.
+    pub fn new(scene: &Scene<D>, finder: &str) -> Result<Self, SimError> {
+        Self::with_finder(scene, make_finder(finder, &FinderOptions::default())?)
+    }
+
+    /// A simulation of `scene` with the given finder.
+    pub fn with_finder(scene: &Scene<D>, mut finder: Box<dyn Finder<D>>) -> Result<Self, SimError> {
+        let world = World::from_scene(scene)?;
+        finder.init(&world)?;
+        let stats = Stats {
+            kinetic_energy_start: world.kinetic_energy(),
+            ..Stats::default()
+        };
+        Ok(Simulation {
+            world,
+            finder,
+            pending: None,
+            stats,
+        })
+    }
+
+    /// The bodies and walls.
+    #[must_use]
+    pub fn world(&self) -> &World<D> {
+        &self.world
+    }
+
+    /// The finder's name.
+    #[must_use]
+    pub fn finder_name(&self) -> &'static str {
+        self.finder.name()
+    }
+
+    /// The finder, e.g. to ask for its debug boxes.
+    pub fn finder_mut(&mut self) -> (&mut dyn Finder<D>, &World<D>) {
+        (self.finder.as_mut(), &self.world)
+    }
+
+    /// Current simulated time, seconds.
+    #[must_use]
+    pub fn time(&self) -> f64 {
+        self.world.now()
+    }
+
+    /// Counters so far.
+    #[must_use]
+    pub fn stats(&self) -> &Stats {
+        &self.stats
+    }
+
+    /// Position of body `i` at the current time.
+    #[must_use]
+    pub fn position(&self, i: usize) -> Vector<D> {
+        self.world.position_at(i, self.world.now())
+    }
+
+    /// The next event, without resolving it.
+    pub fn peek_event(&mut self) -> Option<Event> {
+        if self.pending.is_none() {
+            self.pending = Some(self.finder.next_event(&self.world));
+        }
+        self.pending.flatten()
+    }
+
+    /// Resolves the next event and returns it, or `None` when no event will ever happen.
+    pub fn step_event(&mut self) -> Option<Collision<D>> {
+        let event = self.peek_event()?;
+        self.pending = None;
+        Some(self.resolve(event))
+    }
+
+    fn resolve(&mut self, e: Event) -> Collision<D> {
+        let (a, b) = (e.a as usize, e.b as usize);
+        self.world.set_now(e.time.max(self.world.now()));
+        let overlap;
+        let out = match e.kind {
+            EventKind::Body => {
+                overlap = resolve_body_body(&mut self.world, a, b, e.time);
+                self.stats.body_collisions += 1;
+                self.finder.update(&self.world, &[a, b]);
+                let w = &self.world;
+                Collision {
+                    event: e,
+                    pos: [w.positions()[a], w.positions()[b]],
+                    vel: [w.velocities()[a], w.velocities()[b]],
+                }
+            }
+            EventKind::Wall => {
+                overlap = resolve_body_wall(&mut self.world, a, b, e.time);
+                self.stats.wall_collisions += 1;
+                self.finder.update(&self.world, &[a]);
+                let w = &self.world;
+                Collision {
+                    event: e,
+                    pos: [w.positions()[a], Vector::ZERO],
+                    vel: [w.velocities()[a], Vector::ZERO],
+                }
+            }
+        };
+        self.stats.events += 1;
+        self.stats.max_overlap = self.stats.max_overlap.max(overlap);
+        out
+    }
+
+    /// Resolves every event at or before `t`, calling `on_event` after each, then sets the
+    /// current time to `t`. Returns the number of events resolved.
+    pub fn run_until_with(&mut self, t: f64, mut on_event: impl FnMut(&Collision<D>)) -> u64 {
+        let mut count = 0;
+        while let Some(e) = self.peek_event() {
+            if e.time > t {
+                break;
+            }
+            let c = self.step_event().expect("peeked");
+            on_event(&c);
+            count += 1;
+        }
+        if t > self.world.now() {
+            self.world.set_now(t);
+        }
+        count
+    }
+
+    /// Resolves every event at or before `t`; see [`Simulation::run_until_with`].
+    pub fn run_until(&mut self, t: f64) -> u64 {
+        self.run_until_with(t, |_| {})
+    }
+
+    /// Resolves up to `n` events, calling `on_event` after each; stops early when no event
+    /// will ever happen. Returns the number resolved.
+    pub fn run_events_with(&mut self, n: u64, mut on_event: impl FnMut(&Collision<D>)) -> u64 {
+        let mut count = 0;
+        while count < n {
+            let Some(c) = self.step_event() else { break };
+            on_event(&c);
+            count += 1;
+        }
+        count
+    }
+
+    /// Resolves up to `n` events; see [`Simulation::run_events_with`].
+    pub fn run_events(&mut self, n: u64) -> u64 {
+        self.run_events_with(n, |_| {})
+    }
+
+    /// Advances the simulated time by `dt` seconds (one game frame) and returns the collisions
+    /// that happened inside the frame, in order.
+    pub fn advance(&mut self, dt: f64) -> Vec<Collision<D>> {
+        let mut out = Vec::new();
+        let until = self.world.now() + dt.max(0.0);
+        self.run_until_with(until, |c| out.push(*c));
+        out
+    }
+
+    /// Gives body `i` a new velocity from the current time on (a game's kick or steering).
+    pub fn set_velocity(&mut self, i: usize, vel: Vector<D>) -> Result<(), SimError> {
+        if i >= self.world.len() {
+            return Err(SimError::Input(format!(
+                "body {i} does not exist ({} bodies)",
+                self.world.len()
+            )));
+        }
+        if !vel.is_finite() {
+            return Err(SimError::Input(format!(
+                "velocity of body {i} is not finite"
+            )));
+        }
+        let t = self.world.now();
+        let p = self.world.position_at(i, t);
+        self.world.set_state(i, p, vel, t);
+        self.finder.update(&self.world, &[i]);
+        self.pending = None;
+        Ok(())
+    }
+}

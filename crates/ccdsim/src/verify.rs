@@ -1,0 +1,355 @@
+//! Replaying a run and checking the numerical rules, independently of any finder.
+//!
+//! For every event the [`Verifier`] checks: times never go backwards; the recorded positions
+//! follow from the previous states; the bodies touch (gap within `1e-9` of the contact
+//! distance); momentum is conserved in body–body collisions and kinetic energy in elastic
+//! ones; and no pair of bodies and no body and wall came closer than `(1 − 1e-9)` times their
+//! contact distance at any time (a missed collision), using closed-form closest approach
+//! rather than the simulator's narrow phase.
+
+use crate::event::EventKind;
+use crate::geom::Vector;
+use crate::narrow::Motion;
+use crate::scene::{wall_clearance, Scene, Wall};
+use crate::sim::Collision;
+
+/// Allowed overlap relative to the contact distance.
+pub const OVERLAP_TOLERANCE: f64 = 1e-9;
+/// Allowed relative change of a pair's momentum or kinetic energy in one collision.
+pub const CONSERVATION_TOLERANCE: f64 = 1e-12;
+
+/// The first rule a run breaks.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error("event {index} (t = {time}): {what}")]
+pub struct Violation {
+    /// Index of the offending event (0-based), or the event count for end-of-run checks.
+    pub index: u64,
+    /// Its time, seconds.
+    pub time: f64,
+    /// What is wrong.
+    pub what: String,
+}
+
+/// Totals of a verified run.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct VerifyReport {
+    /// Events checked.
+    pub events: u64,
+    /// Body–body collisions.
+    pub body_collisions: u64,
+    /// Body–wall collisions.
+    pub wall_collisions: u64,
+    /// Largest overlap seen (relative to the contact distance), at events or in between.
+    pub max_overlap: f64,
+    /// Kinetic energy at the start, joules.
+    pub kinetic_energy_start: f64,
+    /// Kinetic energy at the end, joules.
+    pub kinetic_energy_end: f64,
+}
+
+/// Replays a run event by event, checking each.
+pub struct Verifier<const D: usize> {
+    motion: Vec<Motion<D>>,
+    radius: Vec<f64>,
+    mass: Vec<f64>,
+    walls: Vec<Wall<D>>,
+    restitution: f64,
+    last_time: f64,
+    report: VerifyReport,
+}
+
+impl<const D: usize> Verifier<D> {
+    /// Starts from the run's initial scene.
+    #[must_use]
+    pub fn new(scene: &Scene<D>) -> Self {
+        let motion: Vec<Motion<D>> = scene
+            .bodies
+            .iter()
+            .map(|b| Motion {
+                pos: b.pos,
+                vel: b.vel,
+                time: scene.start_time,
+            })
+            .collect();
+        let mass: Vec<f64> = scene.bodies.iter().map(|b| b.effective_mass()).collect();
+        let ke = motion
+            .iter()
+            .zip(&mass)
+            .map(|(m, ms)| 0.5 * ms * m.vel.norm_sq())
+            .sum();
+        Verifier {
+            motion,
+            radius: scene.bodies.iter().map(|b| b.radius).collect(),
+            mass,
+            walls: scene.walls.clone(),
+            restitution: scene.settings.restitution,
+            last_time: scene.start_time,
+            report: VerifyReport {
+                kinetic_energy_start: ke,
+                kinetic_energy_end: ke,
+                ..Default::default()
+            },
+        }
+    }
+
+    fn fail(&self, time: f64, what: String) -> Violation {
+        Violation {
+            index: self.report.events,
+            time,
+            what,
+        }
+    }
+
+    /// Checks the next event of the run and applies it.
+    pub fn check(&mut self, c: &Collision<D>) -> Result<(), Violation> {
+        let t = c.event.time;
+        if !t.is_finite() || t < self.last_time {
+            return Err(self.fail(
+                t,
+                format!("time goes backwards (previous event at {})", self.last_time),
+            ));
+        }
+        let k = c.body_count();
+        let ids = [c.event.a as usize, c.event.b as usize];
+        for (s, &i) in ids[..k].iter().enumerate() {
+            let expect = self.motion[i].at(t);
+            let scale =
+                1.0 + expect.norm() + self.motion[i].vel.norm() * (t - self.motion[i].time).abs();
+            if (c.pos[s] - expect).norm() > 1e-9 * scale {
+                return Err(self.fail(
+                    t,
+                    format!(
+                        "body {i} recorded at {:?}, its motion puts it at {:?}",
+                        c.pos[s].0, expect.0
+                    ),
+                ));
+            }
+            if !c.vel[s].is_finite() {
+                return Err(self.fail(t, format!("body {i} gets a non-finite velocity")));
+            }
+        }
+        for &i in &ids[..k] {
+            self.check_no_miss(i, t)?;
+        }
+        match c.event.kind {
+            EventKind::Body => self.check_pair(c, ids[0], ids[1])?,
+            EventKind::Wall => self.check_wall(c, ids[0], ids[1])?,
+        }
+        for (s, &i) in ids[..k].iter().enumerate() {
+            self.motion[i] = Motion {
+                pos: c.pos[s],
+                vel: c.vel[s],
+                time: t,
+            };
+        }
+        self.last_time = t;
+        self.report.events += 1;
+        Ok(())
+    }
+
+    fn check_pair(&mut self, c: &Collision<D>, i: usize, j: usize) -> Result<(), Violation> {
+        let t = c.event.time;
+        let sigma = self.radius[i] + self.radius[j];
+        let gap = ((c.pos[1] - c.pos[0]).norm() - sigma) / sigma;
+        if gap > OVERLAP_TOLERANCE {
+            return Err(self.fail(
+                t,
+                format!(
+                    "bodies {i} and {j} collide at a distance (gap {:e} of the contact distance)",
+                    gap
+                ),
+            ));
+        }
+        self.report.max_overlap = self.report.max_overlap.max(-gap);
+        let (mi, mj) = (self.mass[i], self.mass[j]);
+        let (vi, vj) = (self.motion[i].vel, self.motion[j].vel);
+        let p0 = vi * mi + vj * mj;
+        let p1 = c.vel[0] * mi + c.vel[1] * mj;
+        let scale = (vi * mi).norm() + (vj * mj).norm() + f64::MIN_POSITIVE;
+        if (p1 - p0).norm() > CONSERVATION_TOLERANCE * scale {
+            return Err(self.fail(
+                t,
+                format!(
+                    "momentum of bodies {i} and {j} changes by {:e} (relative)",
+                    (p1 - p0).norm() / scale
+                ),
+            ));
+        }
+        let e0 = 0.5 * (mi * vi.norm_sq() + mj * vj.norm_sq());
+        let e1 = 0.5 * (mi * c.vel[0].norm_sq() + mj * c.vel[1].norm_sq());
+        self.check_energy(t, e0, e1, &format!("bodies {i} and {j}"))?;
+        self.report.body_collisions += 1;
+        self.report.kinetic_energy_end += e1 - e0;
+        Ok(())
+    }
+
+    fn check_wall(&mut self, c: &Collision<D>, i: usize, w: usize) -> Result<(), Violation> {
+        let t = c.event.time;
+        let r = self.radius[i];
+        let gap = (wall_clearance(&self.walls[w], c.pos[0]) - r) / r;
+        if gap > OVERLAP_TOLERANCE {
+            return Err(self.fail(
+                t,
+                format!(
+                    "body {i} hits wall {w} at a distance (gap {:e} of its radius)",
+                    gap
+                ),
+            ));
+        }
+        self.report.max_overlap = self.report.max_overlap.max(-gap);
+        let m = self.mass[i];
+        let e0 = 0.5 * m * self.motion[i].vel.norm_sq();
+        let e1 = 0.5 * m * c.vel[0].norm_sq();
+        self.check_energy(t, e0, e1, &format!("body {i} at wall {w}"))?;
+        self.report.wall_collisions += 1;
+        self.report.kinetic_energy_end += e1 - e0;
+        Ok(())
+    }
+
+    fn check_energy(&self, t: f64, e0: f64, e1: f64, who: &str) -> Result<(), Violation> {
+        let tol = CONSERVATION_TOLERANCE * e0 + f64::MIN_POSITIVE;
+        let bad = if self.restitution == 1.0 {
+            (e1 - e0).abs() > tol
+        } else {
+            e1 - e0 > tol
+        };
+        if bad {
+            return Err(self.fail(
+                t,
+                format!("kinetic energy of {who} changes from {e0} to {e1}"),
+            ));
+        }
+        Ok(())
+    }
+
+    /// Body `i` is about to change course at `t`: no body or wall may have come too close
+    /// to it since the later of their reference times.
+    fn check_no_miss(&mut self, i: usize, t: f64) -> Result<(), Violation> {
+        let mi = self.motion[i];
+        for j in 0..self.motion.len() {
+            if j == i {
+                continue;
+            }
+            let mj = self.motion[j];
+            let t0 = mi.time.max(mj.time);
+            let sigma = self.radius[i] + self.radius[j];
+            let (d, at) = closest_approach(mi.at(t0), mi.vel, mj.at(t0), mj.vel, t - t0);
+            let overlap = (sigma - d) / sigma;
+            if overlap > OVERLAP_TOLERANCE {
+                return Err(self.fail(t, format!("bodies {i} and {j} overlap by {overlap:e} of their contact distance at t = {} (a missed collision)", t0 + at)));
+            }
+            self.report.max_overlap = self.report.max_overlap.max(overlap);
+        }
+        for (w, wall) in self.walls.iter().enumerate() {
+            let (d, at) = closest_to_wall(wall, &mi, t);
+            let overlap = (self.radius[i] - d) / self.radius[i];
+            if overlap > OVERLAP_TOLERANCE {
+                return Err(self.fail(t, format!("body {i} crosses wall {w} by {overlap:e} of its radius at t = {} (a missed collision)", at)));
+            }
+            self.report.max_overlap = self.report.max_overlap.max(overlap);
+        }
+        Ok(())
+    }
+
+    /// Ends the replay at `end_time`: every pair's last stretch of motion is checked, and the
+    /// kinetic energy recomputed from scratch.
+    pub fn finish(mut self, end_time: f64) -> Result<VerifyReport, Violation> {
+        let end = end_time.max(self.last_time);
+        for i in 0..self.motion.len() {
+            self.check_no_miss_upto(i, end)?;
+        }
+        self.report.kinetic_energy_end = self
+            .motion
+            .iter()
+            .zip(&self.mass)
+            .map(|(m, ms)| 0.5 * ms * m.vel.norm_sq())
+            .sum();
+        Ok(self.report)
+    }
+
+    fn check_no_miss_upto(&mut self, i: usize, t: f64) -> Result<(), Violation> {
+        // Only pairs (i, j > i) are new here; walls are checked for every body.
+        let mi = self.motion[i];
+        for j in i + 1..self.motion.len() {
+            let mj = self.motion[j];
+            let t0 = mi.time.max(mj.time);
+            let sigma = self.radius[i] + self.radius[j];
+            let (d, at) = closest_approach(mi.at(t0), mi.vel, mj.at(t0), mj.vel, t - t0);
+            let overlap = (sigma - d) / sigma;
+            if overlap > OVERLAP_TOLERANCE {
+                return Err(self.fail(t0 + at, format!("bodies {i} and {j} overlap by {overlap:e} after the last event (a missed collision)")));
+            }
+        }
+        for (w, wall) in self.walls.iter().enumerate() {
+            let (d, at) = closest_to_wall(wall, &mi, t);
+            if (self.radius[i] - d) / self.radius[i] > OVERLAP_TOLERANCE {
+                return Err(self.fail(
+                    at,
+                    format!("body {i} crosses wall {w} after the last event (a missed collision)"),
+                ));
+            }
+        }
+        Ok(())
+    }
+}
+
+/// Smallest distance between two points moving linearly over `[0, span]` from `pa`, `pb`,
+/// and the time offset where it occurs.
+fn closest_approach<const D: usize>(
+    pa: Vector<D>,
+    va: Vector<D>,
+    pb: Vector<D>,
+    vb: Vector<D>,
+    span: f64,
+) -> (f64, f64) {
+    let dp = pb - pa;
+    let dv = vb - va;
+    let a = dv.norm_sq();
+    let s = if a > 0.0 {
+        (-dp.dot(dv) / a).clamp(0.0, span.max(0.0))
+    } else {
+        0.0
+    };
+    ((dp + dv * s).norm(), s)
+}
+
+/// Smallest clearance between a body moving linearly from its reference time to `t` and a
+/// wall, and the time where it occurs. The clearance is convex in time for a segment (the
+/// distance to a convex set) and linear for a plane, so a golden-section search finds it.
+fn closest_to_wall<const D: usize>(wall: &Wall<D>, m: &Motion<D>, t: f64) -> (f64, f64) {
+    let f = |s: f64| wall_clearance(wall, m.at(s));
+    let (mut lo, mut hi) = (m.time, t.max(m.time));
+    if let Wall::Plane { .. } = wall {
+        let (a, b) = (f(lo), f(hi));
+        return if a <= b { (a, lo) } else { (b, hi) };
+    }
+    const INV_PHI: f64 = 0.618_033_988_749_894_9;
+    let mut x1 = hi - INV_PHI * (hi - lo);
+    let mut x2 = lo + INV_PHI * (hi - lo);
+    let (mut f1, mut f2) = (f(x1), f(x2));
+    for _ in 0..80 {
+        if f1 <= f2 {
+            hi = x2;
+            x2 = x1;
+            f2 = f1;
+            x1 = hi - INV_PHI * (hi - lo);
+            f1 = f(x1);
+        } else {
+            lo = x1;
+            x1 = x2;
+            f1 = f2;
+            x2 = lo + INV_PHI * (hi - lo);
+            f2 = f(x2);
+        }
+    }
+    let candidates = [
+        (f(m.time), m.time),
+        (f(t.max(m.time)), t.max(m.time)),
+        (f1, x1),
+        (f2, x2),
+    ];
+    candidates.into_iter().fold(
+        (f64::INFINITY, m.time),
+        |best, c| if c.0 < best.0 { c } else { best },
+    )
+}

@@ -1,0 +1,168 @@
+//! Body state as a structure of arrays, kept lazily: body `i` holds a reference position,
+//! its velocity and the time at which the position holds.
+
+use crate::geom::Vector;
+use crate::narrow::Motion;
+use crate::scene::{Scene, SceneError, Wall};
+
+/// Bodies and walls of a running simulation.
+///
+/// Only collisions (and explicit edits) change a body's stored state, and only that body's:
+/// its position at time `t` is `pos + vel · (t − time)`.
+#[derive(Clone, Debug)]
+pub struct World<const D: usize> {
+    pos: Vec<Vector<D>>,
+    vel: Vec<Vector<D>>,
+    time: Vec<f64>,
+    radius: Vec<f64>,
+    mass: Vec<f64>,
+    id: Vec<u64>,
+    changes: Vec<u64>,
+    walls: Vec<Wall<D>>,
+    restitution: f64,
+    now: f64,
+}
+
+impl<const D: usize> World<D> {
+    /// Builds the world of a scene after validating it.
+    pub fn from_scene(scene: &Scene<D>) -> Result<Self, SceneError> {
+        scene.validate()?;
+        let n = scene.bodies.len();
+        Ok(World {
+            pos: scene.bodies.iter().map(|b| b.pos).collect(),
+            vel: scene.bodies.iter().map(|b| b.vel).collect(),
+            time: vec![scene.start_time; n],
+            radius: scene.bodies.iter().map(|b| b.radius).collect(),
+            mass: scene.bodies.iter().map(|b| b.effective_mass()).collect(),
+            id: (0..n).map(|i| scene.id_of(i)).collect(),
+            changes: vec![0; n],
+            walls: scene.walls.clone(),
+            restitution: scene.settings.restitution,
+            now: scene.start_time,
+        })
+    }
+
+    /// Number of bodies.
+    #[must_use]
+    pub fn len(&self) -> usize {
+        self.pos.len()
+    }
+
+    /// True when there are no bodies.
+    #[must_use]
+    pub fn is_empty(&self) -> bool {
+        self.pos.is_empty()
+    }
+
+    /// Current simulated time, seconds: every event before it has been resolved.
+    #[must_use]
+    pub fn now(&self) -> f64 {
+        self.now
+    }
+
+    pub(crate) fn set_now(&mut self, t: f64) {
+        debug_assert!(t >= self.now);
+        self.now = t;
+    }
+
+    /// The stored state of body `i`: its reference position, velocity and reference time.
+    #[must_use]
+    #[inline]
+    pub fn motion(&self, i: usize) -> Motion<D> {
+        Motion {
+            pos: self.pos[i],
+            vel: self.vel[i],
+            time: self.time[i],
+        }
+    }
+
+    /// Position of body `i` at time `t`, metres.
+    #[must_use]
+    #[inline]
+    pub fn position_at(&self, i: usize, t: f64) -> Vector<D> {
+        self.motion(i).at(t)
+    }
+
+    /// Reference positions (each valid at its body's [`World::times`] entry).
+    #[must_use]
+    pub fn positions(&self) -> &[Vector<D>] {
+        &self.pos
+    }
+
+    /// Velocities, metres per second.
+    #[must_use]
+    pub fn velocities(&self) -> &[Vector<D>] {
+        &self.vel
+    }
+
+    /// Reference times, seconds.
+    #[must_use]
+    pub fn times(&self) -> &[f64] {
+        &self.time
+    }
+
+    /// Radii, metres.
+    #[must_use]
+    pub fn radii(&self) -> &[f64] {
+        &self.radius
+    }
+
+    /// Masses, kilograms.
+    #[must_use]
+    pub fn masses(&self) -> &[f64] {
+        &self.mass
+    }
+
+    /// User ids, by body index.
+    #[must_use]
+    pub fn ids(&self) -> &[u64] {
+        &self.id
+    }
+
+    /// The static walls.
+    #[must_use]
+    pub fn walls(&self) -> &[Wall<D>] {
+        &self.walls
+    }
+
+    /// Coefficient of restitution used for every collision.
+    #[must_use]
+    pub fn restitution(&self) -> f64 {
+        self.restitution
+    }
+
+    /// How many times body `i`'s stored state has been replaced; a cached prediction about
+    /// body `i` is still valid while this count is unchanged.
+    #[must_use]
+    #[inline]
+    pub fn change_count(&self, i: usize) -> u64 {
+        self.changes[i]
+    }
+
+    /// Replaces body `i`'s state: position `pos` holding at time `t`, velocity `vel`.
+    pub(crate) fn set_state(&mut self, i: usize, pos: Vector<D>, vel: Vector<D>, t: f64) {
+        self.pos[i] = pos;
+        self.vel[i] = vel;
+        self.time[i] = t;
+        self.changes[i] += 1;
+    }
+
+    /// Total kinetic energy, joules.
+    #[must_use]
+    pub fn kinetic_energy(&self) -> f64 {
+        self.vel
+            .iter()
+            .zip(&self.mass)
+            .map(|(v, m)| 0.5 * m * v.norm_sq())
+            .sum()
+    }
+
+    /// Total momentum, kg·m/s.
+    #[must_use]
+    pub fn momentum(&self) -> Vector<D> {
+        self.vel
+            .iter()
+            .zip(&self.mass)
+            .fold(Vector::ZERO, |acc, (v, m)| acc + *v * *m)
+    }
+}
