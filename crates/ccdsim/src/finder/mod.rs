@@ -83,8 +83,21 @@ pub enum FinderError {
 }
 
 /// Options of all finders; each finder reads its own.
-#[derive(Clone, Debug, Default, PartialEq)]
-pub struct FinderOptions {}
+#[derive(Clone, Debug, PartialEq)]
+pub struct FinderOptions {
+    /// `bvh`: factor by which the time step Δ grows while no event is found (> 1; thesis: 2).
+    pub bvh_grow: f64,
+    /// `bvh`: factor by which Δ shrinks after an event is found (in (0, 1]; thesis: 1/2).
+    pub bvh_shrink: f64,
+    /// `bvh`: the first Δ, seconds (> 0).
+    pub bvh_initial_dt: f64,
+}
+
+impl Default for FinderOptions {
+    fn default() -> Self {
+        FinderOptions { bvh_grow: 2.0, bvh_shrink: 0.5, bvh_initial_dt: 1e-3 }
+    }
+}
 
 /// Names of every finder [`make_finder`] knows.
 pub const FINDER_NAMES: &[&str] = &["all-pairs"];
