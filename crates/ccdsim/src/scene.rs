@@ -378,7 +378,7 @@ impl AnyScene {
     /// Reads, parses and validates a scene file.
     pub fn from_file(path: &std::path::Path) -> Result<Self, SceneError> {
         let text = std::fs::read_to_string(path)
-            .map_err(|e| SceneError::Io(format!("cannot read {}: {e}", path.display())))?;
+            .map_err(|e| SceneError::Io(format!("cannot read: {e}")))?;
         Self::from_json(&text)
     }
 
