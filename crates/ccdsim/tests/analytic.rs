@@ -3,7 +3,10 @@
 use ccdsim::{BodySpec, EventKind, Scene, Simulation, Vector, Wall};
 
 fn body<const D: usize>(pos: [f64; D], vel: [f64; D], r: f64, m: f64) -> BodySpec<D> {
-    BodySpec { mass: Some(m), ..BodySpec::new(Vector(pos), Vector(vel), r) }
+    BodySpec {
+        mass: Some(m),
+        ..BodySpec::new(Vector(pos), Vector(vel), r)
+    }
 }
 
 fn close(a: f64, b: f64, tol: f64) -> bool {
@@ -12,14 +15,21 @@ fn close(a: f64, b: f64, tol: f64) -> bool {
 
 fn assert_vec<const D: usize>(got: Vector<D>, want: [f64; D]) {
     for k in 0..D {
-        assert!(close(got[k], want[k], 1e-12), "got {:?}, want {want:?}", got.0);
+        assert!(
+            close(got[k], want[k], 1e-12),
+            "got {:?}, want {want:?}",
+            got.0
+        );
     }
 }
 
 #[test]
 fn head_on_equal_masses_exchange_velocities() {
     let scene = Scene::<2> {
-        bodies: vec![body([0.0, 0.0], [2.0, 0.0], 1.0, 1.0), body([10.0, 0.0], [-1.0, 0.0], 1.0, 1.0)],
+        bodies: vec![
+            body([0.0, 0.0], [2.0, 0.0], 1.0, 1.0),
+            body([10.0, 0.0], [-1.0, 0.0], 1.0, 1.0),
+        ],
         ..Scene::default()
     };
     let mut sim = Simulation::new(&scene, "all-pairs").unwrap();
@@ -34,7 +44,10 @@ fn head_on_equal_masses_exchange_velocities() {
 fn head_on_unequal_masses() {
     // m1 = 1 at 2 m/s onto m2 = 3 at rest: v1' = (m1−m2)/(m1+m2)·u = −1, v2' = 2m1/(m1+m2)·u = 1.
     let scene = Scene::<2> {
-        bodies: vec![body([0.0, 0.0], [2.0, 0.0], 0.5, 1.0), body([5.0, 0.0], [0.0, 0.0], 1.5, 3.0)],
+        bodies: vec![
+            body([0.0, 0.0], [2.0, 0.0], 0.5, 1.0),
+            body([5.0, 0.0], [0.0, 0.0], 1.5, 3.0),
+        ],
         ..Scene::default()
     };
     let mut sim = Simulation::new(&scene, "all-pairs").unwrap();
@@ -48,7 +61,10 @@ fn head_on_unequal_masses() {
 fn glancing_equal_masses_leave_at_right_angles() {
     let b = 1.0; // impact parameter, radius 1 each: contact distance 2
     let scene = Scene::<2> {
-        bodies: vec![body([0.0, 0.0], [1.0, 0.0], 1.0, 1.0), body([10.0, b], [0.0, 0.0], 1.0, 1.0)],
+        bodies: vec![
+            body([0.0, 0.0], [1.0, 0.0], 1.0, 1.0),
+            body([10.0, b], [0.0, 0.0], 1.0, 1.0),
+        ],
         ..Scene::default()
     };
     let mut sim = Simulation::new(&scene, "all-pairs").unwrap();
@@ -68,8 +84,14 @@ fn ball_bounces_between_two_walls() {
     let scene = Scene::<2> {
         bodies: vec![body([5.0, 0.0], [1.0, 0.0], 1.0, 1.0)],
         walls: vec![
-            Wall::Segment { a: Vector([0.0, -10.0]), b: Vector([0.0, 10.0]) },
-            Wall::Segment { a: Vector([10.0, -10.0]), b: Vector([10.0, 10.0]) },
+            Wall::Segment {
+                a: Vector([0.0, -10.0]),
+                b: Vector([0.0, 10.0]),
+            },
+            Wall::Segment {
+                a: Vector([10.0, -10.0]),
+                b: Vector([10.0, 10.0]),
+            },
         ],
         ..Scene::default()
     };
@@ -78,7 +100,11 @@ fn ball_bounces_between_two_walls() {
         let c = sim.step_event().unwrap();
         assert_eq!(c.event.kind, EventKind::Wall);
         assert_eq!(c.event.b as usize, if k % 2 == 0 { 1 } else { 0 });
-        assert!(close(c.event.time, 4.0 + 8.0 * k as f64, 1e-14), "bounce {k} at {}", c.event.time);
+        assert!(
+            close(c.event.time, 4.0 + 8.0 * k as f64, 1e-14),
+            "bounce {k} at {}",
+            c.event.time
+        );
         assert_vec(c.vel[0], [if k % 2 == 0 { -1.0 } else { 1.0 }, 0.0]);
     }
 }
@@ -89,7 +115,10 @@ fn corner_hit_reflects_about_the_end_point() {
     // corner is 1, i.e. at height √0.75, normal (0.5, √0.75).
     let scene = Scene::<2> {
         bodies: vec![body([10.5, 3.0], [0.0, -1.0], 1.0, 1.0)],
-        walls: vec![Wall::Segment { a: Vector([0.0, 0.0]), b: Vector([10.0, 0.0]) }],
+        walls: vec![Wall::Segment {
+            a: Vector([0.0, 0.0]),
+            b: Vector([10.0, 0.0]),
+        }],
         ..Scene::default()
     };
     let mut sim = Simulation::new(&scene, "all-pairs").unwrap();
@@ -114,7 +143,10 @@ fn cradle<const D: usize>(resting: usize, axis: usize) -> Scene<D> {
     for k in 0..resting {
         bodies.push(body(at(2.0 * k as f64), [0.0; D], 1.0, 1.0));
     }
-    Scene { bodies, ..Scene::default() }
+    Scene {
+        bodies,
+        ..Scene::default()
+    }
 }
 
 fn check_cradle<const D: usize>(scene: Scene<D>, axis: usize) {
@@ -171,7 +203,10 @@ fn head_on_3d_along_a_diagonal() {
 #[test]
 fn glancing_3d_unequal_masses_conserve_momentum_and_energy() {
     let scene = Scene::<3> {
-        bodies: vec![body([0.0, 0.0, 0.0], [3.0, 0.0, 0.0], 1.0, 2.0), body([8.0, 0.6, 0.8], [-1.0, 0.0, 0.0], 1.0, 5.0)],
+        bodies: vec![
+            body([0.0, 0.0, 0.0], [3.0, 0.0, 0.0], 1.0, 2.0),
+            body([8.0, 0.6, 0.8], [-1.0, 0.0, 0.0], 1.0, 5.0),
+        ],
         ..Scene::default()
     };
     let mut sim = Simulation::new(&scene, "all-pairs").unwrap();
@@ -192,20 +227,31 @@ fn ball_between_two_planes_3d() {
     let scene = Scene::<3> {
         bodies: vec![body([0.0, 0.0, 5.0], [0.0, 0.0, -2.0], 1.0, 1.0)],
         walls: vec![
-            Wall::Plane { point: Vector([0.0, 0.0, 0.0]), normal: Vector([0.0, 0.0, 1.0]) },
-            Wall::Plane { point: Vector([0.0, 0.0, 10.0]), normal: Vector([0.0, 0.0, -1.0]) },
+            Wall::Plane {
+                point: Vector([0.0, 0.0, 0.0]),
+                normal: Vector([0.0, 0.0, 1.0]),
+            },
+            Wall::Plane {
+                point: Vector([0.0, 0.0, 10.0]),
+                normal: Vector([0.0, 0.0, -1.0]),
+            },
         ],
         ..Scene::default()
     };
     let mut sim = Simulation::new(&scene, "all-pairs").unwrap();
-    let times: Vec<f64> = (0..4).map(|_| sim.step_event().unwrap().event.time).collect();
+    let times: Vec<f64> = (0..4)
+        .map(|_| sim.step_event().unwrap().event.time)
+        .collect();
     assert_eq!(times, vec![2.0, 6.0, 10.0, 14.0]);
 }
 
 #[test]
 fn inelastic_restitution_scales_the_normal_velocity() {
     let mut scene = Scene::<2> {
-        bodies: vec![body([0.0, 0.0], [2.0, 0.0], 1.0, 1.0), body([5.0, 0.0], [0.0, 0.0], 1.0, 1.0)],
+        bodies: vec![
+            body([0.0, 0.0], [2.0, 0.0], 1.0, 1.0),
+            body([5.0, 0.0], [0.0, 0.0], 1.0, 1.0),
+        ],
         ..Scene::default()
     };
     scene.settings.restitution = 0.5;
@@ -219,7 +265,10 @@ fn inelastic_restitution_scales_the_normal_velocity() {
 #[test]
 fn advance_returns_the_frames_collisions_and_time_moves_on() {
     let scene = Scene::<2> {
-        bodies: vec![body([0.0, 0.0], [1.0, 0.0], 0.5, 1.0), body([3.0, 0.0], [-1.0, 0.0], 0.5, 1.0)],
+        bodies: vec![
+            body([0.0, 0.0], [1.0, 0.0], 0.5, 1.0),
+            body([3.0, 0.0], [-1.0, 0.0], 0.5, 1.0),
+        ],
         ..Scene::default()
     };
     let mut sim = Simulation::new(&scene, "all-pairs").unwrap();

@@ -15,7 +15,12 @@ fn vec3() -> impl Strategy<Value = Vector<3>> {
 
 /// Checks one pair: contact at the returned time, none earlier (sampled), and `None` only
 /// when the pair never comes within contact distance.
-fn check_pair<const D: usize>(a: Motion<D>, ra: f64, b: Motion<D>, rb: f64) -> Result<(), TestCaseError> {
+fn check_pair<const D: usize>(
+    a: Motion<D>,
+    ra: f64,
+    b: Motion<D>,
+    rb: f64,
+) -> Result<(), TestCaseError> {
     let sigma = ra + rb;
     let t0 = a.time.max(b.time);
     let dist = |t: f64| (b.at(t) - a.at(t)).norm();
@@ -25,11 +30,19 @@ fn check_pair<const D: usize>(a: Motion<D>, ra: f64, b: Motion<D>, rb: f64) -> R
             prop_assert!(approaching, "only approaching pairs collide");
             prop_assert!(t >= t0, "never before the reference time");
             if dist(t0) >= sigma {
-                let scale = sigma + (b.vel - a.vel).norm() * (t - t0) + (b.at(t0) - a.at(t0)).norm();
-                prop_assert!((dist(t) - sigma).abs() <= 1e-9 * scale, "gap {} at contact", dist(t) - sigma);
+                let scale =
+                    sigma + (b.vel - a.vel).norm() * (t - t0) + (b.at(t0) - a.at(t0)).norm();
+                prop_assert!(
+                    (dist(t) - sigma).abs() <= 1e-9 * scale,
+                    "gap {} at contact",
+                    dist(t) - sigma
+                );
                 for k in 0..64 {
                     let s = t0 + (t - t0) * k as f64 / 64.0;
-                    prop_assert!(dist(s) >= sigma * (1.0 - 1e-9) - 1e-9 * scale, "earlier contact at {s}");
+                    prop_assert!(
+                        dist(s) >= sigma * (1.0 - 1e-9) - 1e-9 * scale,
+                        "earlier contact at {s}"
+                    );
                 }
             } else {
                 prop_assert_eq!(t, t0, "overlapping and approaching collide at once");
@@ -42,7 +55,10 @@ fn check_pair<const D: usize>(a: Motion<D>, ra: f64, b: Motion<D>, rb: f64) -> R
                 let dv = b.vel - a.vel;
                 let s = -dp.dot(dv) / dv.norm_sq();
                 let closest = (dp + dv * s).norm();
-                prop_assert!(closest >= sigma * (1.0 - 1e-9), "missed contact, closest {closest} < {sigma}");
+                prop_assert!(
+                    closest >= sigma * (1.0 - 1e-9),
+                    "missed contact, closest {closest} < {sigma}"
+                );
             }
         }
     }

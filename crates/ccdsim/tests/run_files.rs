@@ -1,7 +1,9 @@
 //! Run files: round trips, version refusal, truncation at any byte, and determinism.
 
 use ccdsim::generate::{gas, rack, GasConfig, RackConfig};
-use ccdsim::record::{record_len, RecordError, RunReader, RunRecord, RunWriter, Tail, PREAMBLE_LEN};
+use ccdsim::record::{
+    record_len, RecordError, RunReader, RunRecord, RunWriter, Tail, PREAMBLE_LEN,
+};
 use ccdsim::{Scene, Simulation};
 use rand::{Rng, SeedableRng};
 use sha2::{Digest, Sha256};
@@ -37,18 +39,34 @@ fn refuses_other_versions_and_other_files() {
     let mut bytes = record(&scene, 5, "all-pairs");
     bytes[8] = 99;
     match RunReader::<_, 2>::new(&bytes[..], "x.ccd".into()) {
-        Err(RecordError::Version { found: 99, supported: 1, .. }) => {}
+        Err(RecordError::Version {
+            found: 99,
+            supported: 1,
+            ..
+        }) => {}
         other => panic!("expected a version error, got {:?}", other.err()),
     }
-    let msg = RunReader::<_, 2>::new(&b"{\"dim\": 2}"[..], "x.json".into()).err().unwrap().to_string();
+    let msg = RunReader::<_, 2>::new(&b"{\"dim\": 2}"[..], "x.json".into())
+        .err()
+        .unwrap()
+        .to_string();
     assert!(msg.contains("not a ccdsim run file"), "{msg}");
     let bytes = record(&scene, 5, "all-pairs");
-    assert!(RunReader::<_, 3>::new(&bytes[..], "x".into()).is_err(), "a 2D run is not read as 3D");
+    assert!(
+        RunReader::<_, 3>::new(&bytes[..], "x".into()).is_err(),
+        "a 2D run is not read as 3D"
+    );
 }
 
 #[test]
 fn truncated_at_any_offset_reads_back_to_the_last_complete_event() {
-    let scene: Scene<3> = gas(&GasConfig { n: 40, packing: 0.2, seed: 3, ..GasConfig::default() }).unwrap();
+    let scene: Scene<3> = gas(&GasConfig {
+        n: 40,
+        packing: 0.2,
+        seed: 3,
+        ..GasConfig::default()
+    })
+    .unwrap();
     let bytes = record(&scene, 200, "all-pairs");
     let rec = record_len(3);
     let mut full = RunReader::<_, 3>::new(&bytes[..], "full".into()).unwrap();
@@ -60,11 +78,22 @@ fn truncated_at_any_offset_reads_back_to_the_last_complete_event() {
 
     let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(TRUNCATION_SEED);
     let mut offsets: Vec<usize> = (0..400).map(|_| rng.random_range(0..bytes.len())).collect();
-    offsets.extend([0, 7, PREAMBLE_LEN, data_start - 1, data_start, data_start + 1, bytes.len() - 1]);
+    offsets.extend([
+        0,
+        7,
+        PREAMBLE_LEN,
+        data_start - 1,
+        data_start,
+        data_start + 1,
+        bytes.len() - 1,
+    ]);
     for cut in offsets {
         let part = &bytes[..cut];
         match RunReader::<_, 3>::new(part, "cut".into()) {
-            Err(e) => assert!(cut < data_start, "cut at {cut} (data at {data_start}) failed: {e}"),
+            Err(e) => assert!(
+                cut < data_start,
+                "cut at {cut} (data at {data_start}) failed: {e}"
+            ),
             Ok(mut r) => {
                 assert!(cut >= data_start);
                 let (got, end) = r.read_events().unwrap();
@@ -73,7 +102,13 @@ fn truncated_at_any_offset_reads_back_to_the_last_complete_event() {
                 assert_eq!(&got[..], &events[..got.len()]);
                 assert_eq!(end, None);
                 let partial = (cut - data_start) % rec;
-                let want = if partial == 0 { Tail::NoEnd } else { Tail::Truncated { bytes: partial as u64 } };
+                let want = if partial == 0 {
+                    Tail::NoEnd
+                } else {
+                    Tail::Truncated {
+                        bytes: partial as u64,
+                    }
+                };
                 assert_eq!(r.tail(), want, "cut at {cut}");
             }
         }
@@ -101,7 +136,15 @@ fn determinism_golden_hash() {
     let a = record(&scene, 3000, "all-pairs");
     let b = record(&scene, 3000, "all-pairs");
     assert_eq!(a, b, "two runs of the same scene differ");
-    let gas3: Scene<3> = gas(&GasConfig { n: 60, packing: 0.25, radius_min: 0.3, radius_max: 0.6, seed: 11, ..GasConfig::default() }).unwrap();
+    let gas3: Scene<3> = gas(&GasConfig {
+        n: 60,
+        packing: 0.25,
+        radius_min: 0.3,
+        radius_max: 0.6,
+        seed: 11,
+        ..GasConfig::default()
+    })
+    .unwrap();
     let c = record(&gas3, 3000, "all-pairs");
     let hex = |bytes: &[u8]| format!("{:x}", Sha256::digest(bytes));
     assert_eq!(hex(&a), GOLDEN_RACK, "rack run changed");
