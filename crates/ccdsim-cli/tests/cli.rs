@@ -317,3 +317,19 @@ fn killed_run_leaves_a_readable_file() {
 fn size(p: &Path) -> u64 {
     std::fs::metadata(p).map(|m| m.len()).unwrap_or(0)
 }
+
+#[test]
+fn every_example_scene_runs_and_verifies() {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples");
+    let mut seen = 0;
+    for entry in std::fs::read_dir(dir).unwrap() {
+        let path = entry.unwrap().path();
+        if path.extension().is_some_and(|e| e == "json") {
+            let rec = tmp(&format!("example-{}.ccd", path.file_stem().unwrap().to_string_lossy()));
+            run_ok(ccdsim().arg("run").arg(&path).args(["--until", "5", "--quiet", "--record"]).arg(&rec));
+            run_ok(ccdsim().arg("verify").arg(&rec));
+            seen += 1;
+        }
+    }
+    assert!(seen >= 3, "examples/ should hold the documented scenes");
+}
