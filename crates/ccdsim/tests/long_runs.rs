@@ -16,8 +16,13 @@ fn long_run<const D: usize>(scene: &Scene<D>, finder: &str) {
     assert_eq!(done, EVENTS);
     let bytes = w.finish(sim.time()).unwrap();
     let stats = *sim.stats();
-    assert!(stats.max_overlap <= 1e-9, "overlap {} at a contact", stats.max_overlap);
-    let drift = (sim.world().kinetic_energy() - stats.kinetic_energy_start).abs() / stats.kinetic_energy_start;
+    assert!(
+        stats.max_overlap <= 1e-9,
+        "overlap {} at a contact",
+        stats.max_overlap
+    );
+    let drift = (sim.world().kinetic_energy() - stats.kinetic_energy_start).abs()
+        / stats.kinetic_energy_start;
     assert!(drift < 1e-10, "kinetic energy drift {drift}");
 
     let mut reader = RunReader::<_, D>::new(&bytes[..], "memory".into()).unwrap();
@@ -29,7 +34,8 @@ fn long_run<const D: usize>(scene: &Scene<D>, finder: &str) {
     }
     let report = verifier.finish(end.unwrap()).unwrap();
     assert!(report.max_overlap <= 1e-9);
-    let drift = (report.kinetic_energy_end - report.kinetic_energy_start).abs() / report.kinetic_energy_start;
+    let drift = (report.kinetic_energy_end - report.kinetic_energy_start).abs()
+        / report.kinetic_energy_start;
     assert!(drift < 1e-10, "verifier's kinetic energy drift {drift}");
 }
 

@@ -12,9 +12,11 @@
 //! crossings, rebuilt trees) stays inside the finder.
 
 mod all_pairs;
+mod cells;
 mod sedgewick;
 
 pub use all_pairs::{all_pairs_next_event, AllPairs};
+pub use cells::{Cells, CellsStats};
 pub use sedgewick::{Sedgewick, SedgewickStats};
 
 use crate::event::Event;
@@ -122,7 +124,7 @@ impl Default for FinderOptions {
 }
 
 /// Names of every finder [`make_finder`] knows.
-pub const FINDER_NAMES: &[&str] = &["all-pairs", "sedgewick"];
+pub const FINDER_NAMES: &[&str] = &["all-pairs", "sedgewick", "cells"];
 
 /// Makes the finder called `name`.
 pub fn make_finder<const D: usize>(
@@ -133,6 +135,7 @@ pub fn make_finder<const D: usize>(
     match name {
         "all-pairs" => Ok(Box::new(AllPairs::new())),
         "sedgewick" => Ok(Box::new(Sedgewick::new())),
+        "cells" => Ok(Box::new(Cells::<D>::new())),
         _ => Err(FinderError::Unknown {
             name: name.to_string(),
             known: FINDER_NAMES.join(", "),
