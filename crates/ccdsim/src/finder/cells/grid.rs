@@ -18,40 +18,9 @@ use crate::scene::Wall;
 /// positions (see the module docs of `cells`).
 pub(super) const MARGIN: f64 = 1e-6;
 
-/// Most neighbour cells of a cell: 3^D for D ≤ 3.
-pub(super) const MAX_NEIGHBOURS: usize = 27;
-
-/// A neighbour cell and the image shift to add to the displacement of its bodies.
-#[derive(Clone, Copy, Debug)]
-pub(super) struct Neighbour<const D: usize> {
-    /// Linear cell index.
-    pub cell: u32,
-    /// Displacement of the image of the cell's bodies that lies next to the centre cell (zero
-    /// except across periodic boundaries).
-    pub shift: Vector<D>,
-}
-
-/// A fixed-capacity list of neighbour cells.
-pub(super) struct Neighbours<const D: usize> {
-    items: [Neighbour<D>; MAX_NEIGHBOURS],
-    len: usize,
-}
-
-impl<const D: usize> Neighbours<D> {
-    fn new() -> Self {
-        Neighbours {
-            items: [Neighbour {
-                cell: 0,
-                shift: Vector::ZERO,
-            }; MAX_NEIGHBOURS],
-            len: 0,
-        }
-    }
-
-    /// The neighbours found.
-    pub fn as_slice(&self) -> &[Neighbour<D>] {
-        &self.items[..self.len]
-    }
+/// Image code of the zero shift: digit 1 (no shift) on every axis, base 3.
+const fn zero_image(d: usize) -> u8 {
+    ((3usize.pow(d as u32) - 1) / 2) as u8
 }
 
 /// Along one axis: up to three (coordinate, shift) choices.
@@ -85,12 +54,15 @@ pub(super) struct Grid<const D: usize> {
     period: Option<[f64; D]>,
     /// Linear offsets of the 3^D neighbours of an interior cell.
     interior: Vec<isize>,
+    /// Linear offsets, from an interior cell, of the layer entered by a move along axis `a`
+    /// in direction `up`: entry `2a + up`.
+    layers: Vec<Vec<isize>>,
     /// First body of each cell, or `NONE`.
     head: Vec<u32>,
     /// Next body in the same cell, or `NONE`.
     next: Vec<u32>,
-    /// Cell of each body.
-    cell: Vec<u32>,
+    /// Cell coordinates of each body.
+    coords: Vec<[u32; D]>,
     /// Walls within reach of cell `c`: `wall_ids[wall_start[c]..wall_start[c + 1]]` (empty
     /// vectors when the world has no walls).
     wall_start: Vec<u32>,
@@ -98,6 +70,9 @@ pub(super) struct Grid<const D: usize> {
 }
 
 impl<const D: usize> Grid<D> {
+    /// Image code of the zero shift.
+    pub const ZERO_IMAGE: u8 = zero_image(D);
+
     /// A grid for `n` bodies whose cells are at least `min_width` wide, spanning `lo..hi` (open
     /// worlds) or the periodic box `period`, with at most about `4n + 64` cells.
     pub fn new(
@@ -147,7 +122,7 @@ impl<const D: usize> Grid<D> {
             stride[d] = s;
             s *= dims[d];
         }
-        let mut interior = Vec::with_capacity(MAX_NEIGHBOURS);
+        let mut interior = Vec::with_capacity(3usize.pow(D as u32));
         for code in 0..3usize.pow(D as u32) {
             let mut c = code;
             let mut off = 0isize;
@@ -157,7 +132,34 @@ impl<const D: usize> Grid<D> {
             }
             interior.push(off);
         }
+        let layers = (0..2 * D)
+            .map(|code| {
+                let (axis, up) = (code / 2, code % 2 == 1);
+                let mut offs = Vec::new();
+                for other in 0..3usize.pow(D as u32 - 1) {
+                    let mut c = other;
+                    let mut off = 0isize;
+                    for (d, &st) in stride.iter().enumerate() {
+                        let step = if d == axis {
+                            if up {
+                                1
+                            } else {
+                                -1
+                            }
+                        } else {
+                            let s = (c % 3) as isize - 1;
+                            c /= 3;
+                            s
+                        };
+                        off += step * st as isize;
+                    }
+                    offs.push(off);
+                }
+                offs
+            })
+            .collect();
         Grid {
+            layers,
             origin,
             width,
             dims,
@@ -166,7 +168,7 @@ impl<const D: usize> Grid<D> {
             interior,
             head: vec![NONE; s],
             next: vec![NONE; n],
-            cell: vec![NONE; n],
+            coords: vec![[u32::MAX; D]; n],
             wall_start: Vec::new(),
             wall_ids: Vec::new(),
         }
@@ -186,10 +188,10 @@ impl<const D: usize> Grid<D> {
     pub fn bytes(&self) -> usize {
         4 * (self.head.capacity()
             + self.next.capacity()
-            + self.cell.capacity()
+            + D * self.coords.capacity()
             + self.wall_start.capacity()
             + self.wall_ids.capacity())
-            + std::mem::size_of::<isize>() * self.interior.capacity()
+            + std::mem::size_of::<isize>() * (self.interior.capacity() + 3usize.pow(D as u32))
     }
 
     /// Cell coordinates of the point `p` (outer cells of open worlds extend to infinity;
@@ -213,7 +215,10 @@ impl<const D: usize> Grid<D> {
     /// Linear index of cell coordinates.
     #[inline]
     pub fn linear(&self, k: &[usize; D]) -> u32 {
-        k.iter().zip(&self.stride).map(|(k, s)| k * s).sum::<usize>() as u32
+        k.iter()
+            .zip(&self.stride)
+            .map(|(k, s)| k * s)
+            .sum::<usize>() as u32
     }
 
     /// Cell coordinates of a linear index.
@@ -223,22 +228,38 @@ impl<const D: usize> Grid<D> {
         std::array::from_fn(|d| (c / self.stride[d]) % self.dims[d])
     }
 
-    /// The cell body `i` is filed in.
+    /// Linear index of the cell body `i` is filed in.
     #[inline]
     pub fn cell_of(&self, i: usize) -> u32 {
-        self.cell[i]
+        self.linear_u32(&self.coords[i])
     }
 
-    /// Files body `i` (not filed anywhere) in cell `c`.
-    pub fn insert(&mut self, i: usize, c: u32) {
-        self.next[i] = self.head[c as usize];
-        self.head[c as usize] = i as u32;
-        self.cell[i] = c;
+    /// Cell coordinates of body `i`.
+    #[inline]
+    pub fn coords_of(&self, i: usize) -> [u32; D] {
+        self.coords[i]
+    }
+
+    #[inline]
+    fn linear_u32(&self, k: &[u32; D]) -> u32 {
+        k.iter()
+            .zip(&self.stride)
+            .map(|(&k, s)| k as usize * s)
+            .sum::<usize>() as u32
+    }
+
+    /// Files body `i` (not filed anywhere) in the cell of coordinates `k`.
+    pub fn insert(&mut self, i: usize, k: [usize; D]) {
+        let k = k.map(|x| x as u32);
+        let c = self.linear_u32(&k) as usize;
+        self.next[i] = self.head[c];
+        self.head[c] = i as u32;
+        self.coords[i] = k;
     }
 
     /// Takes body `i` out of its cell.
     pub fn remove(&mut self, i: usize) {
-        let c = self.cell[i] as usize;
+        let c = self.cell_of(i) as usize;
         let mut at = self.head[c];
         if at == i as u32 {
             self.head[c] = self.next[i];
@@ -251,15 +272,28 @@ impl<const D: usize> Grid<D> {
             self.next[at as usize] = self.next[i];
         }
         self.next[i] = NONE;
-        self.cell[i] = NONE;
+        self.coords[i] = [u32::MAX; D];
     }
 
-    /// Moves body `i` to cell `c`.
-    pub fn relocate(&mut self, i: usize, c: u32) {
-        if self.cell[i] != c {
+    /// Moves body `i` to the cell of coordinates `k`.
+    pub fn relocate(&mut self, i: usize, k: [usize; D]) {
+        if self.coords[i] != k.map(|x| x as u32) {
             self.remove(i);
-            self.insert(i, c);
+            self.insert(i, k);
         }
+    }
+
+    /// Moves body `i` one cell along `axis` (`up` or down); that cell must exist without
+    /// wrapping around a periodic box.
+    pub fn step(&mut self, i: usize, axis: usize, up: bool) {
+        let mut k = self.coords[i].map(|x| x as usize);
+        if up {
+            k[axis] += 1;
+        } else {
+            k[axis] -= 1;
+        }
+        self.remove(i);
+        self.insert(i, k);
     }
 
     /// First body of cell `c`, or `NONE`.
@@ -349,23 +383,34 @@ impl<const D: usize> Grid<D> {
         a
     }
 
-    fn product(&self, axes: &[AxisChoices; D], out: &mut Neighbours<D>) {
-        let mut idx = [0usize; D];
+    /// Calls `f(cell, shift, image)` for every combination of the axes' choices; `image` is
+    /// the shift's code, one base-3 digit per axis (0: −L, 1: none, 2: +L).
+    #[inline]
+    fn visit_product(&self, axes: &[AxisChoices; D], f: &mut impl FnMut(u32, &Vector<D>, u8)) {
         if axes.iter().any(|a| a.len == 0) {
             return;
         }
+        let mut idx = [0usize; D];
         loop {
             let mut c = 0;
+            let mut image = 0u8;
             let mut shift = Vector::<D>::ZERO;
+            let mut pow = 1u8;
             for d in 0..D {
                 c += axes[d].coord[idx[d]] * self.stride[d];
-                shift[d] = axes[d].shift[idx[d]];
+                let s = axes[d].shift[idx[d]];
+                shift[d] = s;
+                let digit = if s < 0.0 {
+                    0
+                } else if s > 0.0 {
+                    2
+                } else {
+                    1
+                };
+                image += digit * pow;
+                pow *= 3;
             }
-            out.items[out.len] = Neighbour {
-                cell: c as u32,
-                shift,
-            };
-            out.len += 1;
+            f(c as u32, &shift, image);
             let mut d = 0;
             loop {
                 idx[d] += 1;
@@ -381,60 +426,83 @@ impl<const D: usize> Grid<D> {
         }
     }
 
-    /// The cells whose bodies can touch a body filed in cell `c` before it leaves `c`: the 3^D
-    /// block around it (fewer at the border of an open world), with periodic image shifts.
-    pub fn neighbours(&self, c: u32) -> Neighbours<D> {
-        let k = self.coords(c);
-        let mut out = Neighbours::new();
-        if (0..D).all(|d| k[d] >= 1 && k[d] + 2 <= self.dims[d]) {
-            for &off in &self.interior {
-                out.items[out.len] = Neighbour {
-                    cell: (c as isize + off) as u32,
-                    shift: Vector::ZERO,
-                };
-                out.len += 1;
-            }
-            return out;
-        }
-        let axes: [AxisChoices; D] = std::array::from_fn(|d| self.axis_choices(d, k[d]));
-        self.product(&axes, &mut out);
-        out
+    /// True for a cell with a neighbour on both sides along every axis, without wrapping.
+    #[inline]
+    fn is_interior(&self, k: &[u32; D]) -> bool {
+        (0..D).all(|d| k[d] >= 1 && k[d] as usize + 2 <= self.dims[d])
     }
 
-    /// The cells that become neighbours when a body moves into cell `c` along `axis` in
-    /// direction `up`: the layer of the block beyond `c`.
-    pub fn entered_layer(&self, c: u32, axis: usize, up: bool) -> Neighbours<D> {
-        let k = self.coords(c);
-        let mut out = Neighbours::new();
+    /// Calls `f(cell, shift, image)` for every cell whose bodies can touch a body filed at
+    /// coordinates `k` before it leaves its cell: the 3^D block around it (fewer at the border
+    /// of an open world), with the image shift to add to their displacement and its code.
+    #[inline]
+    pub fn visit_neighbours(&self, k: &[u32; D], mut f: impl FnMut(u32, &Vector<D>, u8)) {
+        if self.is_interior(k) {
+            let c = self.linear_u32(k) as isize;
+            let zero = Vector::ZERO;
+            for &off in &self.interior {
+                f((c + off) as u32, &zero, Self::ZERO_IMAGE);
+            }
+            return;
+        }
+        let axes: [AxisChoices; D] = std::array::from_fn(|d| self.axis_choices(d, k[d] as usize));
+        self.visit_product(&axes, &mut f);
+    }
+
+    /// Calls `f(cell, shift, image)` for the cells that became neighbours of a body that
+    /// moved into the cell of coordinates `k` along `axis` in direction `up`: the layer of
+    /// the block beyond it.
+    pub fn visit_entered_layer(
+        &self,
+        k: &[u32; D],
+        axis: usize,
+        up: bool,
+        mut f: impl FnMut(u32, &Vector<D>, u8),
+    ) {
+        if self.is_interior(k) {
+            let c = self.linear_u32(k) as isize;
+            let zero = Vector::ZERO;
+            for &off in &self.layers[2 * axis + usize::from(up)] {
+                f((c + off) as u32, &zero, Self::ZERO_IMAGE);
+            }
+            return;
+        }
         let axes: [AxisChoices; D] = std::array::from_fn(|d| {
             if d == axis {
-                self.layer_choice(d, k[d], up)
+                self.layer_choice(d, k[d] as usize, up)
             } else {
-                self.axis_choices(d, k[d])
+                self.axis_choices(d, k[d] as usize)
             }
         });
-        self.product(&axes, &mut out);
-        out
+        self.visit_product(&axes, &mut f);
     }
 
-    /// The cell next to `c` along `axis` (`up` or down); it must exist and not wrap.
-    pub fn step(&self, c: u32, axis: usize, up: bool) -> u32 {
-        if up {
-            c + self.stride[axis] as u32
-        } else {
-            c - self.stride[axis] as u32
+    /// The shift of image code `image` (see [`Grid::visit_neighbours`]).
+    pub fn shift_of(&self, image: u8) -> Vector<D> {
+        let mut shift = Vector::ZERO;
+        let mut code = image;
+        if let Some(p) = self.period {
+            for d in 0..D {
+                shift[d] = match code % 3 {
+                    0 => -p[d],
+                    2 => p[d],
+                    _ => 0.0,
+                };
+                code /= 3;
+            }
         }
+        shift
     }
 
-    /// The next time a body with motion `m` filed in cell `c` leaves it through a face
+    /// The next time a body with motion `m` filed at coordinates `k` leaves its cell through a face
     /// between two cells, with the face's code `2·axis + up`: faces of the outer cells of an
     /// open world towards infinity, and the faces of a periodic box (box exits are real
     /// events) are not crossings. Ties go to the lower axis.
     #[inline]
-    pub fn next_crossing(&self, c: u32, m: &Motion<D>) -> Option<(f64, u8)> {
-        let k = self.coords(c);
+    pub fn next_crossing(&self, k: &[u32; D], m: &Motion<D>) -> Option<(f64, u8)> {
         let mut best: Option<(f64, u8)> = None;
         for (d, &kd) in k.iter().enumerate() {
+            let kd = kd as usize;
             let v = m.vel[d];
             let bound = if v > 0.0 && kd + 1 < self.dims[d] {
                 self.origin[d] + (kd + 1) as f64 * self.width[d]
@@ -548,7 +616,7 @@ impl<const D: usize> Grid<D> {
 
     /// Checks the lists: every body filed once, in the cell recorded for it.
     pub fn validate(&self) -> Result<(), String> {
-        let mut seen = vec![false; self.cell.len()];
+        let mut seen = vec![false; self.coords.len()];
         for c in 0..self.head.len() {
             let mut at = self.head[c];
             while at != NONE {
@@ -557,10 +625,10 @@ impl<const D: usize> Grid<D> {
                     return Err(format!("body {i} filed twice"));
                 }
                 seen[i] = true;
-                if self.cell[i] != c as u32 {
+                if self.cell_of(i) != c as u32 {
                     return Err(format!(
-                        "body {i} in cell {c} but recorded in {}",
-                        self.cell[i]
+                        "body {i} in cell {c} but recorded in {:?}",
+                        self.coords[i]
                     ));
                 }
                 at = self.next[i];
@@ -716,27 +784,38 @@ mod tests {
         assert_eq!(d, f64::NEG_INFINITY);
     }
 
+    fn collect<const D: usize>(
+        g: &Grid<D>,
+        visit: impl FnOnce(&mut dyn FnMut(u32, &Vector<D>, u8)),
+    ) -> Vec<([usize; D], [f64; D], u8)> {
+        let mut out = Vec::new();
+        visit(&mut |c, s, i| out.push((g.coords(c), s.0, i)));
+        out
+    }
+
     #[test]
     fn neighbours_and_layers() {
         let g = Grid::<2>::new(4, 1.0, Vector([0.0, 0.0]), Vector([5.0, 5.0]), None);
         assert_eq!(g.dims(), [5, 5]);
-        assert_eq!(g.neighbours(g.linear(&[2, 2])).as_slice().len(), 9);
-        assert_eq!(g.neighbours(g.linear(&[0, 0])).as_slice().len(), 4);
-        assert_eq!(g.neighbours(g.linear(&[0, 2])).as_slice().len(), 6);
-        let layer = g.entered_layer(g.linear(&[1, 2]), 0, true);
-        let cells: Vec<[usize; 2]> = layer.as_slice().iter().map(|n| g.coords(n.cell)).collect();
+        let count = |k: [u32; 2]| collect(&g, |f| g.visit_neighbours(&k, f)).len();
+        assert_eq!(count([2, 2]), 9);
+        assert_eq!(count([0, 0]), 4);
+        assert_eq!(count([0, 2]), 6);
+        let layer = collect(&g, |f| g.visit_entered_layer(&[1, 2], 0, true, f));
+        let cells: Vec<[usize; 2]> = layer.iter().map(|x| x.0).collect();
         assert_eq!(cells, vec![[2, 1], [2, 2], [2, 3]]);
-        assert!(g
-            .entered_layer(g.linear(&[4, 2]), 0, true)
-            .as_slice()
-            .is_empty());
+        assert!(collect(&g, |f| g.visit_entered_layer(&[4, 2], 0, true, f)).is_empty());
         let p = Grid::<2>::new(4, 1.0, Vector::ZERO, Vector::ZERO, Some(Vector([5.0, 2.5])));
         assert_eq!(p.dims(), [5, 1]);
-        let nb = p.neighbours(p.linear(&[0, 0]));
-        assert_eq!(nb.as_slice().len(), 9);
-        assert!(nb
-            .as_slice()
+        let nb = collect(&p, |f| p.visit_neighbours(&[0, 0], f));
+        assert_eq!(nb.len(), 9);
+        let corner = nb
             .iter()
-            .any(|n| p.coords(n.cell) == [4, 0] && n.shift.0 == [-5.0, 2.5]));
+            .find(|x| x.0 == [4, 0] && x.1 == [-5.0, 2.5])
+            .unwrap();
+        assert_eq!(p.shift_of(corner.2).0, corner.1);
+        for (_, shift, image) in collect(&p, |f| p.visit_neighbours(&[2, 0], f)) {
+            assert_eq!(p.shift_of(image).0, shift);
+        }
     }
 }

@@ -83,11 +83,13 @@ use crate::geom::{Aabb, Vector};
 use crate::scene::Wall;
 use crate::world::World;
 use grid::{Grid, MARGIN};
-use predict::Best;
+use predict::{tie_of, Best, Probe};
 use queue::{EventQueue, Key, MAX_INDEX};
 
 /// Crossing code of a body that crosses no face.
-const NO_CROSSING: u8 = u8::MAX;
+const NO_CROSSING: u8 = 0x7F;
+/// Flag on a crossing code: the body's queue key is the crossing, not its cached event.
+const KEY_IS_CROSSING: u8 = 0x80;
 
 /// Counters of a [`Cells`] finder since its last `init`.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -108,9 +110,10 @@ pub struct Cells<const D: usize> {
     grid: Grid<D>,
     /// Cached earliest event of each body.
     best: Vec<Key>,
-    /// Change count of the partner of `best` (body events).
-    stamp: Vec<u64>,
-    /// Code `2·axis + up` of each body's next crossing, or `NO_CROSSING`.
+    /// Image code of the partner of `best` (body events).
+    image: Vec<u8>,
+    /// Code `2·axis + up` of each body's next crossing, or `NO_CROSSING`, with the flag
+    /// `KEY_IS_CROSSING` when the crossing is the body's queue key.
     cross: Vec<u8>,
     queue: EventQueue,
     /// The world is periodic.
@@ -134,7 +137,7 @@ impl<const D: usize> Cells<D> {
         Cells {
             grid: Grid::new(0, 1.0, Vector::ZERO, Vector::ZERO, None),
             best: Vec::new(),
-            stamp: Vec::new(),
+            image: Vec::new(),
             cross: Vec::new(),
             queue: EventQueue::default(),
             periodic: false,
@@ -160,9 +163,25 @@ impl<const D: usize> Cells<D> {
         self.grid.bytes()
             + self.queue.bytes()
             + std::mem::size_of::<Key>() * self.best.capacity()
-            + 8 * self.stamp.capacity()
+            + self.image.capacity()
             + self.cross.capacity()
             + std::mem::size_of::<(u32, u8, f64)>() * self.log.capacity()
+    }
+
+    /// The queue key body `i` should have.
+    fn key_of(&self, i: usize) -> Key {
+        if self.cross[i] & KEY_IS_CROSSING != 0 {
+            Key {
+                time: self.queue_time(i),
+                tie: Key::crossing(0.0).tie,
+            }
+        } else {
+            self.best[i]
+        }
+    }
+
+    fn queue_time(&self, i: usize) -> u64 {
+        self.queue.time_of(i)
     }
 
     /// Checks the structures against `world`: the cell lists, the heap, every key being the
@@ -170,24 +189,24 @@ impl<const D: usize> Cells<D> {
     /// (up to rounding) at the time of the queue's top. For tests.
     pub fn validate(&self, world: &World<D>) -> Result<(), String> {
         self.grid.validate()?;
-        self.queue.validate()?;
-        let top = self.queue.top().map(|(_, k)| k);
-        let clock = match top {
+        self.queue
+            .validate(|j| tie_of(&self.best, &self.cross, j))?;
+        let clock = match self.queue.top().map(|i| self.key_of(i)) {
             Some(k) if !k.is_never() => k.seconds().max(world.now()),
             _ => world.now(),
         };
         for i in 0..world.len() {
             let m = world.motion(i);
-            let cell = self.grid.cell_of(i);
+            let k = self.grid.coords_of(i);
             let crossing = self
                 .grid
-                .next_crossing(cell, &m)
+                .next_crossing(&k, &m)
                 .map_or(Key::NEVER, |(t, _)| Key::crossing(t));
-            if self.queue.key(i) != crossing.min(self.best[i]) {
+            if self.key_of(i) != crossing.min(self.best[i]) {
                 return Err(format!("body {i}: queue key is not min(event, crossing)"));
             }
             let p = m.at(clock);
-            let (lo, hi) = self.grid.cell_box(&self.grid.coords(cell));
+            let (lo, hi) = self.grid.cell_box(&k.map(|x| x as usize));
             for d in 0..D {
                 let tol = 1e-9 * (1.0 + p[d].abs() + m.vel[d].abs() * (clock - m.time).abs());
                 if p[d] < lo[d] - tol || p[d] > hi[d] + tol {
@@ -201,26 +220,24 @@ impl<const D: usize> Cells<D> {
         Ok(())
     }
 
-    /// Processes the crossing at the top of the queue: body `i` moves to the next cell and is
+    /// Processes body `i`'s crossing, due at `time`: the body moves to the next cell and is
     /// offered the layer of cells that became its neighbours, and its new cell's walls.
     fn cross(&mut self, world: &World<D>, i: usize, time: f64) {
         self.stats.crossings += 1;
-        let code = self.cross[i];
+        let code = self.cross[i] & !KEY_IS_CROSSING;
         let (axis, up) = ((code >> 1) as usize, code & 1 == 1);
-        let to = self.grid.step(self.grid.cell_of(i), axis, up);
-        self.grid.relocate(i, to);
+        self.grid.step(i, axis, up);
         self.log.push((i as u32, code, time));
-        let mi = world.motion(i);
+        let p = Probe::of(world, i);
         let mut best = Best {
             key: self.best[i],
-            stamp: self.stamp[i],
+            image: self.image[i],
         };
-        let layer = self.grid.entered_layer(to, axis, up);
-        self.scan_pairs(world, i, &mi, layer.as_slice(), &mut best);
-        self.scan_walls(world, i, &mi, to, &mut best);
+        self.scan_entered_layer(world, &p, axis, up, &mut best);
+        self.scan_walls(world, &p, &mut best);
         self.best[i] = best.key;
-        self.stamp[i] = best.stamp;
-        self.schedule(i, &mi, to);
+        self.image[i] = best.image;
+        self.schedule(i, &p.m);
     }
 
     /// Undoes the crossings processed after time `t`, latest first.
@@ -233,8 +250,7 @@ impl<const D: usize> Cells<D> {
             self.stats.undone += 1;
             let i = i as usize;
             let (axis, up) = ((code >> 1) as usize, code & 1 == 1);
-            let back = self.grid.step(self.grid.cell_of(i), axis, !up);
-            self.grid.relocate(i, back);
+            self.grid.step(i, axis, !up);
             self.recompute(world, i);
         }
         self.log.clear();
@@ -303,14 +319,13 @@ impl<const D: usize> Finder<D> for Cells<D> {
         self.grid = Grid::new(n, sigma_max * (1.0 + MARGIN), lo, hi, None);
         for i in 0..n {
             let k = self.grid.coords_of_point(&world.position_at(i, now));
-            let c = self.grid.linear(&k);
-            self.grid.insert(i, c);
+            self.grid.insert(i, k);
         }
         self.grid.file_walls(world.walls(), r1 + MARGIN * sigma_max);
         self.best = vec![Key::NEVER; n];
-        self.stamp = vec![0; n];
+        self.image = vec![Grid::<D>::ZERO_IMAGE; n];
         self.cross = vec![NO_CROSSING; n];
-        self.queue = EventQueue::new(vec![Key::NEVER; n]);
+        self.queue = EventQueue::new(n);
         self.log = Vec::new();
         self.stats = CellsStats::default();
         for i in 0..n {
@@ -332,8 +347,7 @@ impl<const D: usize> Finder<D> for Cells<D> {
         self.undo_crossings_after(world, t);
         for &i in changed {
             let k = self.grid.coords_of_point(&world.positions()[i]);
-            let c = self.grid.linear(&k);
-            self.grid.relocate(i, c);
+            self.grid.relocate(i, k);
         }
         for &i in changed {
             self.recompute(world, i);
@@ -342,20 +356,23 @@ impl<const D: usize> Finder<D> for Cells<D> {
 
     fn next_event(&mut self, world: &World<D>) -> Option<Event> {
         loop {
-            let (i, key) = self.queue.top()?;
+            let i = self.queue.top()?;
+            if self.cross[i] & KEY_IS_CROSSING != 0 {
+                let t = Key {
+                    time: self.queue_time(i),
+                    tie: 0,
+                };
+                self.cross(world, i, t.seconds());
+                continue;
+            }
+            let key = self.best[i];
             if key.is_never() {
                 return None;
             }
-            if key.is_crossing() {
-                self.cross(world, i, key.seconds());
+            if !self.is_live(world, i) {
+                self.stats.stale += 1;
+                self.recompute(world, i);
                 continue;
-            }
-            if let Some(j) = key.partner(i) {
-                if world.change_count(j) != self.stamp[i] {
-                    self.stats.stale += 1;
-                    self.recompute(world, i);
-                    continue;
-                }
             }
             return Some(key.event());
         }

@@ -80,12 +80,6 @@ impl Key {
         self == Key::NEVER
     }
 
-    /// True for a cell crossing.
-    #[inline]
-    pub fn is_crossing(self) -> bool {
-        self.tie >> 62 == CLASS_CROSSING
-    }
-
     /// The time, seconds.
     #[inline]
     pub fn seconds(self) -> f64 {
@@ -129,10 +123,14 @@ impl Key {
 const ARITY: usize = 4;
 
 /// An indexed min-heap holding one key per body.
+///
+/// The heap stores only each key's time; the tie-break word is asked of the owner (through
+/// the `tie` closure of the mutating methods) in the rare case of two equal times, which keeps
+/// the heap at 12 bytes per body.
 #[derive(Clone, Debug, Default)]
 pub(super) struct EventQueue {
-    /// Keys by heap slot.
-    keys: Vec<Key>,
+    /// Key times by heap slot.
+    times: Vec<u64>,
     /// Bodies by heap slot.
     items: Vec<u32>,
     /// Heap slot of each body.
@@ -140,72 +138,69 @@ pub(super) struct EventQueue {
 }
 
 impl EventQueue {
-    /// A queue of the given keys, one per body.
-    pub fn new(keys: Vec<Key>) -> Self {
-        let n = keys.len();
-        let mut q = EventQueue {
-            keys,
+    /// A queue of `n` bodies, all with key [`Key::NEVER`].
+    pub fn new(n: usize) -> Self {
+        EventQueue {
+            times: vec![Key::NEVER.time; n],
             items: (0..n as u32).collect(),
             slot: (0..n as u32).collect(),
-        };
-        for s in (0..n).rev() {
-            q.sift_down(s);
         }
-        q
     }
 
     /// Bytes held (payload).
     pub fn bytes(&self) -> usize {
-        std::mem::size_of::<Key>() * self.keys.capacity()
-            + 4 * (self.items.capacity() + self.slot.capacity())
+        8 * self.times.capacity() + 4 * (self.items.capacity() + self.slot.capacity())
     }
 
-    /// The body with the smallest key, and the key.
+    /// The time word of body `i`'s key.
     #[inline]
-    pub fn top(&self) -> Option<(usize, Key)> {
-        Some((*self.items.first()? as usize, self.keys[0]))
+    pub fn time_of(&self, i: usize) -> u64 {
+        self.times[self.slot[i] as usize]
     }
 
-    /// Body `i`'s key.
+    /// The body with the smallest key.
     #[inline]
-    pub fn key(&self, i: usize) -> Key {
-        self.keys[self.slot[i] as usize]
+    pub fn top(&self) -> Option<usize> {
+        Some(*self.items.first()? as usize)
     }
 
-    /// Sets body `i`'s key.
+    /// Sets body `i`'s key to `key`; `tie(j)` must give the tie word of every other body's key.
     #[inline]
-    pub fn set(&mut self, i: usize, key: Key) {
+    pub fn set(&mut self, i: usize, key: Key, tie: impl Fn(u32) -> u64) {
         let s = self.slot[i] as usize;
-        let old = self.keys[s];
-        self.keys[s] = key;
-        if key < old {
-            self.sift_up(s);
-        } else if key > old {
-            self.sift_down(s);
+        // Moving up or down is decided against the parent: if the new key is below it, the
+        // key goes up (and cannot need to go down); otherwise down.
+        if s > 0 {
+            let p = (s - 1) / ARITY;
+            let pt = self.times[p];
+            if key.time < pt || (key.time == pt && key.tie < tie(self.items[p])) {
+                self.sift_up(s, key, &tie);
+                return;
+            }
         }
+        self.sift_down(s, key, &tie);
     }
 
-    fn sift_up(&mut self, mut s: usize) {
-        let key = self.keys[s];
+    fn sift_up(&mut self, mut s: usize, key: Key, tie: &impl Fn(u32) -> u64) {
         let item = self.items[s];
         while s > 0 {
             let parent = (s - 1) / ARITY;
-            if self.keys[parent] <= key {
+            let pt = self.times[parent];
+            if pt < key.time || (pt == key.time && tie(self.items[parent]) <= key.tie) {
                 break;
             }
-            self.keys[s] = self.keys[parent];
+            self.times[s] = pt;
             self.items[s] = self.items[parent];
             self.slot[self.items[s] as usize] = s as u32;
             s = parent;
         }
-        self.keys[s] = key;
+        self.times[s] = key.time;
         self.items[s] = item;
         self.slot[item as usize] = s as u32;
     }
 
-    fn sift_down(&mut self, mut s: usize) {
-        let n = self.keys.len();
-        let key = self.keys[s];
+    fn sift_down(&mut self, mut s: usize, key: Key, tie: &impl Fn(u32) -> u64) {
+        let n = self.times.len();
         let item = self.items[s];
         loop {
             let first = s * ARITY + 1;
@@ -214,31 +209,32 @@ impl EventQueue {
             }
             let last = (first + ARITY).min(n);
             let mut child = first;
-            let mut child_key = self.keys[first];
+            let mut ct = self.times[first];
             for c in first + 1..last {
-                if self.keys[c] < child_key {
+                let t = self.times[c];
+                if t < ct || (t == ct && tie(self.items[c]) < tie(self.items[child])) {
                     child = c;
-                    child_key = self.keys[c];
+                    ct = t;
                 }
             }
-            if key <= child_key {
+            if key.time < ct || (key.time == ct && key.tie <= tie(self.items[child])) {
                 break;
             }
-            self.keys[s] = child_key;
+            self.times[s] = ct;
             self.items[s] = self.items[child];
             self.slot[self.items[s] as usize] = s as u32;
             s = child;
         }
-        self.keys[s] = key;
+        self.times[s] = key.time;
         self.items[s] = item;
         self.slot[item as usize] = s as u32;
     }
 
-    /// Checks the heap order and the slot index.
-    pub fn validate(&self) -> Result<(), String> {
-        for s in 1..self.keys.len() {
-            let parent = (s - 1) / ARITY;
-            if self.keys[parent] > self.keys[s] {
+    /// Checks the heap order (with the given tie words) and the slot index.
+    pub fn validate(&self, tie: impl Fn(u32) -> u64) -> Result<(), String> {
+        let key = |s: usize| (self.times[s], tie(self.items[s]));
+        for s in 1..self.times.len() {
+            if key((s - 1) / ARITY) > key(s) {
                 return Err(format!("heap order broken at slot {s}"));
             }
         }
@@ -281,20 +277,23 @@ mod tests {
 
     #[test]
     fn heap_keeps_minimum() {
-        let mut q = EventQueue::new(
-            (0..50)
-                .map(|i| Key::crossing(((i * 37) % 50) as f64))
-                .collect(),
-        );
-        q.validate().unwrap();
-        for round in 0..500u64 {
-            let i = (round * 7919 % 50) as usize;
-            q.set(i, Key::crossing((round * 104_729 % 1000) as f64));
-            q.validate().unwrap();
-            let (top, key) = q.top().unwrap();
-            let min = (0..50).map(|j| q.key(j)).min().unwrap();
-            assert_eq!(key, min);
-            assert_eq!(q.key(top), key);
+        // Many equal times, so that the tie words decide.
+        let n = 50;
+        let mut keys = vec![Key::NEVER; n];
+        let mut q = EventQueue::new(n);
+        for round in 0..2000u64 {
+            let i = (round * 7919 % n as u64) as usize;
+            let t = (round * 104_729 % 13) as f64;
+            keys[i] = if round % 3 == 0 {
+                Key::crossing(t)
+            } else {
+                Key::body(t, i, n + (round % 5) as usize)
+            };
+            let snapshot = keys.clone();
+            q.set(i, keys[i], |j| snapshot[j as usize].tie);
+            q.validate(|j| snapshot[j as usize].tie).unwrap();
+            let top = q.top().unwrap();
+            assert_eq!(keys[top], *keys.iter().min().unwrap());
         }
     }
 }
