@@ -23,6 +23,7 @@ pub mod finder;
 pub mod generate;
 pub mod geom;
 pub mod narrow;
+pub mod periodic;
 pub mod record;
 pub mod resolve;
 pub mod scene;

@@ -50,6 +50,9 @@ struct GasArgs {
     /// Dimension, 2 or 3.
     #[arg(long, default_value_t = 2, value_parser = clap::value_parser!(u8).range(2..=3))]
     dim: u8,
+    /// A periodic box (opposite faces identified) instead of walls.
+    #[arg(long)]
+    periodic: bool,
 }
 
 #[derive(clap::Args)]
@@ -74,6 +77,7 @@ pub fn run(args: Args) -> Result<ExitCode> {
                 speed_min: g.speed_min,
                 speed_max: g.speed_max,
                 seed: g.seed,
+                periodic: g.periodic,
             };
             if g.dim == 2 {
                 gas::<2>(&cfg)?.into()

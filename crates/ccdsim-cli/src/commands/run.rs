@@ -137,12 +137,12 @@ fn simulate<const D: usize>(scene: &Scene<D>, args: &Args) -> Result<Summary> {
             let until = args.until.unwrap_or(10.0);
             let span = (until - t0).max(0.0);
             let mut progress = Progress::new(1000, "simulated time", args.quiet);
-            loop {
-                match sim.peek_event() {
-                    Some(e) if e.time <= until && sink.error.is_none() => {}
-                    _ => break,
-                }
-                let Some(c) = sim.step_event() else { break };
+            // `step_event_until` never goes past `until`, not even for the box exits of a
+            // periodic world.
+            while sink.error.is_none() {
+                let Some(c) = sim.step_event_until(until) else {
+                    break;
+                };
                 sink.take(&c);
                 count += 1;
                 if count % 4096 == 0 && span > 0.0 {

@@ -10,6 +10,13 @@
 //! [`toi_circle_wall`](crate::narrow::toi_circle_wall) over all (body, wall) pairs, evaluated
 //! on the world's stored states: what [`AllPairs`] computes. Any internal bookkeeping (cell
 //! crossings, rebuilt trees) stays inside the finder.
+//!
+//! In a periodic world ([`World::periodic`]) the pair function is
+//! [`toi_circle_circle_periodic`](crate::periodic::toi_circle_circle_periodic) and each body's
+//! exit from the box ([`toi_box_exit`](crate::periodic::toi_box_exit)) is an event too, a wall
+//! event naming face `f` as wall `walls.len() + f`; the simulation applies exits silently. A
+//! finder that cannot serve periodic worlds refuses them in `init` with
+//! [`FinderError::Unsupported`].
 
 mod all_pairs;
 mod cells;

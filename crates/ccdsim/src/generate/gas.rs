@@ -24,6 +24,8 @@ pub struct GasConfig {
     pub speed_max: f64,
     /// Seed of the random generator (ChaCha8, so scenes are the same on every platform).
     pub seed: u64,
+    /// A periodic box (no walls) instead of a walled one.
+    pub periodic: bool,
 }
 
 impl Default for GasConfig {
@@ -36,12 +38,13 @@ impl Default for GasConfig {
             speed_min: 0.0,
             speed_max: 1.0,
             seed: 1,
+            periodic: false,
         }
     }
 }
 
-/// A cubic (square) box with walls holding `n` random non-overlapping bodies at the given
-/// packing fraction. The box side is chosen from the expected body volume.
+/// A cubic (square) box with walls, or a periodic one, holding `n` random non-overlapping
+/// bodies at the given packing fraction. The box side is chosen from the bodies' volume.
 pub fn gas<const D: usize>(cfg: &GasConfig) -> Result<Scene<D>, GenerateError> {
     let bad = |param, why: &str| {
         Err(GenerateError::Param {
@@ -67,11 +70,24 @@ pub fn gas<const D: usize>(cfg: &GasConfig) -> Result<Scene<D>, GenerateError> {
         .powf(1.0 / D as f64)
         .max(2.0 * cfg.radius_max * 1.000001);
     let size = Vector::<D>::splat(side);
+    if cfg.periodic && side <= 4.0 * cfg.radius_max {
+        return bad(
+            "packing",
+            "a periodic box must be wider than 4·radius_max: use more bodies or a lower packing",
+        );
+    }
     // Larger bodies first: they are the hardest to fit.
     let mut order: Vec<usize> = (0..cfg.n).collect();
     order.sort_by(|&a, &b| radii[b].total_cmp(&radii[a]));
-    let cell = 2.0 * cfg.radius_max;
-    let key = |p: Vector<D>| p.0.map(|x| (x / cell).floor() as i64);
+    // Cells at least 2·r_max wide; in a periodic box they tile it and keys wrap around.
+    let cells = ((side / (2.0 * cfg.radius_max)).floor() as i64).max(1);
+    let cell = if cfg.periodic {
+        side / cells as f64
+    } else {
+        2.0 * cfg.radius_max
+    };
+    let wrap = |k: i64| if cfg.periodic { k.rem_euclid(cells) } else { k };
+    let key = |p: Vector<D>| p.0.map(|x| wrap((x / cell).floor() as i64));
     let mut grid: HashMap<[i64; D], Vec<usize>> = HashMap::new();
     let mut pos = vec![Vector::<D>::ZERO; cfg.n];
     let mut attempts: u64 = 0;
@@ -89,8 +105,12 @@ pub fn gas<const D: usize>(cfg: &GasConfig) -> Result<Scene<D>, GenerateError> {
             }
             let mut p = Vector::<D>::ZERO;
             for k in 0..D {
-                // A hair of clearance keeps rounding from putting a body into a wall.
-                p[k] = rng.random_range(r * (1.0 + 1e-9)..=side - r * (1.0 + 1e-9));
+                p[k] = if cfg.periodic {
+                    rng.random_range(0.0..side)
+                } else {
+                    // A hair of clearance keeps rounding from putting a body into a wall.
+                    rng.random_range(r * (1.0 + 1e-9)..=side - r * (1.0 + 1e-9))
+                };
             }
             let k = key(p);
             let mut free = true;
@@ -98,13 +118,18 @@ pub fn gas<const D: usize>(cfg: &GasConfig) -> Result<Scene<D>, GenerateError> {
                 let mut nk = k;
                 let mut c = code;
                 for slot in nk.iter_mut() {
-                    *slot += (c % 3) as i64 - 1;
+                    *slot = wrap(*slot + (c % 3) as i64 - 1);
                     c /= 3;
                 }
                 if let Some(list) = grid.get(&nk) {
                     for &j in list {
                         let sum = (r + radii[j]) * (1.0 + 1e-9);
-                        if (pos[j] - p).norm_sq() < sum * sum {
+                        let dp = if cfg.periodic {
+                            crate::periodic::min_image(pos[j] - p, &size)
+                        } else {
+                            pos[j] - p
+                        };
+                        if dp.norm_sq() < sum * sum {
                             free = false;
                             break 'scan;
                         }
@@ -125,6 +150,13 @@ pub fn gas<const D: usize>(cfg: &GasConfig) -> Result<Scene<D>, GenerateError> {
             BodySpec::new(pos[i], dir * speed, radii[i])
         })
         .collect();
+    if cfg.periodic {
+        return Ok(Scene {
+            bodies,
+            periodic: Some(size),
+            ..Scene::default()
+        });
+    }
     Ok(Scene {
         bodies,
         walls: box_walls(size),

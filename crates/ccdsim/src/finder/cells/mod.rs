@@ -9,11 +9,11 @@
 //!   that come within `r_max` (times the same margin) of it.
 //! * **Predictions** ([`predict`]): for each body `i` the finder caches `best(i)`, the minimum
 //!   under [`Event`]'s full order (time, kind, a, b) of the times of impact of `i` with every
-//!   body in its neighbourhood and every wall of its cell, together with the change count
-//!   ([`World::change_count`]) of the partner it was computed with. Each time is computed by
-//!   the same pure function on the same stored states, with the same argument order, as
+//!   body in its neighbourhood, every wall of its cell and (periodic worlds) its box exit,
+//!   together with the image of the partner it was computed for. Each time is computed by the
+//!   same pure function on the same stored states, with the same argument order, as
 //!   [`all_pairs_next_event`](super::all_pairs_next_event): a cached time *is* the oracle's
-//!   time for that pair, bit for bit, as long as neither body's state changed.
+//!   time for that pair (image), bit for bit, as long as neither body's state changed.
 //! * **Crossings**: the time body `i` leaves its cell through a face shared with another cell.
 //!   Crossings are internal: they move the body to the next cell and offer it the pairs of the
 //!   layer of cells that just became neighbours (and the walls of its new cell). They are never
@@ -22,9 +22,10 @@
 //!   indexed 4-ary heap. Keys are compared in the full event order; a crossing goes first at
 //!   equal times.
 //!
-//! `next_event` looks at the top of the queue: a crossing is processed; a body event whose
-//! partner's change count moved on is *stale* and the body is recomputed from scratch; anything
-//! else is returned. `update` refiles and recomputes the bodies that changed. Nothing else is
+//! `next_event` looks at the top of the queue: a crossing is processed; a body event is
+//! evaluated again on the current states (one time of impact) and if it no longer comes out
+//! bit for bit the same it is *stale* and the body is recomputed from scratch; anything else
+//! is returned. `update` refiles and recomputes the bodies that changed. Nothing else is
 //! touched: a collision costs two neighbourhood scans, a few heap operations and, later, one
 //! rescan for each body whose cached event involved the colliding bodies.
 //!
@@ -35,10 +36,10 @@
 //!
 //! 1. *Every key is a lower bound of what it stands for.* `best(i)` is a minimum of terms that
 //!    were live when computed. A term computed with partner `j` stays live until `j` (or `i`)
-//!    changes; when `i` changes it is recomputed at once, and when `j` changes the entry is
-//!    merely stale: still a lower bound of `i`'s other terms, which have not changed. So a key
-//!    that is not stale is a live term, and a stale key is never above the live terms it
-//!    covered.
+//!    changes; when `i` changes it is recomputed at once, and when `j` changes the entry may
+//!    be stale: still a lower bound of `i`'s other terms, which have not changed. A key that
+//!    passes the re-evaluation at the top is a live term (the re-evaluated pair, same image,
+//!    same function, same states).
 //! 2. *Every live term whose pair is responsible is covered by a key.* Call a pair responsible
 //!    when the bodies are in neighbouring cells (a body and a wall: the wall is listed by the
 //!    body's cell). The pair's term was computed at the later of (a) the last state change of
@@ -59,8 +60,15 @@
 //!
 //! Outer cells of an open world extend to infinity, so bodies that leave the initial bounding
 //! box are still filed; two outer cells that are not neighbours still have a whole inner cell
-//! between them. A periodic world has no walls; its grid tiles the box and neighbour cells
-//! across the box faces carry the image shift ±L, which is one of the images the oracle tries.
+//! between them.
+//!
+//! A periodic world has no walls; its grid tiles the box `[0, L)` and neighbour cells across
+//! the box faces carry the image shift ±L. Stored positions stay in the box (exits are
+//! events, see [`crate::periodic`]), so the image that makes two bodies neighbours is one of
+//! the `3^D` images the oracle tries, and with at least three cells per axis two cells are
+//! neighbours through one image only: the contact that matters is the one through the
+//! neighbouring image, and the time cached for it is the oracle's. An axis too short for
+//! three cells is a single cell whose three images are all scanned, like the oracle does.
 //!
 //! The margin covers rounding as long as positions are computed to better than `MARGIN·σ_max`
 //! (that is, `|x| + |v|·|t|` below about 10⁹ σ_max), which is far beyond where the simulation's
@@ -118,6 +126,8 @@ pub struct Cells<const D: usize> {
     queue: EventQueue,
     /// The world is periodic.
     periodic: bool,
+    /// Wall index of the first periodic face (the number of walls).
+    faces_from: usize,
     /// Crossings processed since the last `update`: body, code, time.
     log: Vec<(u32, u8, f64)>,
     stats: CellsStats,
@@ -141,6 +151,7 @@ impl<const D: usize> Cells<D> {
             cross: Vec::new(),
             queue: EventQueue::default(),
             periodic: false,
+            faces_from: 0,
             log: Vec::new(),
             stats: CellsStats::default(),
             peak_bytes: 0,
@@ -293,30 +304,35 @@ impl<const D: usize> Finder<D> for Cells<D> {
         let (r1, r2) = two_largest(world.radii());
         let sigma_max = if n >= 2 { r1 + r2 } else { 2.0 * r1.max(0.5) };
         let now = world.now();
-        let mut lo = Vector::splat(f64::INFINITY);
-        let mut hi = Vector::splat(f64::NEG_INFINITY);
-        let mut grow = |p: Vector<D>| {
-            lo = lo.min(p);
-            hi = hi.max(p);
-        };
-        for i in 0..n {
-            grow(world.position_at(i, now));
-        }
-        for wall in world.walls() {
-            match *wall {
-                Wall::Segment { a, b } => {
-                    grow(a);
-                    grow(b);
+        let period = world.periodic();
+        self.periodic = period.is_some();
+        self.faces_from = world.walls().len();
+        let (mut lo, mut hi) = (Vector::ZERO, Vector::ZERO);
+        if period.is_none() {
+            lo = Vector::splat(f64::INFINITY);
+            hi = Vector::splat(f64::NEG_INFINITY);
+            let mut grow = |p: Vector<D>| {
+                lo = lo.min(p);
+                hi = hi.max(p);
+            };
+            for i in 0..n {
+                grow(world.position_at(i, now));
+            }
+            for wall in world.walls() {
+                match *wall {
+                    Wall::Segment { a, b } => {
+                        grow(a);
+                        grow(b);
+                    }
+                    Wall::Plane { point, .. } => grow(point),
                 }
-                Wall::Plane { point, .. } => grow(point),
+            }
+            if n == 0 && world.walls().is_empty() {
+                lo = Vector::ZERO;
+                hi = Vector::ZERO;
             }
         }
-        if n == 0 && world.walls().is_empty() {
-            lo = Vector::ZERO;
-            hi = Vector::ZERO;
-        }
-        self.periodic = false;
-        self.grid = Grid::new(n, sigma_max * (1.0 + MARGIN), lo, hi, None);
+        self.grid = Grid::new(n, sigma_max * (1.0 + MARGIN), lo, hi, period);
         for i in 0..n {
             let k = self.grid.coords_of_point(&world.position_at(i, now));
             self.grid.insert(i, k);

@@ -7,6 +7,7 @@ use super::queue::{Key, NONE};
 use super::{Cells, KEY_IS_CROSSING, NO_CROSSING};
 use crate::geom::Vector;
 use crate::narrow::{toi_circle_circle, toi_circle_circle_shifted, toi_circle_wall, Motion};
+use crate::periodic::toi_box_exit;
 use crate::world::World;
 
 /// The running minimum of one body's candidate events.
@@ -154,6 +155,23 @@ impl<const D: usize> Cells<D> {
         }
     }
 
+    /// Offers body `p` its exit from the periodic box, if the world is periodic.
+    #[inline]
+    pub(super) fn scan_exit(&self, world: &World<D>, p: &Probe<D>, best: &mut Best) {
+        let Some(size) = world.periodic() else {
+            return;
+        };
+        if let Some((t, face)) = toi_box_exit(&p.m, &size) {
+            let key = Key::wall(t, p.i, self.faces_from + face);
+            if key < best.key {
+                *best = Best {
+                    key,
+                    image: Grid::<D>::ZERO_IMAGE,
+                };
+            }
+        }
+    }
+
     /// True when body `i`'s cached event is still a live term: a wall event depends on `i`
     /// alone (recomputed whenever `i` changes); a body event is evaluated again, for the same
     /// image, on the current stored states and must come out bit for bit the same.
@@ -181,6 +199,7 @@ impl<const D: usize> Cells<D> {
         let mut best = Best::NONE;
         self.scan_neighbours(world, &p, &mut best);
         self.scan_walls(world, &p, &mut best);
+        self.scan_exit(world, &p, &mut best);
         self.best[i] = best.key;
         self.image[i] = best.image;
         self.schedule(i, &p.m);

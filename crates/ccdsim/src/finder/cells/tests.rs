@@ -4,7 +4,7 @@
 use super::Cells;
 use crate::finder::{all_pairs_next_event, Finder};
 use crate::generate::{gas, GasConfig};
-use crate::resolve::{resolve_body_body, resolve_body_wall};
+use crate::resolve::{resolve_body_body, resolve_body_wall, resolve_exit};
 use crate::scene::Scene;
 use crate::world::World;
 use crate::EventKind;
@@ -34,6 +34,11 @@ fn validated_run<const D: usize>(scene: &Scene<D>, events: usize) {
                 resolve_body_body(&mut world, a, b, e.time);
                 finder.update(&world, &[a, b]);
             }
+            EventKind::Wall if b >= world.walls().len() => {
+                let face = b - world.walls().len();
+                resolve_exit(&mut world, a, face, e.time);
+                finder.update(&world, &[a]);
+            }
             EventKind::Wall => {
                 resolve_body_wall(&mut world, a, b, e.time);
                 finder.update(&world, &[a]);
@@ -54,6 +59,7 @@ fn cfg(n: usize, packing: f64, rmin: f64, rmax: f64, seed: u64) -> GasConfig {
         speed_min: 0.0,
         speed_max: 3.0,
         seed,
+        ..GasConfig::default()
     }
 }
 
@@ -62,6 +68,28 @@ fn structures_stay_consistent_2d() {
     for seed in [3, 4] {
         validated_run::<2>(&gas(&cfg(150, 0.35, 0.5, 0.5, seed)).unwrap(), 1500);
         validated_run::<2>(&gas(&cfg(100, 0.2, 0.1, 1.0, seed)).unwrap(), 1500);
+    }
+}
+
+#[test]
+fn periodic_structures_and_every_exit() {
+    for seed in [5, 6] {
+        let periodic = |c: GasConfig| GasConfig {
+            periodic: true,
+            ..c
+        };
+        validated_run::<2>(
+            &gas(&periodic(cfg(150, 0.35, 0.5, 0.5, seed))).unwrap(),
+            2000,
+        );
+        validated_run::<2>(
+            &gas(&periodic(cfg(80, 0.05, 0.2, 0.9, seed))).unwrap(),
+            2000,
+        );
+        validated_run::<3>(
+            &gas(&periodic(cfg(100, 0.2, 0.5, 0.5, seed))).unwrap(),
+            1500,
+        );
     }
 }
 
