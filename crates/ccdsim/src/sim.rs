@@ -3,7 +3,8 @@
 use crate::event::{Event, EventKind};
 use crate::finder::{make_finder, Finder, FinderError, FinderOptions};
 use crate::geom::Vector;
-use crate::periodic::wrap_point;
+use crate::observables::{observables, Observables};
+use crate::periodic::{min_image, wrap_point};
 use crate::resolve::{resolve_body_body, resolve_body_wall, resolve_exit};
 use crate::scene::{Scene, SceneError};
 use crate::world::World;
@@ -44,6 +45,11 @@ pub struct Stats {
     pub max_overlap: f64,
     /// Kinetic energy when the simulation was created, joules.
     pub kinetic_energy_start: f64,
+    /// Collision virial: the sum over body–body collisions of `r_ab · J_a`, the line of centres
+    /// (from `b` to `a`, nearest images in periodic worlds) dotted with the impulse `a`
+    /// received, kg·m²/s. Pressure and the compressibility factor follow from it (see
+    /// [`crate::observables`]).
+    pub virial: f64,
     /// Periodic worlds: box exits applied (a body leaving through a face and re-entering
     /// through the opposite one). Not events: never returned, recorded or counted above.
     pub exits: u64,
@@ -85,6 +91,7 @@ pub struct Simulation<const D: usize> {
     finder: Box<dyn Finder<D>>,
     pending: Option<Option<Event>>,
     stats: Stats,
+    start_time: f64,
 }
 
 impl<const D: usize> Simulation<D> {
@@ -94,14 +101,20 @@ impl<const D: usize> Simulation<D> {
     }
 
     /// A simulation of `scene` with the given finder.
-    pub fn with_finder(scene: &Scene<D>, mut finder: Box<dyn Finder<D>>) -> Result<Self, SimError> {
-        let world = World::from_scene(scene)?;
+    pub fn with_finder(scene: &Scene<D>, finder: Box<dyn Finder<D>>) -> Result<Self, SimError> {
+        Self::from_world(World::from_scene(scene)?, finder)
+    }
+
+    /// A simulation of an already built world (see [`World::from_scene`]) with the given
+    /// finder; lets a caller drop a large scene before the finder allocates its structures.
+    pub fn from_world(world: World<D>, mut finder: Box<dyn Finder<D>>) -> Result<Self, SimError> {
         finder.init(&world)?;
         let stats = Stats {
             kinetic_energy_start: world.kinetic_energy(),
             ..Stats::default()
         };
         Ok(Simulation {
+            start_time: world.now(),
             world,
             finder,
             pending: None,
@@ -136,6 +149,24 @@ impl<const D: usize> Simulation<D> {
     #[must_use]
     pub fn stats(&self) -> &Stats {
         &self.stats
+    }
+
+    /// Simulated time at which the simulation was created, seconds.
+    #[must_use]
+    pub fn start_time(&self) -> f64 {
+        self.start_time
+    }
+
+    /// Temperature, collision rate, pressure and compressibility factor over the whole run so
+    /// far (from [`Simulation::start_time`] to the current time); see [`crate::observables`].
+    #[must_use]
+    pub fn observables(&self) -> Observables {
+        observables(
+            &self.world,
+            self.stats.body_collisions,
+            self.stats.virial,
+            self.world.now() - self.start_time,
+        )
     }
 
     /// Position of body `i` at the current time (in a periodic world, inside the box).
@@ -207,8 +238,16 @@ impl<const D: usize> Simulation<D> {
         let overlap;
         let out = match e.kind {
             EventKind::Body => {
+                let before = self.world.velocities()[a];
                 overlap = resolve_body_body(&mut self.world, a, b, e.time);
                 self.stats.body_collisions += 1;
+                let w = &self.world;
+                let r = w.positions()[a] - w.positions()[b];
+                let r = match w.periodic() {
+                    Some(size) => min_image(r, &size),
+                    None => r,
+                };
+                self.stats.virial += r.dot(w.velocities()[a] - before) * w.masses()[a];
                 self.finder.update(&self.world, &[a, b]);
                 let w = &self.world;
                 Collision {
