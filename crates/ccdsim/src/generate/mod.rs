@@ -1,9 +1,12 @@
-//! Scene generators: random gases and the billiard rack.
+//! Scene generators: gases (random or lattice starts, walled or periodic boxes) and the
+//! billiard rack.
 
 mod gas;
+mod lattice;
 mod rack;
 
 pub use gas::{gas, GasConfig};
+pub use lattice::Lattice;
 pub use rack::{rack, RackConfig};
 
 use crate::geom::Vector;
