@@ -325,8 +325,17 @@ fn every_example_scene_runs_and_verifies() {
     for entry in std::fs::read_dir(dir).unwrap() {
         let path = entry.unwrap().path();
         if path.extension().is_some_and(|e| e == "json") {
-            let rec = tmp(&format!("example-{}.ccd", path.file_stem().unwrap().to_string_lossy()));
-            run_ok(ccdsim().arg("run").arg(&path).args(["--until", "5", "--quiet", "--record"]).arg(&rec));
+            let rec = tmp(&format!(
+                "example-{}.ccd",
+                path.file_stem().unwrap().to_string_lossy()
+            ));
+            run_ok(
+                ccdsim()
+                    .arg("run")
+                    .arg(&path)
+                    .args(["--until", "5", "--quiet", "--record"])
+                    .arg(&rec),
+            );
             run_ok(ccdsim().arg("verify").arg(&rec));
             seen += 1;
         }
