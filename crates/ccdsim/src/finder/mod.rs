@@ -12,8 +12,10 @@
 //! crossings, rebuilt trees) stays inside the finder.
 
 mod all_pairs;
+pub mod bvh;
 
-pub use all_pairs::AllPairs;
+pub use all_pairs::{all_pairs_next_event, AllPairs};
+pub use bvh::BvhFinder;
 
 use crate::event::Event;
 use crate::geom::Aabb;
@@ -95,21 +97,25 @@ pub struct FinderOptions {
 
 impl Default for FinderOptions {
     fn default() -> Self {
-        FinderOptions { bvh_grow: 2.0, bvh_shrink: 0.5, bvh_initial_dt: 1e-3 }
+        FinderOptions {
+            bvh_grow: 2.0,
+            bvh_shrink: 0.5,
+            bvh_initial_dt: 1e-3,
+        }
     }
 }
 
 /// Names of every finder [`make_finder`] knows.
-pub const FINDER_NAMES: &[&str] = &["all-pairs"];
+pub const FINDER_NAMES: &[&str] = &["all-pairs", "bvh"];
 
 /// Makes the finder called `name`.
 pub fn make_finder<const D: usize>(
     name: &str,
     options: &FinderOptions,
 ) -> Result<Box<dyn Finder<D>>, FinderError> {
-    let _ = options;
     match name {
         "all-pairs" => Ok(Box::new(AllPairs::new())),
+        "bvh" => Ok(Box::new(BvhFinder::new(options)?)),
         _ => Err(FinderError::Unknown {
             name: name.to_string(),
             known: FINDER_NAMES.join(", "),
