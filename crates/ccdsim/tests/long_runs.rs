@@ -43,3 +43,31 @@ fn long_run<const D: usize>(scene: &Scene<D>, finder: &str) {
 fn billiard_break_1e5_events() {
     long_run(&rack(&RackConfig::default()), "all-pairs");
 }
+
+/// 1,000 bodies: the exact priority-queue finder gives the oracle's run (the finder suite and
+/// `sedgewick_vs_oracle` check that event by event) at a fraction of the all-pairs cost.
+const GAS_FINDER: &str = "sedgewick";
+
+fn gas_scene<const D: usize>(seed: u64) -> Scene<D> {
+    ccdsim::generate::gas(&ccdsim::generate::GasConfig {
+        n: 1000,
+        packing: 0.3,
+        radius_min: 0.5,
+        radius_max: 1.0,
+        speed_min: 0.0,
+        speed_max: 1.0,
+        seed,
+        ..ccdsim::generate::GasConfig::default()
+    })
+    .unwrap()
+}
+
+#[test]
+fn gas_2d_1000_bodies_1e5_events() {
+    long_run(&gas_scene::<2>(21), GAS_FINDER);
+}
+
+#[test]
+fn gas_3d_1000_bodies_1e5_events() {
+    long_run(&gas_scene::<3>(31), GAS_FINDER);
+}

@@ -19,10 +19,12 @@
 //! [`FinderError::Unsupported`].
 
 mod all_pairs;
+pub mod bvh;
 mod cells;
 mod sedgewick;
 
 pub use all_pairs::{all_pairs_next_event, AllPairs};
+pub use bvh::BvhFinder;
 pub use cells::{Cells, CellsStats};
 pub use sedgewick::{Sedgewick, SedgewickStats};
 
@@ -131,16 +133,16 @@ impl Default for FinderOptions {
 }
 
 /// Names of every finder [`make_finder`] knows.
-pub const FINDER_NAMES: &[&str] = &["all-pairs", "sedgewick", "cells"];
+pub const FINDER_NAMES: &[&str] = &["all-pairs", "bvh", "sedgewick", "cells"];
 
 /// Makes the finder called `name`.
 pub fn make_finder<const D: usize>(
     name: &str,
     options: &FinderOptions,
 ) -> Result<Box<dyn Finder<D>>, FinderError> {
-    let _ = options;
     match name {
         "all-pairs" => Ok(Box::new(AllPairs::new())),
+        "bvh" => Ok(Box::new(BvhFinder::new(options)?)),
         "sedgewick" => Ok(Box::new(Sedgewick::new())),
         "cells" => Ok(Box::new(Cells::<D>::new())),
         _ => Err(FinderError::Unknown {
