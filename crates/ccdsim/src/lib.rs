@@ -18,6 +18,7 @@
 #![deny(missing_docs)]
 #![forbid(unsafe_code)]
 
+pub mod bench_gas;
 pub mod event;
 pub mod finder;
 pub mod generate;
