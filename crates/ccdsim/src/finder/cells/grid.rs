@@ -302,12 +302,6 @@ impl<const D: usize> Grid<D> {
         self.head[c as usize]
     }
 
-    /// Body after `i` in its cell, or `NONE`.
-    #[inline]
-    pub fn after(&self, i: u32) -> u32 {
-        self.next[i as usize]
-    }
-
     /// Walls within reach of cell `c`.
     #[inline]
     pub fn walls_of(&self, c: u32) -> &[u32] {
@@ -435,7 +429,7 @@ impl<const D: usize> Grid<D> {
     /// Calls `f(cell, shift, image)` for every cell whose bodies can touch a body filed at
     /// coordinates `k` before it leaves its cell: the 3^D block around it (fewer at the border
     /// of an open world), with the image shift to add to their displacement and its code.
-    #[inline]
+    #[cfg(test)]
     pub fn visit_neighbours(&self, k: &[u32; D], mut f: impl FnMut(u32, &Vector<D>, u8)) {
         if self.is_interior(k) {
             let c = self.linear_u32(k) as isize;
@@ -447,6 +441,49 @@ impl<const D: usize> Grid<D> {
         }
         let axes: [AxisChoices; D] = std::array::from_fn(|d| self.axis_choices(d, k[d] as usize));
         self.visit_product(&axes, &mut f);
+    }
+
+    /// Appends to `bodies` every body filed in the neighbour cells of coordinates `k` (see
+    /// [`Grid::visit_neighbours`]) and to `images` the image code of its cell.
+    #[inline]
+    pub fn gather_neighbours(&self, k: &[u32; D], bodies: &mut Vec<u32>, images: &mut Vec<u8>) {
+        if self.is_interior(k) {
+            let c = self.linear_u32(k) as isize;
+            for &off in &self.interior {
+                self.gather_cell((c + off) as u32, Self::ZERO_IMAGE, bodies, images);
+            }
+            return;
+        }
+        let axes: [AxisChoices; D] = std::array::from_fn(|d| self.axis_choices(d, k[d] as usize));
+        self.visit_product(&axes, &mut |cell, _, image| {
+            self.gather_cell(cell, image, bodies, images);
+        });
+    }
+
+    /// Appends to `bodies` every body filed in the layer of cells entered by a move into the
+    /// cell of coordinates `k` along `axis` in direction `up` (see
+    /// [`Grid::visit_entered_layer`]), and their image codes to `images`.
+    pub fn gather_entered_layer(
+        &self,
+        k: &[u32; D],
+        axis: usize,
+        up: bool,
+        bodies: &mut Vec<u32>,
+        images: &mut Vec<u8>,
+    ) {
+        self.visit_entered_layer(k, axis, up, |cell, _, image| {
+            self.gather_cell(cell, image, bodies, images);
+        });
+    }
+
+    #[inline(always)]
+    fn gather_cell(&self, cell: u32, image: u8, bodies: &mut Vec<u32>, images: &mut Vec<u8>) {
+        let mut j = self.head[cell as usize];
+        while j != NONE {
+            bodies.push(j);
+            images.push(image);
+            j = self.next[j as usize];
+        }
     }
 
     /// Calls `f(cell, shift, image)` for the cells that became neighbours of a body that

@@ -24,8 +24,8 @@
 //!
 //! `next_event` looks at the top of the queue: a crossing is processed; a body event is
 //! evaluated again on the current states (one time of impact) and if it no longer comes out
-//! bit for bit the same it is *stale* and the body is recomputed from scratch; anything else
-//! is returned. `update` refiles and recomputes the bodies that changed. Nothing else is
+//! bit for bit the same it is *stale*: the body's second cached event takes its place if it
+//! is known, else the body is recomputed from scratch; anything else is returned. `update` refiles and recomputes the bodies that changed. Nothing else is
 //! touched: a collision costs two neighbourhood scans, a few heap operations and, later, one
 //! rescan for each body whose cached event involved the colliding bodies.
 //!
@@ -39,7 +39,13 @@
 //!    changes; when `i` changes it is recomputed at once, and when `j` changes the entry may
 //!    be stale: still a lower bound of `i`'s other terms, which have not changed. A key that
 //!    passes the re-evaluation at the top is a live term (the re-evaluated pair, same image,
-//!    same function, same states).
+//!    same function, same states). The second cached event `second(i)` is, while known, a
+//!    lower bound of every term of `i` but `best(i)`'s own: a full scan keeps the two
+//!    smallest terms, and a merge that lowers `best` demotes the old `best` (a lower bound of
+//!    all the rest) to `second`. When `best(i)` is stale its term is gone, the new term of
+//!    that pair is covered by the partner (which was recomputed when it changed), and every
+//!    other term of `i` is at least `second(i)`: promoting `second(i)` keeps the invariant.
+//!    After a promotion `second(i)` is unknown until the next full scan.
 //! 2. *Every live term whose pair is responsible is covered by a key.* Call a pair responsible
 //!    when the bodies are in neighbouring cells (a body and a wall: the wall is listed by the
 //!    body's cell). The pair's term was computed at the later of (a) the last state change of
@@ -91,13 +97,15 @@ use crate::geom::{Aabb, Vector};
 use crate::scene::Wall;
 use crate::world::World;
 use grid::{Grid, MARGIN};
-use predict::{tie_of, Best, Probe};
+use predict::{tie_of, Probe};
 use queue::{EventQueue, Key, MAX_INDEX};
 
 /// Crossing code of a body that crosses no face.
 const NO_CROSSING: u8 = 0x7F;
 /// Flag on a crossing code: the body's queue key is the crossing, not its cached event.
 const KEY_IS_CROSSING: u8 = 0x80;
+/// Flag on a second image code: the second cached event is known.
+const SECOND_KNOWN: u8 = 0x80;
 
 /// Counters of a [`Cells`] finder since its last `init`.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -120,6 +128,10 @@ pub struct Cells<const D: usize> {
     best: Vec<Key>,
     /// Image code of the partner of `best` (body events).
     image: Vec<u8>,
+    /// Second earliest cached event of each body (see `predict::Best`).
+    second: Vec<Key>,
+    /// Image code of the partner of `second`, with the flag `SECOND_KNOWN`.
+    second_image: Vec<u8>,
     /// Code `2·axis + up` of each body's next crossing, or `NO_CROSSING`, with the flag
     /// `KEY_IS_CROSSING` when the crossing is the body's queue key.
     cross: Vec<u8>,
@@ -130,6 +142,13 @@ pub struct Cells<const D: usize> {
     faces_from: usize,
     /// Crossings processed since the last `update`: body, code, time.
     log: Vec<(u32, u8, f64)>,
+    /// Time of the last crossing processed or event returned: cells match positions then.
+    clock: f64,
+    /// Image shift of each image code.
+    shifts: Vec<Vector<D>>,
+    /// Reused buffers of the bodies (and their image codes) a scan looks at.
+    scratch_bodies: Vec<u32>,
+    scratch_images: Vec<u8>,
     stats: CellsStats,
     peak_bytes: usize,
 }
@@ -148,11 +167,17 @@ impl<const D: usize> Cells<D> {
             grid: Grid::new(0, 1.0, Vector::ZERO, Vector::ZERO, None),
             best: Vec::new(),
             image: Vec::new(),
+            second: Vec::new(),
+            second_image: Vec::new(),
             cross: Vec::new(),
             queue: EventQueue::default(),
             periodic: false,
             faces_from: 0,
             log: Vec::new(),
+            clock: 0.0,
+            shifts: Vec::new(),
+            scratch_bodies: Vec::new(),
+            scratch_images: Vec::new(),
             stats: CellsStats::default(),
             peak_bytes: 0,
         }
@@ -173,8 +198,9 @@ impl<const D: usize> Cells<D> {
     fn bytes(&self) -> usize {
         self.grid.bytes()
             + self.queue.bytes()
-            + std::mem::size_of::<Key>() * self.best.capacity()
+            + std::mem::size_of::<Key>() * (self.best.capacity() + self.second.capacity())
             + self.image.capacity()
+            + self.second_image.capacity()
             + self.cross.capacity()
             + std::mem::size_of::<(u32, u8, f64)>() * self.log.capacity()
     }
@@ -197,15 +223,13 @@ impl<const D: usize> Cells<D> {
 
     /// Checks the structures against `world`: the cell lists, the heap, every key being the
     /// minimum of the body's cached event and next crossing, and every body lying in its cell
-    /// (up to rounding) at the time of the queue's top. For tests.
+    /// (up to rounding) at the finder's clock (the last crossing or event it went through).
+    /// For tests.
     pub fn validate(&self, world: &World<D>) -> Result<(), String> {
         self.grid.validate()?;
         self.queue
             .validate(|j| tie_of(&self.best, &self.cross, j))?;
-        let clock = match self.queue.top().map(|i| self.key_of(i)) {
-            Some(k) if !k.is_never() => k.seconds().max(world.now()),
-            _ => world.now(),
-        };
+        let clock = self.clock;
         for i in 0..world.len() {
             let m = world.motion(i);
             let k = self.grid.coords_of(i);
@@ -215,6 +239,14 @@ impl<const D: usize> Cells<D> {
                 .map_or(Key::NEVER, |(t, _)| Key::crossing(t));
             if self.key_of(i) != crossing.min(self.best[i]) {
                 return Err(format!("body {i}: queue key is not min(event, crossing)"));
+            }
+            for k in [self.best[i], self.second[i]] {
+                if k.time == Key::NEVER.time && !k.is_never() {
+                    return Err(format!("body {i}: cached an event that never happens"));
+                }
+            }
+            if self.best[i] > self.second[i] && self.second_image[i] & SECOND_KNOWN != 0 {
+                return Err(format!("body {i}: second cached event before the first"));
             }
             let p = m.at(clock);
             let (lo, hi) = self.grid.cell_box(&k.map(|x| x as usize));
@@ -235,19 +267,16 @@ impl<const D: usize> Cells<D> {
     /// offered the layer of cells that became its neighbours, and its new cell's walls.
     fn cross(&mut self, world: &World<D>, i: usize, time: f64) {
         self.stats.crossings += 1;
+        self.clock = self.clock.max(time);
         let code = self.cross[i] & !KEY_IS_CROSSING;
         let (axis, up) = ((code >> 1) as usize, code & 1 == 1);
         self.grid.step(i, axis, up);
         self.log.push((i as u32, code, time));
         let p = Probe::of(world, i);
-        let mut best = Best {
-            key: self.best[i],
-            image: self.image[i],
-        };
+        let mut best = self.records(i);
         self.scan_entered_layer(world, &p, axis, up, &mut best);
         self.scan_walls(world, &p, &mut best);
-        self.best[i] = best.key;
-        self.image[i] = best.image;
+        self.store(i, &best);
         self.schedule(i, &p.m);
     }
 
@@ -338,11 +367,17 @@ impl<const D: usize> Finder<D> for Cells<D> {
             self.grid.insert(i, k);
         }
         self.grid.file_walls(world.walls(), r1 + MARGIN * sigma_max);
+        self.shifts = (0..3usize.pow(D as u32))
+            .map(|code| self.grid.shift_of(code as u8))
+            .collect();
         self.best = vec![Key::NEVER; n];
         self.image = vec![Grid::<D>::ZERO_IMAGE; n];
+        self.second = vec![Key::NEVER; n];
+        self.second_image = vec![SECOND_KNOWN; n];
         self.cross = vec![NO_CROSSING; n];
         self.queue = EventQueue::new(n);
         self.log = Vec::new();
+        self.clock = now;
         self.stats = CellsStats::default();
         for i in 0..n {
             self.recompute(world, i);
@@ -361,6 +396,7 @@ impl<const D: usize> Finder<D> for Cells<D> {
             return;
         };
         self.undo_crossings_after(world, t);
+        self.clock = t;
         for &i in changed {
             let k = self.grid.coords_of_point(&world.positions()[i]);
             self.grid.relocate(i, k);
@@ -387,10 +423,14 @@ impl<const D: usize> Finder<D> for Cells<D> {
             }
             if !self.is_live(world, i) {
                 self.stats.stale += 1;
-                self.recompute(world, i);
+                if !self.promote_second(world, i) {
+                    self.recompute(world, i);
+                }
                 continue;
             }
-            return Some(key.event());
+            let e = key.event();
+            self.clock = self.clock.max(e.time);
+            return Some(e);
         }
     }
 

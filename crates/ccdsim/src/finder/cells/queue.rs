@@ -30,7 +30,7 @@ pub(super) struct Key {
 
 /// Maps a time's bits to an unsigned integer with the order of [`f64::total_cmp`].
 #[inline]
-fn ordered(t: f64) -> u64 {
+pub(super) fn ordered(t: f64) -> u64 {
     let b = t.to_bits();
     if b >> 63 == 1 {
         !b
@@ -52,6 +52,17 @@ impl Key {
         debug_assert!(a < b);
         Key {
             time: ordered(t),
+            tie: (CLASS_BODY << 62) | ((a as u64) << 31) | b as u64,
+        }
+    }
+
+    /// A body–body event between bodies `a < b` at the time whose ordered bits are `time`
+    /// (see [`ordered`]).
+    #[inline]
+    pub fn body_bits(time: u64, a: usize, b: usize) -> Key {
+        debug_assert!(a < b);
+        Key {
+            time,
             tie: (CLASS_BODY << 62) | ((a as u64) << 31) | b as u64,
         }
     }

@@ -94,6 +94,15 @@ fn periodic_structures_and_every_exit() {
 }
 
 #[test]
+fn open_worlds_until_nothing_happens() {
+    for seed in [1, 2] {
+        let mut scene: Scene<2> = gas(&cfg(150, 0.3, 0.3, 0.8, seed)).unwrap();
+        scene.walls.clear();
+        validated_run::<2>(&scene, 100_000);
+    }
+}
+
+#[test]
 fn structures_stay_consistent_3d() {
     for seed in [3, 4] {
         validated_run::<3>(&gas(&cfg(120, 0.25, 0.5, 0.5, seed)).unwrap(), 1200);
