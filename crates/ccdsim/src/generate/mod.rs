@@ -1,10 +1,13 @@
-//! Scene generators: random gases and the billiard rack.
+//! Scene generators: random gases, the billiard rack and the thesis benchmark scene.
 
 mod gas;
+mod place;
 mod rack;
+mod thesis;
 
 pub use gas::{gas, GasConfig};
 pub use rack::{rack, RackConfig};
+pub use thesis::{thesis, ThesisConfig, THESIS_DURATION, THESIS_TABLE_5_1, THESIS_TABLE_5_2};
 
 use crate::geom::Vector;
 use crate::scene::Wall;
