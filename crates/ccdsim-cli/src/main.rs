@@ -24,6 +24,8 @@ enum Command {
     Verify(commands::verify::Args),
     /// Convert a run file to another format.
     Export(commands::export::Args),
+    /// Run a benchmark workload and print its table (writes CSV, JSON and plots).
+    Bench(commands::bench::Args),
 }
 
 fn main() -> ExitCode {
@@ -33,6 +35,7 @@ fn main() -> ExitCode {
         Command::Gen(a) => commands::gen::run(a),
         Command::Verify(a) => commands::verify::run(a),
         Command::Export(a) => commands::export::run(a),
+        Command::Bench(a) => commands::bench::run(a),
     };
     match result {
         Ok(code) => code,

@@ -395,14 +395,14 @@ pub fn thesis_row(n: usize) -> Option<(usize, f64, f64, f64)> {
     THESIS_TABLE_5_1.iter().copied().find(|r| r.0 == n)
 }
 
-/// Seconds with four significant digits, or milliseconds below 0.1 s.
+/// Seconds in plain decimal notation with four significant digits (at least one decimal).
 #[must_use]
 pub fn fmt_seconds(s: f64) -> String {
-    if s < 0.1 {
-        format!("{:.4} ms", s * 1e3)
-    } else {
-        format!("{s:.4}")
+    if !(s.is_finite() && s > 0.0) {
+        return format!("{s}");
     }
+    let decimals = (3 - s.log10().floor() as i32).max(1) as usize;
+    format!("{s:.decimals$}")
 }
 
 #[cfg(test)]
@@ -459,6 +459,14 @@ mod tests {
             CellStatus::Skipped { .. } | CellStatus::Overran { .. }
         )));
         assert!(report.table().contains("skipped") || report.table().contains("overran"));
+    }
+
+    #[test]
+    fn seconds_have_four_significant_digits() {
+        assert_eq!(fmt_seconds(0.000049), "0.00004900");
+        assert_eq!(fmt_seconds(0.3747), "0.3747");
+        assert_eq!(fmt_seconds(46.33965052), "46.34");
+        assert_eq!(fmt_seconds(13085.64345), "13085.6");
     }
 
     #[test]
