@@ -1,5 +1,5 @@
-//! Time budgets for benchmark tables: predict each cell's cost from the smaller sizes already
-//! measured and skip what would not fit.
+//! Time budgets for benchmark tables: each finder gets a total budget; each cell's cost is
+//! predicted from the sizes already measured, and what would not fit is skipped.
 
 use serde::Serialize;
 
@@ -9,36 +9,31 @@ use serde::Serialize;
 pub enum CellStatus {
     /// Every run completed.
     Done,
-    /// Not run: predicted to exceed the budget, or a smaller size of the same finder already
-    /// did (`predicted_seconds` is then `None`).
+    /// Not run: predicted to exceed what was left of the finder's budget, or a smaller size of
+    /// the same finder already was skipped (`predicted_seconds` is then `None`).
     Skipped {
-        /// The cell budget, seconds.
+        /// The finder's total budget, seconds.
         budget_seconds: f64,
+        /// What was left of it, seconds.
+        left_seconds: f64,
         /// The predicted cost of the cell, seconds.
         predicted_seconds: Option<f64>,
     },
-    /// Started, then abandoned when it used up the budget.
+    /// Started, then abandoned when it used up the rest of the budget.
     Overran {
-        /// The cell budget, seconds.
+        /// The finder's total budget, seconds.
         budget_seconds: f64,
     },
 }
 
 impl CellStatus {
-    /// A short label for tables, e.g. `skipped (60 s budget)`.
+    /// A short label for tables: `done`, or `skipped (120 s budget)`.
     #[must_use]
     pub fn short(&self) -> String {
         match self {
             CellStatus::Done => "done".into(),
-            CellStatus::Skipped {
-                budget_seconds,
-                predicted_seconds: Some(p),
-            } => format!("skipped (~{p:.0} s > {budget_seconds} s)"),
-            CellStatus::Skipped { budget_seconds, .. } => {
+            CellStatus::Skipped { budget_seconds, .. } | CellStatus::Overran { budget_seconds } => {
                 format!("skipped ({budget_seconds} s budget)")
-            }
-            CellStatus::Overran { budget_seconds } => {
-                format!("skipped (overran {budget_seconds} s)")
             }
         }
     }
@@ -49,28 +44,38 @@ const DEFAULT_EXPONENT: f64 = 3.0;
 /// Measurements shorter than this (per run) are too noisy to fit an exponent on.
 const MIN_FIT_SECONDS: f64 = 0.02;
 
-/// Decides, for one finder, which sizes fit in a per-cell time budget.
+/// Decides, for one finder, which sizes fit in its total time budget.
 ///
 /// The cost of a cell is predicted as `runs · t · (n / n_last)^k` from the last measured per-run
 /// time `t` at `n_last`, where `k` is the growth exponent between the last two sizes measured
-/// long enough to fit (clamped to [1, 4]) or 3 before there are two. Once a cell is skipped or
-/// overruns, every larger size is skipped too: the finder has reached its limit.
+/// long enough to fit (clamped to [1, 4]) or 3 before there are two. A cell runs when its
+/// prediction fits in what is left of the budget, and its runs are abandoned when they use it
+/// up; once a cell is skipped or abandoned, every larger size is skipped: the finder has reached
+/// its limit. So a finder never spends much more than its budget.
 #[derive(Clone, Debug)]
 pub struct Planner {
     budget: f64,
+    spent: f64,
     measured: Vec<(usize, f64)>,
     stopped: bool,
 }
 
 impl Planner {
-    /// A planner with a per-cell budget in seconds.
+    /// A planner with a total budget in seconds.
     #[must_use]
     pub fn new(budget_seconds: f64) -> Self {
         Planner {
             budget: budget_seconds,
+            spent: 0.0,
             measured: Vec::new(),
             stopped: false,
         }
+    }
+
+    /// Seconds left of the budget.
+    #[must_use]
+    pub fn left(&self) -> f64 {
+        (self.budget - self.spent).max(0.0)
     }
 
     /// Predicted per-run seconds at `n`, or `None` before any measurement.
@@ -93,29 +98,32 @@ impl Planner {
 
     /// `Some(status)` when the cell of `n` bodies and `runs` runs must not run.
     pub fn refuse(&mut self, n: usize, runs: u32) -> Option<CellStatus> {
+        let (budget_seconds, left_seconds) = (self.budget, self.left());
+        let skipped = |predicted_seconds| CellStatus::Skipped {
+            budget_seconds,
+            left_seconds,
+            predicted_seconds,
+        };
         if self.stopped {
-            return Some(CellStatus::Skipped {
-                budget_seconds: self.budget,
-                predicted_seconds: None,
-            });
+            return Some(skipped(None));
         }
-        let predicted = self.predict(n)? * f64::from(runs);
-        (predicted > self.budget).then(|| {
+        let predicted = self.predict(n).map(|t| t * f64::from(runs));
+        if predicted.is_some_and(|p| p > self.left()) || self.left() <= 0.0 {
             self.stopped = true;
-            CellStatus::Skipped {
-                budget_seconds: self.budget,
-                predicted_seconds: Some(predicted),
-            }
-        })
+            return Some(skipped(predicted));
+        }
+        None
     }
 
-    /// Records a completed cell's mean per-run seconds.
-    pub fn record(&mut self, n: usize, per_run_seconds: f64) {
+    /// Records a completed cell: its mean per-run seconds and its total seconds.
+    pub fn record(&mut self, n: usize, per_run_seconds: f64, cell_seconds: f64) {
         self.measured.push((n, per_run_seconds));
+        self.spent += cell_seconds;
     }
 
-    /// Records that a cell overran after `elapsed` seconds; returns its status.
-    pub fn overran(&mut self, _elapsed: f64) -> CellStatus {
+    /// Records that a cell was abandoned after `cell_seconds`; returns its status.
+    pub fn overran(&mut self, cell_seconds: f64) -> CellStatus {
+        self.spent += cell_seconds;
         self.stopped = true;
         CellStatus::Overran {
             budget_seconds: self.budget,
@@ -131,16 +139,17 @@ mod tests {
     fn predicts_by_the_fitted_exponent_and_stops_for_good() {
         let mut p = Planner::new(10.0);
         assert_eq!(p.refuse(8, 3), None);
-        p.record(8, 0.001);
+        p.record(8, 0.001, 0.003);
         // One (short) measurement: cubic growth assumed.
         assert!((p.predict(16).unwrap() - 0.008).abs() < 1e-12);
-        p.record(16, 0.1);
-        p.record(32, 0.4);
+        p.record(16, 0.1, 0.3);
+        p.record(32, 0.4, 1.2);
         // Exponent 2 between 16 and 32.
         assert!((p.predict(64).unwrap() - 1.6).abs() < 1e-9);
         assert_eq!(p.refuse(64, 3), None);
-        p.record(64, 1.6);
-        // 6.4 s per run × 3 runs > 10 s.
+        p.record(64, 1.6, 4.8);
+        assert!((p.left() - (10.0 - 6.303)).abs() < 1e-9);
+        // 6.4 s per run × 3 runs > 3.7 s left.
         assert!(matches!(
             p.refuse(128, 3),
             Some(CellStatus::Skipped { predicted_seconds: Some(x), .. }) if (x - 19.2).abs() < 1e-9
@@ -152,19 +161,23 @@ mod tests {
                 ..
             })
         ));
+        assert_eq!(p.refuse(256, 1).unwrap().short(), "skipped (10 s budget)");
     }
 
     #[test]
-    fn exponent_is_clamped() {
+    fn exponent_is_clamped_and_overruns_stop() {
         let mut p = Planner::new(1.0);
-        p.record(10, 0.05);
-        p.record(20, 100.0);
+        p.record(10, 0.05, 0.05);
+        p.record(20, 100.0, 100.0);
         assert!((p.predict(40).unwrap() - 1600.0).abs() < 1e-9);
+        assert_eq!(p.left(), 0.0);
+        assert!(p.refuse(40, 1).is_some());
         let mut q = Planner::new(1.0);
-        q.record(10, 0.5);
-        q.record(20, 0.1);
+        q.record(10, 0.5, 0.5);
+        q.record(20, 0.1, 0.1);
         assert!((q.predict(40).unwrap() - 0.2).abs() < 1e-12);
-        assert!(matches!(q.overran(2.0), CellStatus::Overran { .. }));
+        assert!(q.refuse(40, 1).is_none());
+        assert!(matches!(q.overran(0.4), CellStatus::Overran { .. }));
         assert!(q.refuse(80, 1).is_some());
     }
 }

@@ -21,8 +21,9 @@ pub struct ThesisBenchConfig {
     pub first_seed: u64,
     /// Finder names, as [`make_finder`] knows them.
     pub finders: Vec<String>,
-    /// Time budget per cell (one finder at one size, all runs), seconds: a cell predicted to
-    /// take longer, or whose run overruns it, is skipped, and so are the finder's larger sizes.
+    /// Time budget of each finder over all its cells, seconds: a cell predicted not to fit in
+    /// what is left is skipped, a run that uses it up is abandoned, and either way the finder's
+    /// larger sizes are skipped (see [`Planner`]).
     pub budget_seconds: f64,
     /// Simulated time per run, seconds (thesis: 5).
     pub duration: f64,
@@ -37,7 +38,7 @@ impl Default for ThesisBenchConfig {
             runs: 3,
             first_seed: 1,
             finders: FINDER_NAMES.iter().map(|s| (*s).to_string()).collect(),
-            budget_seconds: 60.0,
+            budget_seconds: 120.0,
             duration: THESIS_DURATION,
             dim: 2,
         }
@@ -194,7 +195,7 @@ pub fn run_thesis_bench(
             let mut times = Vec::new();
             let (mut body, mut wall) = (0u64, 0u64);
             for r in 0..cfg.runs {
-                let left = cfg.budget_seconds - cell_started.elapsed().as_secs_f64();
+                let left = planner.left() - cell_started.elapsed().as_secs_f64();
                 let seed = cfg.first_seed + u64::from(r);
                 let Some(run) = run_thesis_once(cfg.dim, n, seed, finder, cfg.duration, left)?
                 else {
@@ -229,7 +230,7 @@ pub fn run_thesis_bench(
                 cell.mean_collisions = (body + wall) as f64 / k;
                 cell.mean_seconds = times.iter().sum::<f64>() / k;
                 cell.median_seconds = median(&mut times);
-                planner.record(n, cell.mean_seconds);
+                planner.record(n, cell.mean_seconds, cell_started.elapsed().as_secs_f64());
             } else {
                 cell.peak_memory_bytes = None;
                 done += u64::from(cfg.runs) - times.len() as u64;
@@ -451,14 +452,42 @@ mod tests {
             ..ThesisBenchConfig::default()
         };
         let report = run_thesis_bench(&cfg, |_, _| {}).unwrap();
-        // With no time at all, even the first run overruns (it is checked every 1024 events,
-        // and n = 8 has fewer: so n = 8 completes, the larger ones cannot).
-        assert_eq!(report.cells[0].status, CellStatus::Done);
-        assert!(report.cells[1..].iter().all(|c| matches!(
-            c.status,
-            CellStatus::Skipped { .. } | CellStatus::Overran { .. }
-        )));
-        assert!(report.table().contains("skipped") || report.table().contains("overran"));
+        // With no time at all, nothing runs.
+        assert!(report
+            .cells
+            .iter()
+            .all(|c| matches!(c.status, CellStatus::Skipped { .. })));
+        assert!(report.table().contains("skipped (0 s budget)"));
+        assert_eq!(report.largest_sizes(), vec![("all-pairs".into(), None)]);
+    }
+
+    #[test]
+    fn a_small_budget_stops_at_the_predicted_limit() {
+        let cfg = ThesisBenchConfig {
+            sizes: vec![8, 16, 1024, 2048],
+            runs: 1,
+            finders: vec!["all-pairs".into()],
+            budget_seconds: 0.5,
+            ..ThesisBenchConfig::default()
+        };
+        let report = run_thesis_bench(&cfg, |_, _| {}).unwrap();
+        // n = 8 and 16 take well under a millisecond; all-pairs at 1024 takes minutes, which
+        // the cubic extrapolation from n = 16 (×2^18) foresees.
+        assert_eq!(report.largest_sizes(), vec![("all-pairs".into(), Some(16))]);
+        assert!(matches!(
+            report.cells[2].status,
+            CellStatus::Skipped {
+                predicted_seconds: Some(_),
+                ..
+            }
+        ));
+        assert!(matches!(
+            report.cells[3].status,
+            CellStatus::Skipped {
+                predicted_seconds: None,
+                ..
+            }
+        ));
     }
 
     #[test]

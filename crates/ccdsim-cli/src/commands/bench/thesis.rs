@@ -25,9 +25,10 @@ pub struct Args {
     /// Finders, comma-separated (default: every finder).
     #[arg(long, value_parser = parse_list::<String>)]
     finders: Option<std::vec::Vec<String>>,
-    /// Time budget per cell (one finder at one size, all runs), seconds. Cells predicted to
-    /// exceed it, or that overrun it, are shown as skipped, and so are the finder's larger sizes.
-    #[arg(long, default_value_t = 40.0)]
+    /// Time budget of each finder over all its sizes, seconds. A size predicted not to fit in
+    /// what is left, or whose runs use it up, is shown as skipped, and so are the finder's
+    /// larger sizes.
+    #[arg(long, default_value_t = 120.0)]
     budget: f64,
     /// Simulated seconds per run.
     #[arg(long, default_value_t = 5.0)]
@@ -64,7 +65,7 @@ pub fn run(args: Args) -> Result<ExitCode> {
     let report = run_thesis_bench(&cfg, |done, _| progress.set(done)).map_err(|e| anyhow!(e))?;
     progress.finish();
     println!(
-        "Thesis §5.2 scene, {}D, {} simulated s per run, mean of {} run(s) per cell, budget {} s per cell",
+        "Thesis §5.2 scene, {}D, {} simulated s per run, mean of {} run(s) per cell, budget {} s per finder",
         cfg.dim, cfg.duration, cfg.runs, cfg.budget_seconds
     );
     print!("{}", report.table());
