@@ -95,7 +95,11 @@ pub struct FinderOptions {
 
 impl Default for FinderOptions {
     fn default() -> Self {
-        FinderOptions { bvh_grow: 2.0, bvh_shrink: 0.5, bvh_initial_dt: 1e-3 }
+        FinderOptions {
+            bvh_grow: 2.0,
+            bvh_shrink: 0.5,
+            bvh_initial_dt: 1e-3,
+        }
     }
 }
 
