@@ -12,8 +12,10 @@
 //! crossings, rebuilt trees) stays inside the finder.
 
 mod all_pairs;
+mod sedgewick;
 
-pub use all_pairs::AllPairs;
+pub use all_pairs::{all_pairs_next_event, AllPairs};
+pub use sedgewick::{Sedgewick, SedgewickStats};
 
 use crate::event::Event;
 use crate::geom::Aabb;
@@ -40,6 +42,22 @@ pub trait Finder<const D: usize>: Send {
     fn debug_boxes(&mut self, _world: &World<D>) -> Vec<DebugBox<D>> {
         Vec::new()
     }
+
+    /// Memory held by the finder's own structures, for benchmarks; `None` for finders that do
+    /// not track it.
+    fn memory(&self) -> Option<FinderMemory> {
+        None
+    }
+}
+
+/// Memory held by a finder's own structures, bytes (payload only: allocator overhead and
+/// spare capacity are not counted).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct FinderMemory {
+    /// Bytes held now.
+    pub bytes: usize,
+    /// Most bytes held at once since the last `init`.
+    pub peak_bytes: usize,
 }
 
 /// One box of a finder's spatial structure, for drawing.
@@ -104,7 +122,7 @@ impl Default for FinderOptions {
 }
 
 /// Names of every finder [`make_finder`] knows.
-pub const FINDER_NAMES: &[&str] = &["all-pairs"];
+pub const FINDER_NAMES: &[&str] = &["all-pairs", "sedgewick"];
 
 /// Makes the finder called `name`.
 pub fn make_finder<const D: usize>(
@@ -114,6 +132,7 @@ pub fn make_finder<const D: usize>(
     let _ = options;
     match name {
         "all-pairs" => Ok(Box::new(AllPairs::new())),
+        "sedgewick" => Ok(Box::new(Sedgewick::new())),
         _ => Err(FinderError::Unknown {
             name: name.to_string(),
             known: FINDER_NAMES.join(", "),
