@@ -61,16 +61,25 @@ const Raster = (() => {
     present() {
       this.ctx.putImageData(this.image, 0, 0);
     }
-    // A filled disc (no anti-aliasing: crisp and fast).
+    // A filled disc. Discs wider than a few pixels get anti-aliased left and right edges
+    // (one blended pixel per side and row): smooth enough, and nearly free.
     disc(cx, cy, r, word) {
       const { w, h, px } = this;
       if (r < 0.75) r = 0.75;
+      const aa = r >= 2;
       const y0 = Math.max(0, Math.ceil(cy - r - 0.5)), y1 = Math.min(h - 1, Math.floor(cy + r - 0.5));
       for (let y = y0; y <= y1; y++) {
         const dy = y + 0.5 - cy;
         const half = Math.sqrt(Math.max(0, r * r - dy * dy));
         const x0 = Math.max(0, Math.ceil(cx - half - 0.5)), x1 = Math.min(w - 1, Math.floor(cx + half - 0.5));
         if (x1 >= x0) px.fill(word, y * w + x0, y * w + x1 + 1);
+        if (aa) {
+          // Pixel centres outside the span, covered by the fraction the edge reaches in.
+          const l = x0 - 1, fl = x0 - 0.5 - (cx - half);
+          if (l >= 0 && fl > 0) px[y * w + l] = blend(px[y * w + l], word, Math.min(1, fl));
+          const rr = x1 + 1, fr = cx + half - (x1 + 0.5);
+          if (rr < w && fr > 0) px[y * w + rr] = blend(px[y * w + rr], word, Math.min(1, fr));
+        }
       }
     }
     // A shaded sphere with depth test; z is the centre's depth in pixels (larger is nearer).
@@ -142,6 +151,12 @@ const Raster = (() => {
       y0 = Math.max(0, Math.floor(y0)); y1 = Math.min(h, Math.ceil(y1));
       for (let y = y0; y < y1; y++) if (x1 > x0) px.fill(word, y * w + x0, y * w + x1);
     }
+  }
+
+  // `over` laid on `under` with opacity a in [0, 1] (opaque words).
+  function blend(under, over, a) {
+    const mix = (s) => Math.round(((under >>> s) & 255) * (1 - a) + ((over >>> s) & 255) * a);
+    return ((255 << 24) | (mix(16) << 16) | (mix(8) << 8) | mix(0)) >>> 0;
   }
 
   // Liang–Barsky clipping of a segment to a rectangle; null when it misses.

@@ -17,7 +17,7 @@
   const S = {
     meta: null, D: 2, n: 0, stride: 12,
     radius: null, ids: null, idBucket: null,
-    P: null, V: null, T0: null, flash: null,
+    P: null, V: null, T0: null, flash: null, evTime: null,
     time: 0, applied: 0, lastEvent: null,
     buf: { start: 0, count: 0, data: new Float64Array(0) },
     fetching: false, seekToken: 0, seekBusy: false, seekWanted: null,
@@ -63,10 +63,19 @@
     S.V.set(vel);
     S.T0.fill(S.time);
     S.lastEvent = h[4] >= 0 ? { t: h[5], kind: h[4], a: h[6], b: h[7] } : null;
+    S.evTime.fill(-Infinity);
+    if (S.lastEvent) markEvent(S.lastEvent);
     S.buf = { start: S.applied, count: 0, data: new Float64Array(0) };
     S.fetching = false;
     // Landing exactly on an event (a step, or a seek to an event's time): flash its pair.
     if (S.lastEvent && S.lastEvent.t === S.time) flashEvent(S.lastEvent);
+  }
+
+  // Remembers when each body last collided, so that a view paused at an event shows its pair
+  // highlighted for as long as it stays there.
+  function markEvent(e) {
+    S.evTime[e.a] = e.t;
+    if (e.kind === 0) S.evTime[e.b] = e.t;
   }
 
   function flashEvent(e) {
@@ -140,6 +149,7 @@
     set(a, o + 4);
     if (kind === 0) set(b, o + 4 + 2 * D);
     S.lastEvent = { t, kind, a, b };
+    markEvent(S.lastEvent);
     flashEvent(S.lastEvent);
     S.applied++;
   }
@@ -332,12 +342,13 @@
     surf.clear();
     drawWalls(cam, surf);
     const flashing = [];
+    const lit = (i) => now - S.flash[i] < FLASH_MS || (!S.playing && S.evTime[i] === t);
     if (D === 2) {
       for (let i = 0; i < n; i++) {
         position(i, t, p);
         const [x, y] = cam.project(p[0], p[1]);
         const r = S.radius[i] * cam.scale;
-        if (now - S.flash[i] < FLASH_MS) { flashing.push(i); continue; }
+        if (lit(i)) { flashing.push(i); continue; }
         surf.disc(x, y, r, bodyWord(i));
       }
     } else {
@@ -346,8 +357,9 @@
         position(i, t, p);
         const [x, y, z] = cam.project(p[0], p[1], p[2]);
         const r = S.radius[i] * cam.scale;
-        if (now - S.flash[i] < FLASH_MS) flashing.push(i);
-        surf.sphere(x, y, z, r, now - S.flash[i] < FLASH_MS ? Raster.FLASH_FILL : bodyRgb(i));
+        const on = lit(i);
+        if (on) flashing.push(i);
+        surf.sphere(x, y, z, r, on ? Raster.FLASH_FILL : bodyRgb(i));
       }
     }
     drawBoxes(cam, surf);
@@ -397,12 +409,12 @@
   function play() {
     if (S.time >= S.meta.end_time) seek(S.meta.start_time);
     S.playing = true;
-    $('play').textContent = '⏸';
+    $('play').textContent = '■ pause';
   }
 
   function pause() {
     S.playing = false;
-    $('play').textContent = '▶';
+    $('play').textContent = '▶ play';
   }
 
   function fail(e) {
@@ -446,6 +458,14 @@
       if (!S.boxes.on) $('hint').textContent = '';
     };
     $('finder').onchange = () => { S.boxes.time = NaN; };
+    // Typing a time (e.g. an event's, as `ccdsim export` prints it) seeks there exactly.
+    $('goto').addEventListener('keydown', (e) => {
+      if (e.key !== 'Enter') return;
+      const t = Number(e.target.value);
+      if (e.target.value.trim() === '' || !Number.isFinite(t)) { setStatus(`go to: \`${e.target.value}\` is not a time`); return; }
+      pause();
+      seek(t);
+    });
     window.addEventListener('keydown', (e) => {
       if (e.target.tagName === 'INPUT' && e.target.type === 'text') return;
       if (e.key === ' ') { e.preventDefault(); S.playing ? pause() : play(); }
@@ -513,6 +533,7 @@
       S.V = new Float64Array(S.n * S.D);
       S.T0 = new Float64Array(S.n);
       S.flash = new Float64Array(S.n).fill(-Infinity);
+      S.evTime = new Float64Array(S.n).fill(-Infinity);
       $('file').textContent = `${meta.file} · ${meta.dim}D · ${meta.bodies} bodies · ${meta.events} events${meta.complete ? '' : ' (no end record)'}`;
       $('finder').value = meta.finder;
       bindControls();
