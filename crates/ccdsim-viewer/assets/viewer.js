@@ -63,6 +63,8 @@
     S.V.set(vel);
     S.T0.fill(S.time);
     S.lastEvent = h[4] >= 0 ? { t: h[5], kind: h[4], a: h[6], b: h[7] } : null;
+    // Flashes of the events played before a jump mean nothing after it.
+    S.flash.fill(-Infinity);
     S.evTime.fill(-Infinity);
     if (S.lastEvent) markEvent(S.lastEvent);
     S.buf = { start: S.applied, count: 0, data: new Float64Array(0) };
