@@ -11,6 +11,10 @@
   const ctx = canvas.getContext('2d');
   const WINDOW = 4096; // events per /api/events request
   const FLASH_MS = 350; // how long a colliding pair stays highlighted, wall milliseconds
+  // In a dense run (a gas of 10^5 bodies) events come by the ten thousand per second: the
+  // flash is shortened so that no more than this share of the bodies (or 6) is lit at once.
+  const FLASH_SHARE = 0.02;
+  const CATCH_UP_WALL = 0.25; // playback may lag the clock by this many wall seconds
   const SLOWMO_WALL = 0.4; // slow motion starts this many wall seconds from an event
   const STATE_HEADER = 8; // f64 values before a snapshot's arrays (src/wire.rs)
 
@@ -25,6 +29,7 @@
     boxes: { on: false, data: null, time: NaN, busy: false, error: null, finder: '' },
     view: { zoom: 1, panX: 0, panY: 0, yaw: 35, pitch: 25 },
     surface: null, frames: 0, prevNow: null, error: null, seeking: false,
+    window: WINDOW, eventRate: 0, flashMs: FLASH_MS, drawMs: 0, want: 0, seekMs: 50,
   };
 
   function setStatus(text, ok = false) {
@@ -86,9 +91,11 @@
     if (e.kind === 0) S.flash[e.b] = now;
   }
 
-  // Seeks to time t (seconds); concurrent calls collapse to the latest target.
-  async function seek(t) {
+  // Seeks to time t (seconds); concurrent calls collapse to the latest target. A catch-up
+  // seek (while playing) leaves the clock running; any other one sets it to t.
+  async function seek(t, catchUp = false) {
     S.seekWanted = t;
+    if (!catchUp) S.want = t;
     if (S.seekBusy) return;
     S.seekBusy = true;
     try {
@@ -96,9 +103,12 @@
         const target = Math.min(Math.max(S.seekWanted, S.meta.start_time), S.meta.end_time);
         S.seekWanted = null;
         const token = ++S.seekToken;
+        const t0 = performance.now();
         const ab = await bin(`/api/state?t=${target}`);
+        S.seekMs = 0.5 * S.seekMs + 0.5 * (performance.now() - t0);
         if (token !== S.seekToken) continue;
         loadSnapshot(ab);
+        if (S.want < S.time || !S.playing) S.want = S.time;
         fetchEvents();
       }
     } catch (e) {
@@ -115,7 +125,7 @@
     S.fetching = true;
     const token = S.seekToken;
     try {
-      const ab = await bin(`/api/events?from=${from}&count=${WINDOW}`);
+      const ab = await bin(`/api/events?from=${from}&count=${S.window}`);
       if (token !== S.seekToken) return;
       const fresh = new Float64Array(ab);
       // Keep only what is not applied yet.
@@ -166,6 +176,8 @@
         // The next event is not here yet: it is no earlier than the last one applied.
         const known = S.lastEvent ? S.lastEvent.t : S.meta.start_time;
         S.time = Math.max(S.time, Math.min(target, known));
+        // Starved: ask for bigger windows (the server caps them at 65536 events).
+        if (!S.fetching) S.window = Math.min(65536, S.window * 2);
         fetchEvents();
         return false;
       }
@@ -173,7 +185,7 @@
       applyEvent(o);
     }
     S.time = target;
-    if (S.buf.start + S.buf.count - S.applied < WINDOW / 2) fetchEvents();
+    if (S.buf.start + S.buf.count - S.applied < S.window / 2) fetchEvents();
     return true;
   }
 
@@ -191,7 +203,7 @@
     try {
       if (dir > 0) {
         const o = eventOffset(S.applied);
-        if (o >= 0 && S.buf.data[o] > S.time) { advanceTo(S.buf.data[o]); return; }
+        if (o >= 0 && S.buf.data[o] > S.time) { advanceTo(S.buf.data[o]); S.want = S.time; return; }
       }
       const r = await json(`/api/step?dir=${dir > 0 ? 'next' : 'prev'}&t=${S.time}`);
       if (r.time !== null) await seek(r.time);
@@ -344,7 +356,7 @@
     surf.clear();
     drawWalls(cam, surf);
     const flashing = [];
-    const lit = (i) => now - S.flash[i] < FLASH_MS || (!S.playing && S.evTime[i] === t);
+    const lit = (i) => now - S.flash[i] < S.flashMs || (!S.playing && S.evTime[i] === t);
     if (D === 2) {
       for (let i = 0; i < n; i++) {
         position(i, t, p);
@@ -370,7 +382,8 @@
       const [x, y] = cam.project(p[0], p[1], p[2]);
       const r = S.radius[i] * cam.scale;
       if (D === 2) surf.disc(x, y, r, Raster.FLASH_FILL_WORD);
-      surf.ring(x, y, r + 1.5 * dpr(), r + 4 * dpr(), Raster.FLASH_RING_WORD);
+      // A ring marks bodies big enough to see one around; tiny ones just turn white.
+      if (r >= 2) surf.ring(x, y, r + 1.5 * dpr(), r + 4 * dpr(), Raster.FLASH_RING_WORD);
     }
     // Progress along the run at the foot of the view.
     const span = S.meta.end_time - S.meta.start_time;
@@ -411,11 +424,13 @@
   function play() {
     if (S.time >= S.meta.end_time) seek(S.meta.start_time);
     S.playing = true;
+    S.want = S.time;
     $('play').textContent = '■ pause';
   }
 
   function pause() {
     S.playing = false;
+    S.want = S.time;
     $('play').textContent = '▶ play';
   }
 
@@ -504,17 +519,26 @@
   function frame(now) {
     const dt = S.prevNow === null ? 0 : Math.min(0.1, (now - S.prevNow) / 1000);
     S.prevNow = now;
-    if (S.playing && !S.seekBusy) {
-      const before = S.time;
-      const target = S.time + dt * S.speed * slowFactor();
-      if (!advanceTo(target) && target - S.time > 0.5 * S.speed) {
-        // Events arrive slower than the clock needs them (a dense run at high speed):
-        // jump by snapshot instead of waiting for every event in between.
-        seek(target);
+    if (S.playing) {
+      // `want` is where the clock should be; `time` follows it as far as the events at hand
+      // allow. When events arrive slower than the clock needs them (a dense run at high
+      // speed), a snapshot jumps ahead to where the clock will be when it arrives.
+      const before = S.time, applied0 = S.applied;
+      S.want = Math.min(S.meta.end_time, S.want + dt * S.speed * slowFactor());
+      if (!S.seekBusy) advanceTo(S.want);
+      if (!S.seekBusy && S.want - S.time > CATCH_UP_WALL * S.speed) {
+        seek(Math.min(S.meta.end_time, S.want + S.speed * (S.seekMs / 1000 + CATCH_UP_WALL)), true);
       }
       if (S.time >= S.meta.end_time && before < S.meta.end_time) pause();
+      if (dt > 0) {
+        S.eventRate = 0.9 * S.eventRate + 0.1 * ((S.applied - applied0) / dt);
+        const lit = Math.max(6, FLASH_SHARE * S.n);
+        S.flashMs = Math.min(FLASH_MS, (1000 * lit) / Math.max(1, 2 * S.eventRate));
+      }
     }
+    const d0 = performance.now();
     draw();
+    S.drawMs = 0.9 * S.drawMs + 0.1 * (performance.now() - d0);
     updateLabels();
     refreshBoxes();
     requestAnimationFrame(frame);
@@ -556,6 +580,7 @@
     playing: () => S.playing,
     speed: () => S.speed,
     frames: () => S.frames,
+    drawMs: () => S.drawMs,
     error: () => S.error,
     boxes: () => ({ on: S.boxes.on, count: S.boxes.data ? S.boxes.data.length / (2 + 2 * S.D) : 0, time: S.boxes.time, error: S.boxes.error }),
     seek: (t) => seek(t),
