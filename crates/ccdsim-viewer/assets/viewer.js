@@ -381,9 +381,12 @@
       position(i, t, p);
       const [x, y] = cam.project(p[0], p[1], p[2]);
       const r = S.radius[i] * cam.scale;
-      if (D === 2) surf.disc(x, y, r, Raster.FLASH_FILL_WORD);
-      // A ring marks bodies big enough to see one around; tiny ones just turn white.
-      if (r >= 2) surf.ring(x, y, r + 1.5 * dpr(), r + 4 * dpr(), Raster.FLASH_RING_WORD);
+      // In 2D a ring marks bodies big enough to see one around (tiny ones just turn white);
+      // in 3D the white sphere alone, since a ring would show through nearer spheres.
+      if (D === 2) {
+        surf.disc(x, y, r, Raster.FLASH_FILL_WORD);
+        if (r >= 2) surf.ring(x, y, r + 1.5 * dpr(), r + 4 * dpr(), Raster.FLASH_RING_WORD);
+      }
     }
     // Progress along the run at the foot of the view.
     const span = S.meta.end_time - S.meta.start_time;

@@ -4,12 +4,11 @@
 //   node perf.mjs RUN.ccd [--speed S] [--seconds N] [--boxes] [--screenshot OUT.png]
 //
 // Uses CCDSIM_BIN (default: the workspace's target/release/ccdsim).
-import { spawn } from 'node:child_process';
 import { mkdtempSync, rmSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
-import { chromium } from 'playwright-core';
+import { startViewer, launch } from './browser.mjs';
 
 const here = path.dirname(fileURLToPath(import.meta.url));
 const args = process.argv.slice(2);
@@ -20,20 +19,11 @@ const BIN = process.env.CCDSIM_BIN || path.resolve(here, '../../../target/releas
 const speed = Number(opt('--speed', '1')), seconds = Number(opt('--seconds', '3'));
 
 const t0 = Date.now();
-const server = spawn(BIN, ['view', run, '--port', '0'], { stdio: ['ignore', 'pipe', 'inherit'] });
-const url = await new Promise((resolve, reject) => {
-  let out = '';
-  server.stdout.on('data', (d) => { out += d; const m = out.match(/^(http\S+)\n/); if (m) resolve(m[1]); });
-  server.on('exit', (c) => reject(new Error(`ccdsim view exited with ${c}`)));
-});
+const viewer = await startViewer(BIN, run);
+const url = viewer.url;
 const indexed = (Date.now() - t0) / 1000;
 const work = mkdtempSync(path.join(tmpdir(), 'ccdsim-perf-'));
-const ctx = await chromium.launchPersistentContext(work, {
-  executablePath: process.env.CHROMIUM || '/usr/bin/chromium', headless: true,
-  args: ['--headless', '--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run',
-    '--disable-background-networking', '--disable-component-update', '--disable-sync'],
-  viewport: { width: 1280, height: 800 }, deviceScaleFactor: 1,
-});
+const ctx = await launch(work, { width: 1280, height: 800 });
 try {
   const page = await ctx.newPage();
   const p0 = Date.now();
@@ -58,6 +48,6 @@ try {
     server_ready_s: indexed, first_frame_s: firstFrame, speed, measured_s: ms / 1000, ...r }));
 } finally {
   await ctx.close();
-  server.kill();
+  viewer.process.kill();
   rmSync(work, { recursive: true, force: true });
 }

@@ -7,52 +7,30 @@
 
 import { test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
-import { spawn, execFileSync } from 'node:child_process';
+import { execFileSync } from 'node:child_process';
 import { mkdtempSync, mkdirSync, rmSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
-import { chromium } from 'playwright-core';
+import { startViewer, launch, frames } from './browser.mjs';
 
 const here = path.dirname(fileURLToPath(import.meta.url));
 const BIN = process.env.CCDSIM_BIN || path.resolve(here, '../../../target/debug/ccdsim');
 const OUT = process.env.E2E_OUT || path.join(here, 'out');
-const CHROMIUM = process.env.CHROMIUM || '/usr/bin/chromium';
 const BACKGROUND = [17, 20, 24]; // src/render/colour.rs, assets/raster.js
 const FLASH_FILL = [255, 255, 255];
 
 let work, server, url, context, page;
-
-// Starts `ccdsim view` on a free port and resolves with the URL it prints.
-function startViewer(run) {
-  return new Promise((resolve, reject) => {
-    server = spawn(BIN, ['view', run, '--port', '0'], { stdio: ['ignore', 'pipe', 'pipe'] });
-    let out = '', err = '';
-    const timer = setTimeout(() => reject(new Error(`ccdsim view printed no URL: ${err}`)), 30000);
-    server.stdout.on('data', (d) => {
-      out += d;
-      const m = out.match(/^(http:\/\/127\.0\.0\.1:\d+\/)\n/);
-      if (m) { clearTimeout(timer); resolve(m[1]); }
-    });
-    server.stderr.on('data', (d) => { err += d; });
-    server.on('exit', (code) => reject(new Error(`ccdsim view exited with ${code}: ${err}`)));
-  });
-}
 
 before(async () => {
   work = mkdtempSync(path.join(tmpdir(), 'ccdsim-e2e-'));
   mkdirSync(OUT, { recursive: true });
   const run = path.join(work, 'break.ccd');
   execFileSync(BIN, ['run', '--until', '6', '--record', run, '--quiet']);
-  url = await startViewer(run);
-  context = await chromium.launchPersistentContext(path.join(work, 'profile'), {
-    executablePath: CHROMIUM,
-    headless: true,
-    args: ['--headless', '--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run',
-      '--disable-background-networking', '--disable-component-update', '--disable-sync'],
-    viewport: { width: 1000, height: 640 },
-    deviceScaleFactor: 1,
-  });
+  const viewer = await startViewer(BIN, run);
+  url = viewer.url;
+  server = viewer.process;
+  context = await launch(path.join(work, 'profile'));
   page = await context.newPage();
   page.on('pageerror', (e) => { throw e; });
 });
@@ -101,9 +79,7 @@ async function goTo(t) {
   await page.fill('#goto', String(t));
   await page.press('#goto', 'Enter');
   await page.waitForFunction((t) => window.ccdsim.time() === t, t);
-  // Two frames so that the canvas shows the new state.
-  const f = await page.evaluate(() => window.ccdsim.frames());
-  await page.waitForFunction((f) => window.ccdsim.frames() >= f + 2, f);
+  await frames(page); // so that the canvas shows the new state
 }
 
 async function paused() {
@@ -173,13 +149,12 @@ test('toggling the boxes changes the picture', async () => {
   assert.equal(boxes.error, null, `boxes: ${boxes.error}`);
   // The BVH of 16 balls: 16 swept leaves and their inner nodes.
   assert.ok(boxes.count >= 31, `${boxes.count} boxes`);
-  const f = await page.evaluate(() => window.ccdsim.frames());
-  await page.waitForFunction((f) => window.ccdsim.frames() >= f + 2, f);
+  await frames(page);
   const withBoxes = await canvasHash();
   assert.notEqual(withBoxes, without);
   await page.screenshot({ path: path.join(OUT, 'viewer-boxes.png') });
   await page.uncheck('#boxes');
-  await page.waitForFunction((f) => window.ccdsim.frames() >= f + 2, await page.evaluate(() => window.ccdsim.frames()));
+  await frames(page);
   assert.equal(await canvasHash(), without, 'boxes off: the picture is as before');
 });
 

@@ -261,3 +261,60 @@ fn bad_options_write_nothing() {
         .to_string_lossy()
         .ends_with(".partial")));
 }
+
+#[test]
+fn gif_frames_composite_to_the_png_at_their_time() {
+    // Frames after the first store only what changed: drawn one over the other they must
+    // give the full picture, the same as a PNG of the same instant up to the GIF palette.
+    let dir = common::temp_dir("render-gif-composite");
+    let run = dir.join("two.ccd");
+    common::record(&two_discs(), 2.0, &run);
+    let gif_path = dir.join("anim.gif");
+    // At t = 1.05 the last collision (t = 0.8) is past the GIF's flash window, so the two
+    // pictures show the same.
+    let o = GifOptions {
+        fps: 10.0,
+        speed: 1.0,
+        from: Some(0.05),
+        to: Some(1.05),
+        render: options(),
+    };
+    render_gif(&run, &gif_path, &o).unwrap();
+    let png = dir.join("last.png");
+    render_png(&run, 1.05, &png, &options()).unwrap();
+    let mut opts = gif::DecodeOptions::new();
+    opts.set_color_output(gif::ColorOutput::Indexed);
+    let mut d = opts
+        .read_info(std::fs::File::open(&gif_path).unwrap())
+        .unwrap();
+    let palette = d.global_palette().unwrap().to_vec();
+    let (w, h) = (usize::from(d.width()), usize::from(d.height()));
+    let mut canvas = vec![0u8; w * h];
+    let mut partial = 0;
+    while let Some(f) = d.read_next_frame().unwrap() {
+        assert_eq!(f.dispose, gif::DisposalMethod::Keep);
+        if usize::from(f.width) * usize::from(f.height) < w * h {
+            partial += 1;
+        }
+        for y in 0..usize::from(f.height) {
+            for x in 0..usize::from(f.width) {
+                let k = (usize::from(f.top) + y) * w + usize::from(f.left) + x;
+                canvas[k] = f.buffer[y * usize::from(f.width) + x];
+            }
+        }
+    }
+    assert!(partial > 0, "later frames store only their changes");
+    let pm = Pixmap::load_png(&png).unwrap();
+    for (k, px) in pm.pixels().iter().enumerate() {
+        let c = px.demultiply();
+        let i = usize::from(canvas[k]);
+        let g = [palette[3 * i], palette[3 * i + 1], palette[3 * i + 2]];
+        for (a, b) in g.iter().zip([c.red(), c.green(), c.blue()]) {
+            // The cube's coarsest step is 51: a colour is at most half of it away.
+            assert!(
+                (i32::from(*a) - i32::from(b)).abs() <= 26,
+                "pixel {k}: {g:?} vs {c:?}"
+            );
+        }
+    }
+}

@@ -3,6 +3,7 @@
 mod camera;
 pub mod colour;
 mod draw;
+mod gif_out;
 mod palette;
 
 pub use camera::Camera;
@@ -14,9 +15,7 @@ use crate::keyframes::KeyframeOptions;
 use crate::playback::{Playback, Snapshot};
 use ccdsim::finder::DebugBox;
 use ccdsim::FinderOptions;
-use std::fs::File;
-use std::io::BufWriter;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 /// How frames look.
 #[derive(Clone, Debug, PartialEq)]
@@ -114,7 +113,7 @@ pub fn gif_frame_count(from: f64, to: f64, fps: f64, speed: f64) -> u64 {
 }
 
 /// The finder's boxes at `snap`, or none when not asked for.
-fn boxes_for<const D: usize>(
+pub(crate) fn boxes_for<const D: usize>(
     p: &Playback<D>,
     snap: &Snapshot<D>,
     o: &RenderOptions,
@@ -126,7 +125,10 @@ fn boxes_for<const D: usize>(
     }
 }
 
-fn camera<const D: usize>(p: &Playback<D>, o: &RenderOptions) -> Result<Camera, ViewerError> {
+pub(crate) fn camera<const D: usize>(
+    p: &Playback<D>,
+    o: &RenderOptions,
+) -> Result<Camera, ViewerError> {
     if o.width < 16 || o.width > 8192 {
         return Err(ViewerError::param(
             "width",
@@ -151,7 +153,7 @@ fn camera<const D: usize>(p: &Playback<D>, o: &RenderOptions) -> Result<Camera, 
     ))
 }
 
-fn frame_input<'a, const D: usize>(
+pub(crate) fn frame_input<'a, const D: usize>(
     p: &'a Playback<D>,
     snap: &'a Snapshot<D>,
     boxes: &'a [DebugBox<D>],
@@ -225,133 +227,7 @@ pub fn render_png(
 /// file appears only when complete.
 pub fn render_gif(run: &Path, out: &Path, o: &GifOptions) -> Result<RenderReport, ViewerError> {
     match crate::AnyPlayback::open(run, &o.render.keyframes)? {
-        crate::AnyPlayback::D2(mut p) => gif_file(&mut p, out, o),
-        crate::AnyPlayback::D3(mut p) => gif_file(&mut p, out, o),
+        crate::AnyPlayback::D2(mut p) => gif_out::gif_file(&mut p, out, o),
+        crate::AnyPlayback::D3(mut p) => gif_out::gif_file(&mut p, out, o),
     }
-}
-
-fn gif_file<const D: usize>(
-    p: &mut Playback<D>,
-    out: &Path,
-    o: &GifOptions,
-) -> Result<RenderReport, ViewerError> {
-    if !(o.fps.is_finite() && o.fps > 0.0 && o.fps <= 100.0) {
-        return Err(ViewerError::param(
-            "fps",
-            format!("{} is not in (0, 100]", o.fps),
-        ));
-    }
-    if !(o.speed.is_finite() && o.speed > 0.0) {
-        return Err(ViewerError::param(
-            "speed",
-            format!("{} is not a positive number", o.speed),
-        ));
-    }
-    let from = o.from.unwrap_or(p.start_time());
-    let to = o.to.unwrap_or(p.end_time());
-    if !(from.is_finite() && to.is_finite() && to >= from) {
-        return Err(ViewerError::param(
-            "from/to",
-            format!("need finite from ≤ to, got {from} and {to}"),
-        ));
-    }
-    let tmp: PathBuf = {
-        let mut s = out.as_os_str().to_owned();
-        s.push(".partial");
-        s.into()
-    };
-    let result = write_gif(p, &tmp, from, to, o);
-    match result {
-        Ok(report) => {
-            std::fs::rename(&tmp, out).map_err(|source| ViewerError::Io {
-                what: out.display().to_string(),
-                source,
-            })?;
-            Ok(report)
-        }
-        Err(e) => {
-            let _ = std::fs::remove_file(&tmp);
-            Err(e)
-        }
-    }
-}
-
-fn write_gif<const D: usize>(
-    p: &mut Playback<D>,
-    path: &Path,
-    from: f64,
-    to: f64,
-    o: &GifOptions,
-) -> Result<RenderReport, ViewerError> {
-    let cam = camera(p, &o.render)?;
-    let frames = gif_frame_count(from, to, o.fps, o.speed);
-    let io = |source| ViewerError::Io {
-        what: path.display().to_string(),
-        source,
-    };
-    let enc_err = |e: gif::EncodingError| ViewerError::Encode {
-        path: path.display().to_string(),
-        why: e.to_string(),
-    };
-    let file = BufWriter::new(File::create(path).map_err(io)?);
-    let (w, h) = (cam.width as u16, cam.height as u16);
-    let mut enc = gif::Encoder::new(file, w, h, &palette::palette()).map_err(enc_err)?;
-    enc.set_repeat(gif::Repeat::Infinite).map_err(enc_err)?;
-    let delay = (100.0 / o.fps).round().max(1.0) as u16;
-    let step = o.speed / o.fps;
-    let flash_window = step.max(0.15 * o.speed);
-    // One snapshot, then events applied forward as the frames' time advances.
-    let mut snap = p.snapshot_at(from)?;
-    let mut pending = p.events_window(snap.applied, 1)?.pop();
-    let mut indices = vec![0u8; usize::from(w) * usize::from(h)];
-    let mut last_t = from;
-    for k in 0..frames {
-        let t = from + k as f64 * step;
-        while let Some(c) = pending.filter(|c| c.event.time <= t) {
-            snap.states.apply(&c);
-            snap.applied += 1;
-            snap.last = Some(c);
-            pending = next_event(p, snap.applied)?;
-        }
-        snap.time = t;
-        last_t = t;
-        let boxes = boxes_for(p, &snap, &o.render)?;
-        let pm = draw_frame(
-            &cam,
-            &frame_input(p, &snap, &boxes, &o.render, flash_window),
-        );
-        for (dst, px) in indices.iter_mut().zip(pm.pixels()) {
-            let c = px.demultiply();
-            *dst = palette::index_of([c.red(), c.green(), c.blue()]);
-        }
-        let frame = gif::Frame {
-            width: w,
-            height: h,
-            delay,
-            buffer: std::borrow::Cow::Borrowed(&indices),
-            ..gif::Frame::default()
-        };
-        enc.write_frame(&frame).map_err(enc_err)?;
-    }
-    enc.into_inner()
-        .map_err(io)?
-        .into_inner()
-        .map_err(|e| io(e.into_error()))?;
-    Ok(RenderReport {
-        frames,
-        width: cam.width,
-        height: cam.height,
-        from,
-        to: last_t,
-        events: snap.applied,
-    })
-}
-
-/// Event `k` if the run has one. Reads through the playback's reader (sequential reads
-/// stay buffered).
-fn next_event<const D: usize>(
-    p: &mut Playback<D>,
-    k: u64,
-) -> Result<Option<ccdsim::Collision<D>>, ViewerError> {
-    Ok(p.events_window(k, 1)?.pop())
 }
