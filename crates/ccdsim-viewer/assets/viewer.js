@@ -26,7 +26,7 @@
     buf: { start: 0, count: 0, data: new Float64Array(0) },
     fetching: false, seekToken: 0, seekBusy: false, seekWanted: null,
     playing: false, speed: 1, slowmo: false, colour: 'id',
-    boxes: { on: false, data: null, time: NaN, busy: false, error: null, finder: '' },
+    boxes: { on: false, data: null, time: NaN, busy: false, error: null, finder: '', sentAt: -Infinity, latencyMs: 0 },
     view: { zoom: 1, panX: 0, panY: 0, yaw: 35, pitch: 25 },
     surface: null, frames: 0, prevNow: null, error: null, seeking: false,
     window: WINDOW, eventRate: 0, flashMs: FLASH_MS, drawMs: 0, want: 0, seekMs: 50,
@@ -397,10 +397,16 @@
 
   // ---- boxes -------------------------------------------------------------------------
 
+  // Asks for the boxes at the current time when they are stale. While playing, requests
+  // are spaced by twice the last one's latency, so that a big run's boxes (a world rebuilt
+  // and a BVH built on the server) never crowd out the events playback needs.
   async function refreshBoxes() {
     const B = S.boxes;
     if (!B.on || B.busy || (B.time === S.time && B.finder === finderName())) return;
+    const now = performance.now();
+    if (S.playing && now - B.sentAt < 2 * B.latencyMs) return;
     B.busy = true;
+    B.sentAt = now;
     const t = S.time, finder = finderName();
     try {
       const ab = await bin(`/api/boxes?t=${t}&finder=${encodeURIComponent(finder)}`);
@@ -414,6 +420,7 @@
       B.error = e.message;
       $('hint').textContent = `boxes: ${e.message}`;
     } finally {
+      B.latencyMs = performance.now() - B.sentAt;
       B.time = t;
       B.finder = finder;
       B.busy = false;

@@ -17,6 +17,14 @@ pub enum ViewerError {
         /// The error.
         source: std::io::Error,
     },
+    /// The server's address cannot be bound (the port is taken, or not allowed).
+    #[error("cannot listen on {addr}: {why}")]
+    Bind {
+        /// The address, `127.0.0.1:PORT`.
+        addr: String,
+        /// What the system said.
+        why: String,
+    },
     /// The finder asked for the boxes cannot be made or cannot serve the run's scene.
     #[error(transparent)]
     Finder(#[from] FinderError),

@@ -57,20 +57,21 @@ impl StopHandle {
     }
 }
 
-/// Opens the run at `run_path` (one pass to build its keyframe index) and binds
-/// `127.0.0.1:port` (0 picks any free port). Call [`ViewerServer::run`] to answer requests.
+/// Binds `127.0.0.1:port` (0 picks any free port), then opens the run at `run_path` (one
+/// pass over the file to build its keyframe index). Call [`ViewerServer::run`] to answer
+/// requests. Binding first means a taken port is reported before a long indexing pass.
 pub fn serve(
     run_path: &Path,
     port: u16,
     options: &ServeOptions,
 ) -> Result<ViewerServer, ViewerError> {
-    let playback = AnyPlayback::open(run_path, &options.keyframes)?;
     let addr = format!("127.0.0.1:{port}");
-    let http = tiny_http::Server::http(&addr).map_err(|e| ViewerError::Io {
-        what: addr.clone(),
-        source: std::io::Error::other(e.to_string()),
+    let http = tiny_http::Server::http(&addr).map_err(|e| ViewerError::Bind {
+        addr: addr.clone(),
+        why: e.to_string(),
     })?;
     let port = http.server_addr().to_ip().map_or(port, |a| a.port());
+    let playback = AnyPlayback::open(run_path, &options.keyframes)?;
     Ok(ViewerServer {
         http: Arc::new(http),
         playback,

@@ -213,3 +213,20 @@ fn boxes_of_a_finder_without_structure_are_empty() {
     assert_eq!(a.status, 200);
     assert!(a.body.is_empty());
 }
+
+#[test]
+fn a_taken_port_is_reported_as_such() {
+    let (run, _) = recorded_break("server-bind");
+    let s = start(&run);
+    match serve(&run, s.port, &ServeOptions::default()) {
+        Err(e @ ccdsim_viewer::ViewerError::Bind { .. }) => {
+            assert!(
+                e.to_string()
+                    .starts_with(&format!("cannot listen on 127.0.0.1:{}", s.port)),
+                "{e}"
+            )
+        }
+        Err(e) => panic!("expected a bind error, got {e}"),
+        Ok(_) => panic!("bound a taken port"),
+    }
+}

@@ -32,10 +32,11 @@ pub fn run(args: Args) -> Result<ExitCode> {
         finder_options: args.finder_options.options(),
         ..ServeOptions::default()
     };
+    eprintln!("indexing {} …", args.run.display());
     let server = match args.port {
         Some(p) => serve(&args.run, p, &options)?,
         None => match serve(&args.run, DEFAULT_PORT, &options) {
-            Err(ViewerError::Io { .. }) => serve(&args.run, 0, &options)?,
+            Err(ViewerError::Bind { .. }) => serve(&args.run, 0, &options)?,
             other => other?,
         },
     };
