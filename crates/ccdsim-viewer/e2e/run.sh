@@ -11,4 +11,4 @@ cd "$root"
 cargo build --locked -p ccdsim-cli
 cd "$here"
 npm ci --no-audit --no-fund
-CCDSIM_BIN="$root/target/debug/ccdsim" node --test viewer.test.mjs
+CCDSIM_BIN="$root/target/debug/ccdsim" node --test viewer.test.mjs viewer3d.test.mjs
