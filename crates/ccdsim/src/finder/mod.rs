@@ -12,9 +12,11 @@
 //! crossings, rebuilt trees) stays inside the finder.
 
 mod all_pairs;
+pub mod bvh;
 mod sedgewick;
 
 pub use all_pairs::{all_pairs_next_event, AllPairs};
+pub use bvh::BvhFinder;
 pub use sedgewick::{Sedgewick, SedgewickStats};
 
 use crate::event::Event;
@@ -122,16 +124,16 @@ impl Default for FinderOptions {
 }
 
 /// Names of every finder [`make_finder`] knows.
-pub const FINDER_NAMES: &[&str] = &["all-pairs", "sedgewick"];
+pub const FINDER_NAMES: &[&str] = &["all-pairs", "bvh", "sedgewick"];
 
 /// Makes the finder called `name`.
 pub fn make_finder<const D: usize>(
     name: &str,
     options: &FinderOptions,
 ) -> Result<Box<dyn Finder<D>>, FinderError> {
-    let _ = options;
     match name {
         "all-pairs" => Ok(Box::new(AllPairs::new())),
+        "bvh" => Ok(Box::new(BvhFinder::new(options)?)),
         "sedgewick" => Ok(Box::new(Sedgewick::new())),
         _ => Err(FinderError::Unknown {
             name: name.to_string(),

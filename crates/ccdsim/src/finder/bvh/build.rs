@@ -1,0 +1,94 @@
+//! "Construct hierarchy" (thesis §4.5–4.6): top-down, split at the median along an axis that
+//! cycles with the level, with a linear-time selection, into a flat balanced array.
+
+use super::tree::{is_finite_box, swept_box, Node, SweptTree};
+use crate::geom::Aabb;
+use crate::world::World;
+use std::cmp::Ordering;
+
+impl<const D: usize> SweptTree<D> {
+    /// Rebuilds the hierarchy over every body of `world` for the interval `[now, horizon]`.
+    ///
+    /// Each body's leaf box is its [`swept_box`]; bodies are ordered by the centres of those
+    /// boxes. At level `l` the bodies of a node are split at the median of axis `l mod D`
+    /// (`select_nth_unstable_by`, linear time): the first `count / 2` go left, the median and
+    /// the rest right. The work is O(n log n) and the tree is balanced, so its depth is
+    /// ⌈log₂ n⌉.
+    pub fn build(&mut self, world: &World<D>, now: f64, horizon: f64) {
+        let n = world.len();
+        self.now = now;
+        self.horizon = horizon;
+        self.built_horizon = horizon;
+        let radii = world.radii();
+        self.leaf_boxes.clear();
+        self.leaf_boxes
+            .extend((0..n).map(|i| swept_box(&world.motion(i), radii[i], now, horizon)));
+        self.finite = self.leaf_boxes.iter().all(is_finite_box);
+        self.extent_now = (0..n).fold(Aabb::EMPTY, |acc, i| {
+            acc.union(Aabb::of_ball(world.position_at(i, now), radii[i]))
+        });
+        if self.order.len() != n {
+            // Otherwise keep the last permutation: the bodies have barely moved since, so the
+            // selections below start from nearly partitioned input.
+            self.order.clear();
+            self.order.extend(0..n as u32);
+        }
+        self.nodes.clear();
+        if n == 0 {
+            return;
+        }
+        let placeholder = Node {
+            aabb: Aabb::EMPTY,
+            start: 0,
+            count: 0,
+        };
+        self.nodes.resize(2 * n - 1, placeholder);
+        split(&mut self.nodes, &mut self.order, &self.leaf_boxes, 0, 0, 0);
+    }
+}
+
+/// Twice the centre of `b` along `axis` (the factor ½ does not change the order).
+#[inline]
+fn key<const D: usize>(b: &Aabb<D>, axis: usize) -> f64 {
+    b.min[axis] + b.max[axis]
+}
+
+/// Order of two bodies along `axis`: by box centre, ties by index so that builds never depend
+/// on anything but the boxes and the previous permutation.
+#[inline]
+pub(crate) fn along<const D: usize>(boxes: &[Aabb<D>], axis: usize, a: u32, b: u32) -> Ordering {
+    key(&boxes[a as usize], axis)
+        .total_cmp(&key(&boxes[b as usize], axis))
+        .then(a.cmp(&b))
+}
+
+/// Builds node `k` over `order[start..]` with `order.len()` bodies at tree level `level`;
+/// returns the node's box.
+fn split<const D: usize>(
+    nodes: &mut [Node<D>],
+    order: &mut [u32],
+    boxes: &[Aabb<D>],
+    k: usize,
+    start: usize,
+    level: usize,
+) -> Aabb<D> {
+    let count = order.len();
+    let aabb = if count == 1 {
+        boxes[order[0] as usize]
+    } else {
+        let half = count / 2;
+        let axis = level % D;
+        order.select_nth_unstable_by(half, |&a, &b| along(boxes, axis, a, b));
+        let (lo, hi) = order.split_at_mut(half);
+        let (left, right) = super::tree::children(k, count as u32);
+        let a = split(nodes, lo, boxes, left, start, level + 1);
+        let b = split(nodes, hi, boxes, right, start + half, level + 1);
+        a.union(b)
+    };
+    nodes[k] = Node {
+        aabb,
+        start: start as u32,
+        count: count as u32,
+    };
+    aabb
+}

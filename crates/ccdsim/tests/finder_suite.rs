@@ -1,0 +1,653 @@
+//! The generic finder suite: every finder in [`FINDER_NAMES`] other than the all-pairs oracle
+//! (so finders added later join automatically) is run through whole simulations, and on
+//! EVERY event its answer must equal [`all_pairs_next_event`] on the same world, bit for bit.
+//! Each run is also recorded next to an all-pairs run of the same scene, and the two run
+//! files must be byte-identical.
+//!
+//! Scenes: 2D and 3D gases with n from 1 to 500, monodisperse and polydisperse, dilute and
+//! dense, several seeds; proptest-generated scenes; and degenerate ones (no bodies, one
+//! body, no walls, everything at rest, simultaneous collisions, touching bodies, Newton's
+//! cradle, the billiard break, grazing contacts, far from the origin, inelastic, velocity
+//! kicks, frame-by-frame stepping, non-default finder options).
+
+use ccdsim::finder::{all_pairs_next_event, make_finder, FinderOptions, FINDER_NAMES};
+use ccdsim::generate::{box_walls, gas, rack, GasConfig, GenerateError, RackConfig};
+use ccdsim::record::RunWriter;
+use ccdsim::{BodySpec, Event, Scene, Settings, Simulation, Vector, Wall};
+use proptest::prelude::*;
+
+/// Seeds of the small gases (n ≤ 64): each scene is run once per seed.
+const SMALL_SEEDS: [u64; 3] = [1, 4242, 31_337];
+/// Seeds of the large gases (n ≥ 128).
+const LARGE_SEEDS: [u64; 1] = [20_240_601];
+/// Body counts of the gases.
+const SMALL_NS: [usize; 8] = [1, 2, 3, 4, 5, 8, 17, 64];
+/// Body counts of the large gases.
+const LARGE_NS: [usize; 3] = [128, 256, 500];
+/// Events checked per gas run: `EVENTS_PER_BODY · n`, at most `MAX_EVENTS`.
+const EVENTS_PER_BODY: u64 = 30;
+/// See `EVENTS_PER_BODY`.
+const MAX_EVENTS: u64 = 1200;
+/// Seed of the deterministic velocity kicks.
+const KICK_SEED: u64 = 0x9e37_79b9_7f4a_7c15;
+
+/// Every finder under test: all but the oracle.
+fn finders() -> Vec<&'static str> {
+    let names: Vec<_> = FINDER_NAMES
+        .iter()
+        .copied()
+        .filter(|&n| n != "all-pairs")
+        .collect();
+    assert!(!names.is_empty(), "no finder besides the oracle to test");
+    names
+}
+
+/// Panics unless `got` and `want` are the same event bit for bit.
+#[track_caller]
+fn assert_same(got: Option<Event>, want: Option<Event>, context: impl Fn() -> String) {
+    let same = match (got, want) {
+        (Some(g), Some(w)) => {
+            g.time.to_bits() == w.time.to_bits() && g.kind == w.kind && g.a == w.a && g.b == w.b
+        }
+        (None, None) => true,
+        _ => false,
+    };
+    assert!(
+        same,
+        "{}: finder said {got:?}, the oracle {want:?}",
+        context()
+    );
+}
+
+/// How a run is driven besides plain stepping.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Drive {
+    /// `step_event` until `max_events` or no event.
+    Events,
+    /// Every `every` events, give one body a new velocity with `set_velocity`.
+    Kicks { every: u64 },
+    /// Frames of `dt` seconds: resolve the events inside, then `run_until` the frame's end.
+    Frames { dt: f64 },
+}
+
+/// Runs `scene` with finder `name` for at most `max_events` events, asserting before each
+/// step that the finder's next event equals the oracle's on the same world. An all-pairs
+/// simulation runs in lockstep; both are recorded and the run files must be byte-identical.
+/// Returns the number of events.
+fn check_run<const D: usize>(
+    label: &str,
+    scene: &Scene<D>,
+    name: &str,
+    options: &FinderOptions,
+    max_events: u64,
+    drive: Drive,
+) -> u64 {
+    let finder = make_finder::<D>(name, options).expect("finder");
+    let mut sim = Simulation::with_finder(scene, finder).expect("valid scene");
+    let mut oracle = Simulation::new(scene, "all-pairs").expect("valid scene");
+    let mut rec = RunWriter::new(Vec::new(), "finder".into(), scene).expect("header");
+    let mut rec_oracle = RunWriter::new(Vec::new(), "oracle".into(), scene).expect("header");
+    let mut events = 0u64;
+    let mut kick = KICK_SEED;
+    let mut frame_end = scene.start_time;
+    while events < max_events {
+        let want = all_pairs_next_event(sim.world());
+        let got = sim.peek_event();
+        assert_same(got, want, || {
+            format!(
+                "{label} [{name}, {D}D, {drive:?}] before event {events} at t = {}",
+                sim.time()
+            )
+        });
+        if let Drive::Frames { dt } = drive {
+            match got {
+                None => break,
+                Some(e) if e.time > frame_end => {
+                    // Nothing left in this frame: move the clock to its end (no event is
+                    // resolved unchecked) and start the next frame.
+                    assert_eq!(sim.run_until(frame_end), 0);
+                    assert_eq!(oracle.run_until(frame_end), 0);
+                    frame_end += dt;
+                    continue;
+                }
+                Some(_) => {}
+            }
+        }
+        let Some(c) = sim.step_event() else {
+            break;
+        };
+        let c_oracle = oracle.step_event().expect("oracle has the same event");
+        rec.write_event(&c).expect("write");
+        rec_oracle.write_event(&c_oracle).expect("write");
+        events += 1;
+        if let Drive::Kicks { every } = drive {
+            if events % every == 0 {
+                kick = kick
+                    .wrapping_mul(6_364_136_223_846_793_005)
+                    .wrapping_add(1_442_695_040_888_963_407);
+                let i = (kick >> 33) as usize % scene.bodies.len();
+                let mut v = Vector::<D>::ZERO;
+                for k in 0..D {
+                    v[k] = ((kick >> (8 * k)) & 0xff) as f64 / 64.0 - 2.0;
+                }
+                sim.set_velocity(i, v).expect("kick");
+                oracle.set_velocity(i, v).expect("kick");
+            }
+        }
+    }
+    let end = sim.time();
+    assert_eq!(end.to_bits(), oracle.time().to_bits(), "{label}: end times");
+    let bytes = rec.finish(end).expect("finish");
+    let bytes_oracle = rec_oracle.finish(oracle.time()).expect("finish");
+    assert!(
+        bytes == bytes_oracle,
+        "{label} [{name}, {D}D]: run files differ ({} vs {} bytes)",
+        bytes.len(),
+        bytes_oracle.len()
+    );
+    events
+}
+
+/// Runs `scene` through every finder under test with default options.
+fn check_all<const D: usize>(label: &str, scene: &Scene<D>, max_events: u64) -> u64 {
+    let mut events = 0;
+    for name in finders() {
+        events = check_run(
+            label,
+            scene,
+            name,
+            &FinderOptions::default(),
+            max_events,
+            Drive::Events,
+        );
+    }
+    events
+}
+
+/// A gas; when random placement cannot reach `packing` (small boxes, dense polydisperse
+/// mixtures), the packing is lowered until it can.
+fn gas_scene<const D: usize>(n: usize, packing: f64, radii: (f64, f64), seed: u64) -> Scene<D> {
+    let mut packing = packing;
+    loop {
+        match gas(&GasConfig {
+            n,
+            packing,
+            radius_min: radii.0,
+            radius_max: radii.1,
+            speed_min: 0.0,
+            speed_max: 1.0,
+            seed,
+        }) {
+            Ok(scene) => return scene,
+            Err(GenerateError::Jammed { .. }) => packing *= 0.8,
+            Err(e) => panic!("{e}"),
+        }
+    }
+}
+
+/// Monodisperse and polydisperse radii.
+const DISPERSITIES: [(&str, (f64, f64)); 2] = [("mono", (0.5, 0.5)), ("poly", (0.2, 1.0))];
+
+/// Dilute and dense packings, 2D then 3D.
+fn packings(dim: usize) -> [(&'static str, f64); 2] {
+    if dim == 2 {
+        [("dilute", 0.05), ("dense", 0.45)]
+    } else {
+        [("dilute", 0.03), ("dense", 0.3)]
+    }
+}
+
+fn check_gases<const D: usize>(ns: &[usize], seeds: &[u64]) {
+    for &n in ns {
+        for &seed in seeds {
+            for (pack_name, packing) in packings(D) {
+                for (disp_name, radii) in DISPERSITIES {
+                    let scene = gas_scene::<D>(n, packing, radii, seed);
+                    let label = format!("gas n={n} {pack_name} {disp_name} seed={seed}");
+                    check_all(&label, &scene, (EVENTS_PER_BODY * n as u64).min(MAX_EVENTS));
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn gases_2d_small() {
+    check_gases::<2>(&SMALL_NS, &SMALL_SEEDS);
+}
+
+#[test]
+fn gases_3d_small() {
+    check_gases::<3>(&SMALL_NS, &SMALL_SEEDS);
+}
+
+#[test]
+fn gases_2d_large() {
+    check_gases::<2>(&LARGE_NS, &LARGE_SEEDS);
+}
+
+#[test]
+fn gases_3d_large() {
+    check_gases::<3>(&LARGE_NS, &LARGE_SEEDS);
+}
+
+#[test]
+fn finder_options_do_not_change_events() {
+    let variants = [
+        FinderOptions {
+            bvh_grow: 1.1,
+            bvh_shrink: 1.0,
+            bvh_initial_dt: 1e-9,
+        },
+        FinderOptions {
+            bvh_grow: 8.0,
+            bvh_shrink: 0.125,
+            bvh_initial_dt: 100.0,
+        },
+        FinderOptions {
+            bvh_grow: 3.0,
+            bvh_shrink: 0.9,
+            bvh_initial_dt: 0.05,
+        },
+    ];
+    let s2 = gas_scene::<2>(150, 0.3, (0.2, 1.0), SMALL_SEEDS[0]);
+    let s3 = gas_scene::<3>(100, 0.2, (0.5, 0.5), SMALL_SEEDS[1]);
+    for options in &variants {
+        for name in finders() {
+            check_run("options 2D", &s2, name, options, 600, Drive::Events);
+            check_run("options 3D", &s3, name, options, 600, Drive::Events);
+        }
+    }
+}
+
+#[test]
+fn velocity_kicks_and_frames() {
+    let s2 = gas_scene::<2>(120, 0.3, (0.2, 1.0), SMALL_SEEDS[2]);
+    let s3 = gas_scene::<3>(90, 0.15, (0.3, 0.6), SMALL_SEEDS[0]);
+    for name in finders() {
+        let o = FinderOptions::default();
+        check_run("kicks", &s2, name, &o, 800, Drive::Kicks { every: 7 });
+        check_run("kicks", &s3, name, &o, 800, Drive::Kicks { every: 5 });
+        check_run(
+            "frames",
+            &s2,
+            name,
+            &o,
+            800,
+            Drive::Frames { dt: 1.0 / 60.0 },
+        );
+        check_run("frames", &s3, name, &o, 800, Drive::Frames { dt: 0.37 });
+    }
+}
+
+#[test]
+fn no_bodies_and_one_body() {
+    let walled = Scene::<2> {
+        walls: box_walls(Vector([4.0, 3.0])),
+        ..Scene::default()
+    };
+    assert_eq!(check_all("no bodies, walls", &walled, 10), 0);
+    assert_eq!(
+        check_all("no bodies, no walls", &Scene::<3>::default(), 10),
+        0
+    );
+    let one = |walls| Scene::<2> {
+        bodies: vec![BodySpec::new(Vector([1.0, 1.0]), Vector([0.7, -0.3]), 0.25)],
+        walls,
+        ..Scene::default()
+    };
+    assert_eq!(
+        check_all("one body, walls", &one(box_walls(Vector([4.0, 3.0]))), 200),
+        200
+    );
+    assert_eq!(check_all("one body, no walls", &one(Vec::new()), 10), 0);
+    let one3 = Scene::<3> {
+        bodies: vec![BodySpec::new(
+            Vector([1.0, 2.0, 1.5]),
+            Vector([0.7, -0.3, 1.1]),
+            0.5,
+        )],
+        walls: box_walls(Vector([3.0, 4.0, 5.0])),
+        ..Scene::default()
+    };
+    assert_eq!(check_all("one body 3D, walls", &one3, 200), 200);
+}
+
+fn at_rest<const D: usize>(scene: Scene<D>) -> Scene<D> {
+    Scene {
+        bodies: scene
+            .bodies
+            .into_iter()
+            .map(|b| BodySpec {
+                vel: Vector::ZERO,
+                ..b
+            })
+            .collect(),
+        ..scene
+    }
+}
+
+fn without_walls<const D: usize>(scene: Scene<D>) -> Scene<D> {
+    Scene {
+        walls: Vec::new(),
+        ..scene
+    }
+}
+
+#[test]
+fn everything_at_rest() {
+    assert_eq!(
+        check_all(
+            "at rest 2D",
+            &at_rest(gas_scene::<2>(200, 0.4, (0.2, 1.0), 3)),
+            10
+        ),
+        0
+    );
+    assert_eq!(
+        check_all(
+            "at rest 3D",
+            &at_rest(gas_scene::<3>(100, 0.2, (0.5, 0.5), 3)),
+            10
+        ),
+        0
+    );
+}
+
+#[test]
+fn no_walls_runs_until_bodies_fly_apart() {
+    for &seed in &SMALL_SEEDS {
+        let s2 = without_walls(gas_scene::<2>(80, 0.4, (0.2, 1.0), seed));
+        let events = check_all("open 2D", &s2, 50_000);
+        assert!((1..50_000).contains(&events), "{events}");
+        let s3 = without_walls(gas_scene::<3>(60, 0.25, (0.5, 0.5), seed));
+        let events = check_all("open 3D", &s3, 50_000);
+        assert!((1..50_000).contains(&events), "{events}");
+    }
+}
+
+/// `k` pairs meeting head-on at exactly t = 1 (all numbers exact in binary), and four bodies
+/// converging on one point, plus bodies reaching walls at the same instant.
+fn simultaneous_2d(k: usize) -> Scene<2> {
+    let mut bodies = Vec::new();
+    for p in 0..k {
+        let y = 2.0 + 2.0 * p as f64;
+        bodies.push(BodySpec::new(Vector([2.0, y]), Vector([1.0, 0.0]), 0.5));
+        bodies.push(BodySpec::new(Vector([5.0, y]), Vector([-1.0, 0.0]), 0.5));
+    }
+    let top = 2.0 + 2.0 * k as f64 + 4.0;
+    // Four bodies converging on (10, top − 4), each 2 away at speed 1: the two opposite
+    // pairs touch at the same instant by symmetry.
+    for (p, v) in [
+        ([10.0, top - 2.0], [0.0, -1.0]),
+        ([10.0, top - 6.0], [0.0, 1.0]),
+        ([8.0, top - 4.0], [1.0, 0.0]),
+        ([12.0, top - 4.0], [-1.0, 0.0]),
+    ] {
+        bodies.push(BodySpec::new(Vector(p), Vector(v), 0.5));
+    }
+    // Wall hits at t = 1: 1.5 from the right wall moving right at 1.
+    bodies.push(BodySpec::new(Vector([18.5, 3.0]), Vector([1.0, 0.0]), 0.5));
+    bodies.push(BodySpec::new(Vector([18.5, 5.0]), Vector([1.0, 0.0]), 0.5));
+    Scene {
+        bodies,
+        walls: box_walls(Vector([20.0, top + 2.0])),
+        ..Scene::default()
+    }
+}
+
+#[test]
+fn simultaneous_collisions() {
+    for k in [1, 2, 7, 16] {
+        let scene = simultaneous_2d(k);
+        check_all(&format!("simultaneous k={k}"), &scene, 400);
+    }
+    // 3D: pairs along each axis meeting at t = 1, in rows that never overlap.
+    let mut bodies = Vec::new();
+    for axis in 0..3 {
+        for s in 0..3 {
+            let mut a = Vector([3.0 + 5.0 * s as f64, 3.0 + 6.0 * axis as f64, 5.0]);
+            if axis == 2 {
+                a[2] = 2.0;
+            }
+            let mut v = Vector::<3>::ZERO;
+            v[axis] = 1.0;
+            let mut b = a;
+            b[axis] += 3.0;
+            bodies.push(BodySpec::new(a, v, 0.5));
+            bodies.push(BodySpec::new(b, -v, 0.5));
+        }
+    }
+    let scene = Scene::<3> {
+        bodies,
+        walls: box_walls(Vector([20.0, 20.0, 10.0])),
+        ..Scene::default()
+    };
+    check_all("simultaneous 3D", &scene, 400);
+}
+
+#[test]
+fn touching_bodies() {
+    // Rows of touching balls, every other row pushed together (contact at once, t = now),
+    // the others at rest or separating.
+    let mut bodies = Vec::new();
+    for row in 0..6 {
+        for k in 0..6 {
+            let x = 2.0 + k as f64;
+            let y = 2.0 + 2.0 * row as f64;
+            let v = match row % 3 {
+                0 => [if k % 2 == 0 { 0.5 } else { -0.5 }, 0.0],
+                1 => [0.0, 0.0],
+                _ => [if k % 2 == 0 { -0.25 } else { 0.25 }, 0.125],
+            };
+            bodies.push(BodySpec::new(Vector([x, y]), Vector(v), 0.5));
+        }
+    }
+    // A ball touching a wall and moving into it.
+    bodies.push(BodySpec::new(Vector([0.5, 15.0]), Vector([-1.0, 0.0]), 0.5));
+    let scene = Scene::<2> {
+        bodies,
+        walls: box_walls(Vector([12.0, 16.0])),
+        ..Scene::default()
+    };
+    check_all("touching 2D", &scene, 1500);
+    let cube = |i: usize| (i % 3) as f64 + 1.0;
+    let bodies3 = (0..27)
+        .map(|i| {
+            let p = Vector([cube(i), cube(i / 3), cube(i / 9)]);
+            let v = Vector([
+                0.25 - 0.125 * (i % 4) as f64,
+                0.0,
+                0.125 * (i % 3) as f64 - 0.125,
+            ]);
+            BodySpec::new(p, v, 0.5)
+        })
+        .collect();
+    let scene3 = Scene::<3> {
+        bodies: bodies3,
+        walls: box_walls(Vector([6.0, 6.0, 6.0])),
+        ..Scene::default()
+    };
+    check_all("touching 3D", &scene3, 1500);
+}
+
+/// Newton's cradle: five equal balls in a touching row; ball 0 comes in at speed 1
+/// (`incoming` balls moving, the rest at rest), optionally in a box.
+fn cradle<const D: usize>(incoming: usize, walls: bool) -> Scene<D> {
+    let mut bodies = Vec::new();
+    for k in 0..5 {
+        let mut p = Vector::<D>::splat(2.0);
+        let mut v = Vector::<D>::ZERO;
+        p[0] = 10.0 + k as f64;
+        if k < incoming {
+            p[0] -= 4.0;
+            v[0] = 1.0;
+        }
+        bodies.push(BodySpec::new(p, v, 0.5));
+    }
+    let mut size = Vector::<D>::splat(4.0);
+    size[0] = 20.0;
+    Scene {
+        bodies,
+        walls: if walls { box_walls(size) } else { Vec::new() },
+        ..Scene::default()
+    }
+}
+
+#[test]
+fn newtons_cradle() {
+    for incoming in [1, 2] {
+        assert!(check_all("cradle 2D box", &cradle::<2>(incoming, true), 600) == 600);
+        assert!(check_all("cradle 3D box", &cradle::<3>(incoming, true), 600) == 600);
+        let open = check_all("cradle 2D open", &cradle::<2>(incoming, false), 600);
+        assert!((4..600).contains(&open), "{open}");
+        check_all("cradle 3D open", &cradle::<3>(incoming, false), 600);
+    }
+}
+
+#[test]
+fn billiard_break() {
+    for offset in [0.0, 0.002, -0.0137] {
+        let scene = rack(&RackConfig {
+            offset,
+            ..RackConfig::default()
+        });
+        check_all(&format!("rack offset={offset}"), &scene, 3000);
+    }
+}
+
+/// Pairs passing each other with a perpendicular offset within a hair of the contact
+/// distance, from differing reference times: the cases where rounding matters most.
+#[test]
+fn grazing_contacts() {
+    let mut bodies = Vec::new();
+    let rels = [-1e-6, -1e-9, -1e-12, -1e-15, 0.0, 1e-15, 1e-12, 1e-9, 1e-6];
+    for (k, rel) in rels.iter().enumerate() {
+        for (m, speed) in [0.3, 1.0, 7.0].iter().enumerate() {
+            let y = 3.0 + 3.0 * (k * 3 + m) as f64;
+            let r = 0.5 + 0.1 * m as f64;
+            let offset = 2.0 * r * (1.0 + rel);
+            bodies.push(BodySpec::new(Vector([3.0, y]), Vector([*speed, 0.0]), r));
+            bodies.push(BodySpec::new(
+                Vector([3.0 + 20.0 * speed / 7.0, y + offset]),
+                Vector([-speed, 0.0]),
+                r,
+            ));
+        }
+    }
+    let h = 3.0 + 3.0 * (rels.len() * 3) as f64 + 3.0;
+    let scene = Scene::<2> {
+        bodies,
+        walls: box_walls(Vector([30.0, h])),
+        ..Scene::default()
+    };
+    check_all("grazing", &scene, 2000);
+}
+
+#[test]
+fn far_from_the_origin_and_late() {
+    let shift = |s: Scene<2>, by: f64, t0: f64| Scene {
+        bodies: s
+            .bodies
+            .into_iter()
+            .map(|b| BodySpec {
+                pos: b.pos + Vector([by, -by]),
+                ..b
+            })
+            .collect(),
+        walls: s
+            .walls
+            .into_iter()
+            .map(|w| match w {
+                Wall::Segment { a, b } => Wall::Segment {
+                    a: a + Vector([by, -by]),
+                    b: b + Vector([by, -by]),
+                },
+                p => p,
+            })
+            .collect(),
+        start_time: t0,
+        ..s
+    };
+    let base = gas_scene::<2>(100, 0.3, (0.2, 1.0), SMALL_SEEDS[1]);
+    check_all("shifted 1e4, t0 1e5", &shift(base.clone(), 1e4, 1e5), 800);
+    check_all("shifted -3e6, t0 -7e3", &shift(base, -3e6, -7e3), 800);
+}
+
+#[test]
+fn inelastic_dense() {
+    for restitution in [0.0, 0.3, 0.9] {
+        let s2 = Scene {
+            settings: Settings { restitution },
+            ..gas_scene::<2>(150, 0.45, (0.5, 0.5), SMALL_SEEDS[2])
+        };
+        check_all(&format!("inelastic e={restitution} 2D"), &s2, 1500);
+        let s3 = Scene {
+            settings: Settings { restitution },
+            ..gas_scene::<3>(100, 0.3, (0.2, 1.0), SMALL_SEEDS[2])
+        };
+        check_all(&format!("inelastic e={restitution} 3D"), &s3, 1500);
+    }
+}
+
+/// A scene on a jittered grid (never overlapping), optionally in a walled box.
+fn grid_scene<const D: usize>(
+    bodies: Vec<([f64; D], [f64; D], f64)>,
+    walls: bool,
+    restitution: f64,
+) -> Scene<D> {
+    let n = bodies.len();
+    let base = ((n as f64).powf(1.0 / D as f64).ceil() as usize).max(1);
+    let bodies: Vec<BodySpec<D>> = bodies
+        .into_iter()
+        .enumerate()
+        .map(|(i, (jitter, v, r))| {
+            let mut p = Vector(jitter);
+            let mut cell = i;
+            for k in 0..D {
+                p[k] += 3.0 * (cell % base) as f64 + 2.0;
+                cell /= base;
+            }
+            BodySpec::new(p, Vector(v), r)
+        })
+        .collect();
+    Scene {
+        settings: Settings { restitution },
+        start_time: 0.0,
+        bodies,
+        walls: if walls {
+            box_walls(Vector::splat(3.0 * base as f64 + 1.0))
+        } else {
+            Vec::new()
+        },
+    }
+}
+
+fn arb_scene<const D: usize>() -> impl Strategy<Value = Scene<D>> {
+    let speed = prop_oneof![Just(0.0), -3.0..3.0f64];
+    let body = (
+        prop::array::uniform::<_, D>(-0.45..0.45f64),
+        prop::array::uniform::<_, D>(speed),
+        0.05..1.0f64,
+    );
+    (
+        prop::collection::vec(body, 1..40),
+        any::<bool>(),
+        prop_oneof![Just(1.0), 0.0..1.0f64],
+    )
+        .prop_map(|(bodies, walls, e)| grid_scene(bodies, walls, e))
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(48))]
+
+    #[test]
+    fn generated_scenes_2d(scene in arb_scene::<2>()) {
+        check_all("proptest 2D", &scene, 300);
+    }
+
+    #[test]
+    fn generated_scenes_3d(scene in arb_scene::<3>()) {
+        check_all("proptest 3D", &scene, 300);
+    }
+}
