@@ -193,3 +193,33 @@ fn finder_boxes_come_from_the_named_finder() {
         other => panic!("expected an unknown-finder error, got {other:?}"),
     }
 }
+
+#[test]
+fn bvh_boxes_are_the_thesis_tree_around_the_bodies() {
+    let dir = common::temp_dir("playback-bvh");
+    let scene = rack(&RackConfig::default());
+    let path = dir.join("break.ccd");
+    common::record(&scene, 2.0, &path);
+    let mut p = Playback::<2>::open(&path, &DENSE).unwrap();
+    for t in [0.0, 0.3, 1.7] {
+        let snap = p.snapshot_at(t).unwrap();
+        let boxes = p
+            .finder_boxes(&snap, "bvh", &ccdsim::FinderOptions::default())
+            .unwrap();
+        // A binary tree over 16 bodies: 16 leaves, 15 inner nodes, one root at depth 0.
+        let leaves: Vec<_> = boxes.iter().filter(|b| b.leaf).collect();
+        assert_eq!(leaves.len(), 16, "t = {t}");
+        assert_eq!(boxes.len(), 31, "t = {t}");
+        assert_eq!(boxes.iter().filter(|b| b.depth == 0).count(), 1);
+        let root = boxes.iter().find(|b| b.depth == 0).unwrap();
+        // Every body at t lies in exactly its own swept leaf box (and so in the root).
+        for i in 0..16 {
+            let ball = ccdsim::Aabb::of_ball(snap.states.position_at(i, t), scene.bodies[i].radius);
+            assert!(
+                leaves.iter().any(|b| b.aabb.contains(&ball)),
+                "body {i} at t = {t} in a leaf"
+            );
+            assert!(root.aabb.contains(&ball));
+        }
+    }
+}

@@ -318,3 +318,47 @@ fn gif_frames_composite_to_the_png_at_their_time() {
         }
     }
 }
+
+#[test]
+fn boxes_are_drawn_around_the_bodies() {
+    let dir = common::temp_dir("render-boxes");
+    let run = dir.join("two.ccd");
+    common::record(&two_discs(), 2.0, &run);
+    let plain = dir.join("plain.png");
+    let boxed = dir.join("boxes.png");
+    render_png(&run, 0.3, &plain, &options()).unwrap();
+    render_png(
+        &run,
+        0.3,
+        &boxed,
+        &RenderOptions {
+            boxes: true,
+            ..options()
+        },
+    )
+    .unwrap();
+    let (a, b) = (
+        Pixmap::load_png(&plain).unwrap(),
+        Pixmap::load_png(&boxed).unwrap(),
+    );
+    assert_ne!(a.data(), b.data());
+    // The swept leaf box of body 9 (at rest at (1.5, 0.5), radius 0.1) is its disc's box:
+    // its left edge, x = 1.4 (pixel 148), shows in leaf green beside the disc above and
+    // below the centre row, where the disc curves away from it. The line straddles two
+    // pixel columns, so each is a blend with the background: green must dominate.
+    let leafish = (145..=150).any(|x| {
+        (46..=52).any(|y| {
+            let c = b.pixel(x, y).unwrap().demultiply();
+            let (r, g, bl) = (
+                i32::from(c.red()),
+                i32::from(c.green()),
+                i32::from(c.blue()),
+            );
+            g - r > 30 && g - bl > 20
+        })
+    });
+    assert!(leafish, "a leaf box edge left of body 9");
+    // Nothing changes inside the discs: boxes are outlines.
+    assert_eq!(pixel(&b, 1.5, 0.5), id_colour(9));
+    assert_eq!(pixel(&b, 0.8, 0.5), id_colour(7));
+}

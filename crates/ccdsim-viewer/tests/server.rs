@@ -230,3 +230,22 @@ fn a_taken_port_is_reported_as_such() {
         Ok(_) => panic!("bound a taken port"),
     }
 }
+
+#[test]
+fn bvh_boxes_are_served_by_default() {
+    let (run, _) = recorded_break("server-boxes-bvh");
+    let s = start(&run);
+    // The default finder is bvh: 31 boxes of 2 + 2·2 f32s, the root (depth 0) first.
+    let boxes = f32s(&get(s.port, "/api/boxes?t=0.5").body);
+    assert_eq!(boxes.len(), 31 * 6);
+    assert_eq!(boxes[0], 0.0);
+    assert_eq!(
+        boxes.chunks(6).filter(|b| b[1] == 1.0).count(),
+        16,
+        "16 leaves"
+    );
+    assert_eq!(
+        get(s.port, "/api/boxes?t=0.5&finder=bvh").body,
+        get(s.port, "/api/boxes?t=0.5").body
+    );
+}
