@@ -537,7 +537,7 @@
       S.want = Math.min(S.meta.end_time, S.want + dt * S.speed * slowFactor());
       if (!S.seekBusy) advanceTo(S.want);
       if (!S.seekBusy && S.want - S.time > CATCH_UP_WALL * S.speed) {
-        seek(Math.min(S.meta.end_time, S.want + S.speed * (S.seekMs / 1000 + CATCH_UP_WALL)), true);
+        seek(Math.min(S.meta.end_time, S.want + (S.speed * S.seekMs) / 1000), true);
       }
       if (S.time >= S.meta.end_time && before < S.meta.end_time) pause();
       if (dt > 0) {
