@@ -6,6 +6,7 @@ use super::{
 };
 use crate::error::ViewerError;
 use crate::playback::Playback;
+use ccdsim::Collision;
 use std::fs::File;
 use std::io::BufWriter;
 use std::path::{Path, PathBuf};
@@ -130,17 +131,17 @@ fn write_gif<const D: usize>(
     let flash_window = step.max(0.15 * o.speed);
     // One snapshot, then events applied forward as the frames' time advances.
     let mut snap = p.snapshot_at(from)?;
-    let mut pending = p.events_window(snap.applied, 1)?.pop();
+    let mut events = EventCursor::new(snap.applied);
     let mut indices = vec![0u8; usize::from(w) * usize::from(h)];
     let mut previous = indices.clone();
     let mut last_t = from;
     for k in 0..frames {
         let t = from + k as f64 * step;
-        while let Some(c) = pending.filter(|c| c.event.time <= t) {
+        while let Some(c) = events.peek(p)?.filter(|c| c.event.time <= t) {
             snap.states.apply(&c);
             snap.applied += 1;
             snap.last = Some(c);
-            pending = next_event(p, snap.applied)?;
+            events.advance();
         }
         snap.time = t;
         last_t = t;
@@ -198,13 +199,38 @@ fn write_gif<const D: usize>(
     })
 }
 
-/// Event `k` if the run has one. Reads through the playback's reader (sequential reads
-/// stay buffered).
-fn next_event<const D: usize>(
-    p: &mut Playback<D>,
-    k: u64,
-) -> Result<Option<ccdsim::Collision<D>>, ViewerError> {
-    Ok(p.events_window(k, 1)?.pop())
+/// Reads a run's events in order, a window at a time (a seek per event would throw the
+/// reader's buffer away each time).
+struct EventCursor<const D: usize> {
+    next: u64,
+    window: std::collections::VecDeque<Collision<D>>,
+}
+
+impl<const D: usize> EventCursor<D> {
+    const WINDOW: u64 = 4096;
+
+    fn new(first: u64) -> Self {
+        EventCursor {
+            next: first,
+            window: std::collections::VecDeque::new(),
+        }
+    }
+
+    /// The next event, if the run has one.
+    fn peek(&mut self, p: &mut Playback<D>) -> Result<Option<Collision<D>>, ViewerError> {
+        if self.window.is_empty() {
+            self.window
+                .extend(p.events_window(self.next, Self::WINDOW)?);
+        }
+        Ok(self.window.front().copied())
+    }
+
+    /// Moves past the event [`EventCursor::peek`] returned.
+    fn advance(&mut self) {
+        if self.window.pop_front().is_some() {
+            self.next += 1;
+        }
+    }
 }
 
 #[cfg(test)]
