@@ -26,6 +26,10 @@ enum Command {
     Export(commands::export::Args),
     /// Run a benchmark workload and print its table (writes CSV, JSON and plots).
     Bench(commands::bench::Args),
+    /// Play a run file in the browser (served on 127.0.0.1).
+    View(commands::view::Args),
+    /// Draw a run file to a PNG frame or an animated GIF.
+    Render(commands::render::Args),
 }
 
 fn main() -> ExitCode {
@@ -36,6 +40,8 @@ fn main() -> ExitCode {
         Command::Verify(a) => commands::verify::run(a),
         Command::Export(a) => commands::export::run(a),
         Command::Bench(a) => commands::bench::run(a),
+        Command::View(a) => commands::view::run(a),
+        Command::Render(a) => commands::render::run(a),
     };
     match result {
         Ok(code) => code,

@@ -3,5 +3,7 @@
 pub mod bench;
 pub mod export;
 pub mod gen;
+pub mod render;
 pub mod run;
 pub mod verify;
+pub mod view;
