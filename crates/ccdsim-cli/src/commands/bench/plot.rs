@@ -11,8 +11,10 @@ pub struct Series {
     pub label: String,
     /// (n, seconds) points, increasing in n.
     pub points: Vec<(f64, f64)>,
-    /// The thesis's own measurements (drawn dashed and grey-toned).
+    /// The thesis's own measurements (drawn dashed and paler).
     pub thesis: bool,
+    /// Index into the palette: a thesis series takes the colour of the finder it measured.
+    pub colour: usize,
 }
 
 /// A reference curve: its legend and its shape as a function of n.
@@ -136,8 +138,8 @@ where
             .label(label.clone())
             .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 24, y)], style));
     }
-    for (k, s) in series.iter().enumerate() {
-        let colour = COLOURS[k % COLOURS.len()];
+    for s in series {
+        let colour = COLOURS[s.colour % COLOURS.len()];
         let stroke = if s.thesis {
             colour.mix(0.5).stroke_width(2)
         } else {

@@ -87,8 +87,10 @@ pub fn run(args: Args) -> Result<ExitCode> {
     let mut series: Vec<Series> = cfg
         .finders
         .iter()
-        .map(|f| Series {
+        .enumerate()
+        .map(|(k, f)| Series {
             label: f.clone(),
+            colour: k,
             points: report
                 .cells
                 .iter()
@@ -99,9 +101,15 @@ pub fn run(args: Args) -> Result<ExitCode> {
         })
         .collect();
     if cfg.dim == 2 && cfg.duration == 5.0 {
-        for (label, k) in [("thesis all-pairs", 2), ("thesis bvh", 3)] {
+        for (finder, k) in [("all-pairs", 2), ("bvh", 3)] {
+            let colour = cfg
+                .finders
+                .iter()
+                .position(|f| f == finder)
+                .unwrap_or(cfg.finders.len() + k);
             series.push(Series {
-                label: format!("{label} (i7-2630QM)"),
+                label: format!("thesis {finder} (i7-2630QM)"),
+                colour,
                 points: THESIS_TABLE_5_1
                     .iter()
                     .filter(|r| cfg.sizes.contains(&r.0))
