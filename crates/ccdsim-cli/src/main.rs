@@ -1,1 +1,54 @@
-fn main() {}
+//! The `ccdsim` command: run, generate, verify and export exact collision simulations.
+
+mod commands;
+mod progress;
+
+use clap::{Parser, Subcommand};
+use std::process::ExitCode;
+
+/// Exact event-driven collision simulation of circles (2D) and spheres (3D).
+#[derive(Parser)]
+#[command(name = "ccdsim", version, about, long_about = None)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Run a scene (or the built-in billiard break) and print a summary.
+    Run(commands::run::Args),
+    /// Generate a scene and write it as JSON.
+    Gen(commands::gen::Args),
+    /// Replay a run file and check the numerical rules.
+    Verify(commands::verify::Args),
+    /// Convert a run file to another format.
+    Export(commands::export::Args),
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let result = match cli.command {
+        Command::Run(a) => commands::run::run(a),
+        Command::Gen(a) => commands::gen::run(a),
+        Command::Verify(a) => commands::verify::run(a),
+        Command::Export(a) => commands::export::run(a),
+    };
+    match result {
+        Ok(code) => code,
+        Err(e) if is_broken_pipe(&e) => ExitCode::SUCCESS,
+        Err(e) => {
+            // One line: the culprit is named by the library's error messages.
+            eprintln!("error: {e:#}");
+            ExitCode::from(2)
+        }
+    }
+}
+
+/// A reader that stopped reading (`ccdsim export run.ccd | head`) is not an error.
+fn is_broken_pipe(e: &anyhow::Error) -> bool {
+    e.chain().any(|c| {
+        c.downcast_ref::<std::io::Error>()
+            .is_some_and(|io| io.kind() == std::io::ErrorKind::BrokenPipe)
+    })
+}

@@ -250,14 +250,13 @@ impl<const D: usize> Scene<D> {
 
     /// Parses a scene of dimension `D` from JSON text (with a `dim` field equal to `D`).
     pub fn from_json(text: &str) -> Result<Self, SceneError> {
-        let mut value = parse_value(text)?;
-        let dim = take_dim(&mut value)?;
+        let dim = read_dim(text)?;
         if dim != D {
             return Err(SceneError::Dimension(format!(
                 "the scene is {dim}D, {D}D was expected"
             )));
         }
-        let scene: Scene<D> = serde_path_to_error::deserialize(value).map_err(field_error)?;
+        let scene = parse_typed::<D>(text)?;
         scene.validate()?;
         Ok(scene)
     }
@@ -361,11 +360,9 @@ pub enum AnyScene {
 impl AnyScene {
     /// Parses and validates a scene; its `dim` field (2 or 3) picks the dimension.
     pub fn from_json(text: &str) -> Result<Self, SceneError> {
-        let mut value = parse_value(text)?;
-        let dim = take_dim(&mut value)?;
-        let out = match dim {
-            2 => AnyScene::D2(serde_path_to_error::deserialize(value).map_err(field_error)?),
-            3 => AnyScene::D3(serde_path_to_error::deserialize(value).map_err(field_error)?),
+        let out = match read_dim(text)? {
+            2 => AnyScene::D2(parse_typed(text)?),
+            3 => AnyScene::D3(parse_typed(text)?),
             d => return Err(SceneError::Dimension(format!("{d} is not 2 or 3"))),
         };
         match &out {
@@ -378,7 +375,7 @@ impl AnyScene {
     /// Reads, parses and validates a scene file.
     pub fn from_file(path: &std::path::Path) -> Result<Self, SceneError> {
         let text = std::fs::read_to_string(path)
-            .map_err(|e| SceneError::Io(format!("cannot read {}: {e}", path.display())))?;
+            .map_err(|e| SceneError::Io(format!("cannot read: {e}")))?;
         Self::from_json(&text)
     }
 
@@ -412,28 +409,26 @@ impl From<Scene<3>> for AnyScene {
     }
 }
 
-fn parse_value(text: &str) -> Result<serde_json::Value, SceneError> {
-    serde_json::from_str(text).map_err(|e| SceneError::Json {
-        line: e.line(),
-        column: e.column(),
-        message: strip_position(&e.to_string()),
-    })
-}
-
-fn strip_position(msg: &str) -> String {
-    match msg.rfind(" at line ") {
-        Some(k) => msg[..k].to_string(),
-        None => msg.to_string(),
+/// First pass: only the syntax and the `dim` field; every other value is skipped unread, so
+/// that range errors are reported with their field's path by the second pass.
+fn read_dim(text: &str) -> Result<usize, SceneError> {
+    #[derive(Deserialize)]
+    struct DimOnly {
+        dim: Option<serde_json::Value>,
     }
-}
-
-fn take_dim(value: &mut serde_json::Value) -> Result<usize, SceneError> {
-    let obj = value.as_object_mut().ok_or_else(|| SceneError::Field {
-        path: ".".into(),
-        message: "a scene is a JSON object".into(),
+    let probe: DimOnly = serde_json::from_str(text).map_err(|e| match e.classify() {
+        serde_json::error::Category::Data => SceneError::Field {
+            path: ".".into(),
+            message: "a scene is a JSON object".into(),
+        },
+        _ => SceneError::Json {
+            line: e.line(),
+            column: e.column(),
+            message: strip_position(&e.to_string()),
+        },
     })?;
-    let dim = obj
-        .remove("dim")
+    let dim = probe
+        .dim
         .ok_or_else(|| SceneError::Dimension("missing (2 or 3)".into()))?;
     match dim.as_u64() {
         Some(d) => Ok(d as usize),
@@ -441,11 +436,40 @@ fn take_dim(value: &mut serde_json::Value) -> Result<usize, SceneError> {
     }
 }
 
-fn field_error(e: serde_path_to_error::Error<serde_json::Error>) -> SceneError {
-    let path = e.path().to_string();
-    SceneError::Field {
-        path,
-        message: strip_position(&e.into_inner().to_string()),
+/// The file form of a scene: the scene's fields plus `dim`.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct SceneFile<const D: usize> {
+    #[allow(dead_code)]
+    dim: usize,
+    #[serde(default)]
+    settings: Settings,
+    #[serde(default)]
+    start_time: f64,
+    bodies: Vec<BodySpec<D>>,
+    #[serde(default)]
+    walls: Vec<Wall<D>>,
+}
+
+fn parse_typed<const D: usize>(text: &str) -> Result<Scene<D>, SceneError> {
+    let mut de = serde_json::Deserializer::from_str(text);
+    let f: SceneFile<D> =
+        serde_path_to_error::deserialize(&mut de).map_err(|e| SceneError::Field {
+            path: e.path().to_string(),
+            message: e.into_inner().to_string(),
+        })?;
+    Ok(Scene {
+        settings: f.settings,
+        start_time: f.start_time,
+        bodies: f.bodies,
+        walls: f.walls,
+    })
+}
+
+fn strip_position(msg: &str) -> String {
+    match msg.rfind(" at line ") {
+        Some(k) => msg[..k].to_string(),
+        None => msg.to_string(),
     }
 }
 
@@ -674,7 +698,16 @@ mod tests {
         assert!(matches!(e, SceneError::Json { line: 2, .. }), "{e}");
         let e = AnyScene::from_json(r#"{"dim": 2, "bodies": [{"pos": [0,0], "vel": [0,0]}]}"#)
             .unwrap_err();
-        assert_eq!(e.to_string(), "field `bodies[0]`: missing field `radius`");
+        assert!(
+            e.to_string()
+                .starts_with("field `bodies[0]`: missing field `radius`"),
+            "{e}"
+        );
+        let e = AnyScene::from_json(
+            r#"{"dim": 2, "bodies": [{"pos": [0,0], "vel": [0,0], "radius": 1e999}]}"#,
+        )
+        .unwrap_err();
+        assert!(e.to_string().starts_with("field `bodies[0].radius`"), "{e}");
         let e = AnyScene::from_json(
             r#"{"dim": 3, "bodies": [{"pos": [0,0], "vel": [0,0,0], "radius": 1}]}"#,
         )

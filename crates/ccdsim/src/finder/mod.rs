@@ -13,9 +13,11 @@
 
 mod all_pairs;
 pub mod bvh;
+mod sedgewick;
 
 pub use all_pairs::{all_pairs_next_event, AllPairs};
 pub use bvh::BvhFinder;
+pub use sedgewick::{Sedgewick, SedgewickStats};
 
 use crate::event::Event;
 use crate::geom::Aabb;
@@ -42,6 +44,22 @@ pub trait Finder<const D: usize>: Send {
     fn debug_boxes(&mut self, _world: &World<D>) -> Vec<DebugBox<D>> {
         Vec::new()
     }
+
+    /// Memory held by the finder's own structures, for benchmarks; `None` for finders that do
+    /// not track it.
+    fn memory(&self) -> Option<FinderMemory> {
+        None
+    }
+}
+
+/// Memory held by a finder's own structures, bytes (payload only: allocator overhead and
+/// spare capacity are not counted).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct FinderMemory {
+    /// Bytes held now.
+    pub bytes: usize,
+    /// Most bytes held at once since the last `init`.
+    pub peak_bytes: usize,
 }
 
 /// One box of a finder's spatial structure, for drawing.
@@ -106,7 +124,7 @@ impl Default for FinderOptions {
 }
 
 /// Names of every finder [`make_finder`] knows.
-pub const FINDER_NAMES: &[&str] = &["all-pairs", "bvh"];
+pub const FINDER_NAMES: &[&str] = &["all-pairs", "bvh", "sedgewick"];
 
 /// Makes the finder called `name`.
 pub fn make_finder<const D: usize>(
@@ -116,6 +134,7 @@ pub fn make_finder<const D: usize>(
     match name {
         "all-pairs" => Ok(Box::new(AllPairs::new())),
         "bvh" => Ok(Box::new(BvhFinder::new(options)?)),
+        "sedgewick" => Ok(Box::new(Sedgewick::new())),
         _ => Err(FinderError::Unknown {
             name: name.to_string(),
             known: FINDER_NAMES.join(", "),

@@ -1,0 +1,46 @@
+//! `ccdsim export`: convert a run file to JSON Lines.
+
+use anyhow::{Context, Result};
+use ccdsim::record::{export_jsonl, open_run, AnyRunReader};
+use std::io::{BufWriter, Write};
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+/// Output formats.
+#[derive(clap::ValueEnum, Clone, Copy)]
+enum Format {
+    /// A header object, then one object per event (see the README).
+    Jsonl,
+}
+
+/// Arguments of `ccdsim export`.
+#[derive(clap::Args)]
+pub struct Args {
+    /// The run file.
+    file: PathBuf,
+    /// Output format.
+    #[arg(long, value_enum, default_value = "jsonl")]
+    format: Format,
+    /// Write here instead of to standard output.
+    #[arg(long)]
+    out: Option<PathBuf>,
+}
+
+/// Runs the command.
+pub fn run(args: Args) -> Result<ExitCode> {
+    let Format::Jsonl = args.format;
+    let mut reader = open_run(&args.file)?;
+    let mut out: Box<dyn Write> = match &args.out {
+        Some(p) => {
+            Box::new(std::fs::File::create(p).with_context(|| format!("creating {}", p.display()))?)
+        }
+        None => Box::new(std::io::stdout().lock()),
+    };
+    let mut out = BufWriter::new(&mut out);
+    match &mut reader {
+        AnyRunReader::D2(r) => export_jsonl(r, &mut out)?,
+        AnyRunReader::D3(r) => export_jsonl(r, &mut out)?,
+    };
+    out.flush()?;
+    Ok(ExitCode::SUCCESS)
+}

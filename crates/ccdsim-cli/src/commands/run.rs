@@ -1,0 +1,226 @@
+//! `ccdsim run`: simulate a scene, optionally recording a run file, and print a summary.
+
+use crate::progress::Progress;
+use anyhow::{Context, Result};
+use ccdsim::generate::{rack, RackConfig};
+use ccdsim::record::RunWriter;
+use ccdsim::{make_finder, AnyScene, FinderOptions, Scene, Simulation};
+use serde::Serialize;
+use std::path::PathBuf;
+use std::process::ExitCode;
+use std::time::Instant;
+
+/// Arguments of `ccdsim run`.
+#[derive(clap::Args)]
+pub struct Args {
+    /// Scene file (JSON). Without it, the built-in billiard break is run.
+    scene: Option<PathBuf>,
+    /// Next-event finder (broad phase).
+    #[arg(long, default_value = "all-pairs")]
+    finder: String,
+    /// Simulate until this time, seconds (default 10 when --events is not given).
+    #[arg(long, conflicts_with = "events")]
+    until: Option<f64>,
+    /// Simulate this many events.
+    #[arg(long)]
+    events: Option<u64>,
+    /// Write a run file here.
+    #[arg(long)]
+    record: Option<PathBuf>,
+    /// Print one JSON object instead of the readable summary.
+    #[arg(long)]
+    json: bool,
+    /// No progress bar.
+    #[arg(long, short)]
+    quiet: bool,
+    #[command(flatten)]
+    finder_options: FinderArgs,
+}
+
+/// Options of the finders, shared by the commands that run simulations.
+#[derive(clap::Args, Clone)]
+pub struct FinderArgs {
+    /// bvh: factor by which the time step grows while no event is found.
+    #[arg(long, default_value_t = FinderOptions::default().bvh_grow)]
+    pub bvh_grow: f64,
+    /// bvh: factor by which the time step shrinks after an event.
+    #[arg(long, default_value_t = FinderOptions::default().bvh_shrink)]
+    pub bvh_shrink: f64,
+    /// bvh: the first time step, seconds.
+    #[arg(long, default_value_t = FinderOptions::default().bvh_initial_dt)]
+    pub bvh_initial_dt: f64,
+}
+
+impl FinderArgs {
+    /// The library's options.
+    pub fn options(&self) -> FinderOptions {
+        FinderOptions {
+            bvh_grow: self.bvh_grow,
+            bvh_shrink: self.bvh_shrink,
+            bvh_initial_dt: self.bvh_initial_dt,
+        }
+    }
+}
+
+/// The `--json` summary; field names are an interface (DESIGN.md): extend, never rename.
+#[derive(Serialize)]
+struct Summary {
+    finder: String,
+    dim: usize,
+    bodies: usize,
+    events: u64,
+    body_collisions: u64,
+    wall_collisions: u64,
+    sim_time: f64,
+    wall_seconds: f64,
+    events_per_second: f64,
+    kinetic_energy_start: f64,
+    kinetic_energy_end: f64,
+    kinetic_energy_drift: f64,
+    momentum_start: Vec<f64>,
+    momentum_end: Vec<f64>,
+    max_overlap: f64,
+    record: Option<String>,
+}
+
+/// Runs the command.
+pub fn run(args: Args) -> Result<ExitCode> {
+    let scene = match &args.scene {
+        Some(path) => AnyScene::from_file(path).with_context(|| format!("{}", path.display()))?,
+        None => AnyScene::D2(rack(&RackConfig::default())),
+    };
+    if let Some(t) = args.until {
+        anyhow::ensure!(t.is_finite(), "--until must be a finite time");
+    }
+    let summary = match &scene {
+        AnyScene::D2(s) => simulate(s, &args)?,
+        AnyScene::D3(s) => simulate(s, &args)?,
+    };
+    if args.json {
+        println!("{}", serde_json::to_string(&summary)?);
+    } else {
+        print_summary(&summary, args.scene.is_none());
+    }
+    Ok(ExitCode::SUCCESS)
+}
+
+fn simulate<const D: usize>(scene: &Scene<D>, args: &Args) -> Result<Summary> {
+    let finder = make_finder::<D>(&args.finder, &args.finder_options.options())?;
+    let mut sim = Simulation::with_finder(scene, finder)?;
+    let momentum_start = sim.world().momentum().0.to_vec();
+    // Everything is validated before the run file is created: bad input leaves no file.
+    let mut sink = Sink {
+        writer: match &args.record {
+            Some(path) => Some(RunWriter::create(path, scene)?),
+            None => None,
+        },
+        error: None,
+    };
+    let start = Instant::now();
+    let t0 = sim.time();
+    let mut count: u64 = 0;
+    match args.events {
+        Some(n) => {
+            let mut progress = Progress::new(n, "events", args.quiet);
+            while count < n {
+                let batch = (n - count).min(4096);
+                let done = sim.run_events_with(batch, |c| sink.take(c));
+                count += done;
+                progress.set(count);
+                if done < batch || sink.error.is_some() {
+                    break;
+                }
+            }
+            progress.finish();
+        }
+        None => {
+            let until = args.until.unwrap_or(10.0);
+            let span = (until - t0).max(0.0);
+            let mut progress = Progress::new(1000, "simulated time", args.quiet);
+            loop {
+                match sim.peek_event() {
+                    Some(e) if e.time <= until && sink.error.is_none() => {}
+                    _ => break,
+                }
+                let Some(c) = sim.step_event() else { break };
+                sink.take(&c);
+                count += 1;
+                if count % 4096 == 0 && span > 0.0 {
+                    progress.set(((sim.time() - t0) / span * 1000.0) as u64);
+                }
+            }
+            sim.run_until(until);
+            progress.finish();
+        }
+    }
+    if let Some(e) = sink.error {
+        return Err(e.into());
+    }
+    let wall_seconds = start.elapsed().as_secs_f64();
+    if let Some(w) = sink.writer {
+        w.finish(sim.time())?;
+    }
+    let stats = *sim.stats();
+    let ke_end = sim.world().kinetic_energy();
+    let drift = if stats.kinetic_energy_start > 0.0 {
+        (ke_end - stats.kinetic_energy_start) / stats.kinetic_energy_start
+    } else {
+        0.0
+    };
+    Ok(Summary {
+        finder: sim.finder_name().to_string(),
+        dim: D,
+        bodies: sim.world().len(),
+        events: stats.events,
+        body_collisions: stats.body_collisions,
+        wall_collisions: stats.wall_collisions,
+        sim_time: sim.time(),
+        wall_seconds,
+        events_per_second: if wall_seconds > 0.0 {
+            stats.events as f64 / wall_seconds
+        } else {
+            0.0
+        },
+        kinetic_energy_start: stats.kinetic_energy_start,
+        kinetic_energy_end: ke_end,
+        kinetic_energy_drift: drift,
+        momentum_start,
+        momentum_end: sim.world().momentum().0.to_vec(),
+        max_overlap: stats.max_overlap,
+        record: args.record.as_ref().map(|p| p.display().to_string()),
+    })
+}
+
+/// Where events go: the run file, if any; the first write error stops the run.
+struct Sink<const D: usize> {
+    writer: Option<RunWriter<std::fs::File, D>>,
+    error: Option<ccdsim::record::RecordError>,
+}
+
+impl<const D: usize> Sink<D> {
+    fn take(&mut self, c: &ccdsim::Collision<D>) {
+        if let (Some(w), None) = (self.writer.as_mut(), &self.error) {
+            if let Err(e) = w.write_event(c) {
+                self.error = Some(e);
+            }
+        }
+    }
+}
+
+fn print_summary(s: &Summary, builtin: bool) {
+    if builtin {
+        println!("Built-in example: a billiard break (16 balls, 4 cushions).");
+    }
+    println!("{}D, {} bodies, finder {}", s.dim, s.bodies, s.finder);
+    println!(
+        "simulated {:.6} s in {:.3} s of wall time: {} events ({} body-body, {} body-wall), {:.0} events/s",
+        s.sim_time, s.wall_seconds, s.events, s.body_collisions, s.wall_collisions, s.events_per_second
+    );
+    println!(
+        "kinetic energy {:.9e} -> {:.9e} J (relative drift {:.2e}); largest overlap {:.2e} of a contact distance",
+        s.kinetic_energy_start, s.kinetic_energy_end, s.kinetic_energy_drift, s.max_overlap
+    );
+    if let Some(r) = &s.record {
+        println!("run file written to {r}");
+    }
+}

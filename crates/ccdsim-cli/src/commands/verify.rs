@@ -1,0 +1,89 @@
+//! `ccdsim verify`: replay a run file and check the numerical rules.
+
+use crate::progress::Progress;
+use anyhow::Result;
+use ccdsim::record::{open_run, AnyRunReader, RunReader, RunRecord, Tail};
+use ccdsim::verify::Verifier;
+use std::io::Read;
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+/// Arguments of `ccdsim verify`.
+#[derive(clap::Args)]
+pub struct Args {
+    /// The run file.
+    file: PathBuf,
+    /// No progress bar.
+    #[arg(long, short)]
+    quiet: bool,
+}
+
+/// Runs the command: exit status 0 when the run keeps every rule, 1 at the first violation.
+pub fn run(args: Args) -> Result<ExitCode> {
+    let size = std::fs::metadata(&args.file).map(|m| m.len()).unwrap_or(0);
+    match open_run(&args.file)? {
+        AnyRunReader::D2(r) => check(r, size, args.quiet),
+        AnyRunReader::D3(r) => check(r, size, args.quiet),
+    }
+}
+
+fn check<R: Read, const D: usize>(
+    mut reader: RunReader<R, D>,
+    size: u64,
+    quiet: bool,
+) -> Result<ExitCode> {
+    let mut verifier = Verifier::new(reader.scene());
+    let mut end = reader.scene().start_time;
+    let mut progress = Progress::new(size, "verifying", quiet);
+    let rec_len = ccdsim::record::record_len(D) as u64;
+    while let Some(rec) = reader.next_record()? {
+        match rec {
+            RunRecord::Event(c) => {
+                end = c.event.time;
+                if let Err(v) = verifier.check(&c) {
+                    progress.finish();
+                    println!("FAIL {}: {v}", reader.path());
+                    return Ok(ExitCode::from(1));
+                }
+                if reader.records_read() % 4096 == 0 {
+                    progress.set(reader.data_start() + reader.records_read() * rec_len);
+                }
+            }
+            RunRecord::End(t) => end = t,
+        }
+    }
+    progress.finish();
+    match verifier.finish(end) {
+        Ok(report) => {
+            match reader.tail() {
+                Tail::Truncated { bytes } => {
+                    eprintln!("warning: the run file ends with {bytes} bytes of an incomplete record (ignored)")
+                }
+                Tail::NoEnd => {
+                    eprintln!("warning: the run file has no end record (the run was interrupted)")
+                }
+                _ => {}
+            }
+            let drift = if report.kinetic_energy_start > 0.0 {
+                (report.kinetic_energy_end - report.kinetic_energy_start)
+                    / report.kinetic_energy_start
+            } else {
+                0.0
+            };
+            println!(
+                "OK {}: {} events ({} body-body, {} body-wall) up to t = {end}; largest overlap {:.2e}; kinetic energy drift {:.2e}",
+                reader.path(),
+                report.events,
+                report.body_collisions,
+                report.wall_collisions,
+                report.max_overlap,
+                drift
+            );
+            Ok(ExitCode::SUCCESS)
+        }
+        Err(v) => {
+            println!("FAIL {}: {v}", reader.path());
+            Ok(ExitCode::from(1))
+        }
+    }
+}

@@ -1,0 +1,344 @@
+//! The `ccdsim` binary end to end: bad input, summaries, run files, interruption.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output, Stdio};
+
+fn ccdsim() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_ccdsim"))
+}
+
+fn tmp(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("ccdsim-cli-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir.join(name)
+}
+
+fn run_ok(cmd: &mut Command) -> Output {
+    let out = cmd.output().unwrap();
+    assert!(
+        out.status.success(),
+        "failed: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    out
+}
+
+const GOOD_BODY: &str = r#"{"pos": [1, 1], "vel": [1, 0], "radius": 0.5}"#;
+const TABLE: &str = r#"[{"a": [0,0], "b": [4,0]}, {"a": [4,0], "b": [4,2]}, {"a": [4,2], "b": [0,2]}, {"a": [0,2], "b": [0,0]}]"#;
+
+/// Runs a bad scene and checks: exit status 2, one line on stderr containing `culprit`, no
+/// run file left behind, nothing on stdout.
+fn refuse(name: &str, scene: &str, culprit: &str) {
+    let path = tmp(&format!("{name}.json"));
+    std::fs::write(&path, scene).unwrap();
+    let rec = tmp(&format!("{name}.ccd"));
+    let _ = std::fs::remove_file(&rec);
+    let out = ccdsim()
+        .arg("run")
+        .arg(&path)
+        .arg("--record")
+        .arg(&rec)
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{name}: {err}");
+    assert_eq!(
+        err.trim_end().lines().count(),
+        1,
+        "{name}: one line expected: {err}"
+    );
+    assert!(err.contains(culprit), "{name}: `{culprit}` not in: {err}");
+    assert!(out.stdout.is_empty(), "{name}: no output expected");
+    assert!(!rec.exists(), "{name}: no run file may be left");
+}
+
+#[test]
+fn malformed_json_names_line_and_column() {
+    refuse(
+        "malformed",
+        "{\"dim\": 2,\n \"bodies\": [,]}",
+        "line 2, column",
+    );
+}
+
+#[test]
+fn non_finite_numbers_name_the_field() {
+    let s = format!(
+        r#"{{"dim": 2, "bodies": [{GOOD_BODY}, {{"pos": [3, 1], "vel": [1e999, 0], "radius": 0.5}}]}}"#
+    );
+    refuse("infinite", &s, "bodies[1].vel");
+}
+
+#[test]
+fn non_positive_radius_and_mass() {
+    let s = r#"{"dim": 2, "bodies": [{"pos": [1, 1], "vel": [0, 0], "radius": 0}]}"#;
+    refuse("radius", s, "bodies[0].radius");
+    let s = r#"{"dim": 2, "bodies": [{"pos": [1, 1], "vel": [0, 0], "radius": 1, "mass": -2}]}"#;
+    refuse("mass", s, "bodies[0].mass");
+}
+
+#[test]
+fn overlapping_bodies_are_named() {
+    let s = format!(
+        r#"{{"dim": 2, "bodies": [{GOOD_BODY}, {{"pos": [1.5, 1.2], "vel": [0, 0], "radius": 0.5}}]}}"#
+    );
+    refuse("overlap", &s, "body 0 and body 1 overlap");
+}
+
+#[test]
+fn bodies_outside_the_table_or_across_a_wall() {
+    let s = format!(
+        r#"{{"dim": 2, "walls": {TABLE}, "bodies": [{GOOD_BODY}, {{"pos": [7, 1], "vel": [0, 0], "radius": 0.5}}]}}"#
+    );
+    refuse("outside", &s, "body 1 is outside the table");
+    let s = format!(
+        r#"{{"dim": 2, "walls": {TABLE}, "bodies": [{{"pos": [3.8, 1], "vel": [0, 0], "radius": 0.5}}]}}"#
+    );
+    refuse("crossing", &s, "body 0 crosses wall 1");
+}
+
+#[test]
+fn degenerate_walls() {
+    let s =
+        format!(r#"{{"dim": 2, "walls": [{{"a": [5,5], "b": [5,5]}}], "bodies": [{GOOD_BODY}]}}"#);
+    refuse("segment", &s, "walls[0]");
+    let s = r#"{"dim": 3, "walls": [{"point": [0,0,0], "normal": [0,0,0]}], "bodies": []}"#;
+    refuse("plane", s, "walls[0]");
+}
+
+#[test]
+fn duplicate_ids() {
+    let s = r#"{"dim": 2, "bodies": [{"id": 4, "pos": [1, 1], "vel": [0, 0], "radius": 0.5},
+                                     {"id": 4, "pos": [3, 1], "vel": [0, 0], "radius": 0.5}]}"#;
+    refuse("ids", s, "duplicate id 4");
+}
+
+#[test]
+fn wrong_dimension() {
+    let s = r#"{"dim": 3, "bodies": [{"pos": [1, 1], "vel": [0, 0, 0], "radius": 0.5}]}"#;
+    refuse("dim-mismatch", s, "bodies[0].pos");
+    refuse("dim-bad", r#"{"dim": 4, "bodies": []}"#, "dim");
+    refuse("dim-missing", r#"{"bodies": []}"#, "dim");
+}
+
+#[test]
+fn unknown_fields_and_finders() {
+    let s = r#"{"dim": 2, "bodies": [{"pos": [1, 1], "vel": [0, 0], "radius": 0.5, "colour": 3}]}"#;
+    refuse("unknown-field", s, "colour");
+    let path = tmp("finder.json");
+    std::fs::write(&path, format!(r#"{{"dim": 2, "bodies": [{GOOD_BODY}]}}"#)).unwrap();
+    let rec = tmp("finder.ccd");
+    let out = ccdsim()
+        .arg("run")
+        .arg(&path)
+        .args(["--finder", "nope", "--record"])
+        .arg(&rec)
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("unknown finder `nope`"));
+    assert!(!rec.exists());
+}
+
+#[test]
+fn builtin_break_prints_a_readable_summary() {
+    let out = run_ok(ccdsim().arg("run").arg("--quiet"));
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(text.contains("billiard break"), "{text}");
+    assert!(text.contains("events"), "{text}");
+}
+
+#[test]
+fn json_summary_has_the_interface_fields() {
+    let out = run_ok(ccdsim().args(["run", "--json", "--until", "3"]));
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    for key in [
+        "events",
+        "body_collisions",
+        "wall_collisions",
+        "sim_time",
+        "wall_seconds",
+        "kinetic_energy_start",
+        "kinetic_energy_end",
+        "max_overlap",
+        "finder",
+    ] {
+        assert!(v.get(key).is_some(), "missing {key} in {v}");
+    }
+    assert_eq!(v["sim_time"], 3.0);
+    assert_eq!(v["finder"], "all-pairs");
+    assert_eq!(
+        v["events"].as_u64().unwrap(),
+        v["body_collisions"].as_u64().unwrap() + v["wall_collisions"].as_u64().unwrap()
+    );
+}
+
+#[test]
+fn gen_run_verify_export_round_trip() {
+    for dim in ["2", "3"] {
+        let scene = tmp(&format!("gas{dim}.json"));
+        run_ok(
+            ccdsim()
+                .args([
+                    "gen",
+                    "gas",
+                    "--n",
+                    "50",
+                    "--packing",
+                    "0.2",
+                    "--seed",
+                    "5",
+                    "--dim",
+                    dim,
+                    "--out",
+                ])
+                .arg(&scene),
+        );
+        let rec = tmp(&format!("gas{dim}.ccd"));
+        let out = run_ok(
+            ccdsim()
+                .arg("run")
+                .arg(&scene)
+                .args(["--events", "500", "--json", "--record"])
+                .arg(&rec),
+        );
+        let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+        assert_eq!(v["events"], 500);
+        let out = run_ok(ccdsim().arg("verify").arg(&rec));
+        assert!(String::from_utf8_lossy(&out.stdout).starts_with("OK"));
+        let out = run_ok(ccdsim().arg("export").arg(&rec).args(["--format", "jsonl"]));
+        let text = String::from_utf8_lossy(&out.stdout);
+        let lines: Vec<&str> = text.lines().collect();
+        assert_eq!(lines.len(), 501);
+        let header: serde_json::Value = serde_json::from_str(lines[0]).unwrap();
+        assert_eq!(header["dim"].as_u64().unwrap().to_string(), dim);
+        assert_eq!(header["bodies"].as_array().unwrap().len(), 50);
+        for key in ["version", "walls", "start_time"] {
+            assert!(header.get(key).is_some(), "header lacks {key}");
+        }
+        for line in &lines[1..] {
+            let e: serde_json::Value = serde_json::from_str(line).unwrap();
+            let n = if e["kind"] == "body" { 2 } else { 1 };
+            assert_eq!(e["pos"].as_array().unwrap().len(), n);
+            assert_eq!(e["vel"].as_array().unwrap().len(), n);
+            assert!(e["t"].is_f64() && e["a"].is_u64() && e["b"].is_u64());
+        }
+    }
+}
+
+#[test]
+fn gen_rack_is_a_valid_scene() {
+    let out = run_ok(ccdsim().args(["gen", "rack"]));
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(v["dim"], 2);
+    assert_eq!(v["bodies"].as_array().unwrap().len(), 16);
+}
+
+#[test]
+fn verify_fails_on_a_tampered_run() {
+    let rec = tmp("tampered.ccd");
+    run_ok(
+        ccdsim()
+            .args(["run", "--events", "100", "--quiet", "--record"])
+            .arg(&rec),
+    );
+    // Rewrite one event's velocity (and its checksum) so that momentum is not conserved.
+    let mut bytes = std::fs::read(&rec).unwrap();
+    let start = data_start(&bytes);
+    let len = 21 + 32 * 2;
+    let body_event = (0..100)
+        .map(|k| start + k * len)
+        .find(|&off| bytes[off] == 1)
+        .unwrap();
+    let vel_at = body_event + 17 + 16;
+    bytes[vel_at..vel_at + 8].copy_from_slice(&123.0f64.to_le_bytes());
+    let sum = fnv1a(&bytes[body_event..body_event + len - 4]);
+    bytes[body_event + len - 4..body_event + len].copy_from_slice(&sum.to_le_bytes());
+    std::fs::write(&rec, bytes).unwrap();
+    let out = ccdsim().arg("verify").arg(&rec).output().unwrap();
+    assert_eq!(out.status.code(), Some(1));
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        text.starts_with("FAIL") && text.contains("momentum"),
+        "{text}"
+    );
+}
+
+fn data_start(bytes: &[u8]) -> usize {
+    24 + u64::from_le_bytes(bytes[16..24].try_into().unwrap()) as usize
+}
+
+fn fnv1a(bytes: &[u8]) -> u32 {
+    bytes.iter().fold(0x811c_9dc5u32, |h, &b| {
+        (h ^ u32::from(b)).wrapping_mul(0x0100_0193)
+    })
+}
+
+#[test]
+fn killed_run_leaves_a_readable_file() {
+    let scene = tmp("kill.json");
+    run_ok(
+        ccdsim()
+            .args(["gen", "gas", "--n", "400", "--packing", "0.3", "--out"])
+            .arg(&scene),
+    );
+    let rec = tmp("kill.ccd");
+    let mut child = ccdsim()
+        .arg("run")
+        .arg(&scene)
+        .args(["--events", "100000000", "--quiet", "--record"])
+        .arg(&rec)
+        .stdout(Stdio::null())
+        .spawn()
+        .unwrap();
+    // Wait until a few buffer flushes have happened, then kill -9 mid-write.
+    let deadline = std::time::Instant::now() + std::time::Duration::from_secs(120);
+    while size(&rec) < 300_000 && std::time::Instant::now() < deadline {
+        std::thread::sleep(std::time::Duration::from_millis(20));
+    }
+    child.kill().unwrap();
+    child.wait().unwrap();
+    assert!(size(&rec) > 0);
+    let out = ccdsim().arg("verify").arg(&rec).output().unwrap();
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        out.status.success(),
+        "{text} {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(text.starts_with("OK"), "{text}");
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("no end record") || err.contains("incomplete record"),
+        "{err}"
+    );
+}
+
+fn size(p: &Path) -> u64 {
+    std::fs::metadata(p).map(|m| m.len()).unwrap_or(0)
+}
+
+#[test]
+fn every_example_scene_runs_and_verifies() {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples");
+    let mut seen = 0;
+    for entry in std::fs::read_dir(dir).unwrap() {
+        let path = entry.unwrap().path();
+        if path.extension().is_some_and(|e| e == "json") {
+            let rec = tmp(&format!(
+                "example-{}.ccd",
+                path.file_stem().unwrap().to_string_lossy()
+            ));
+            run_ok(
+                ccdsim()
+                    .arg("run")
+                    .arg(&path)
+                    .args(["--until", "5", "--quiet", "--record"])
+                    .arg(&rec),
+            );
+            run_ok(ccdsim().arg("verify").arg(&rec));
+            seen += 1;
+        }
+    }
+    assert!(seen >= 3, "examples/ should hold the documented scenes");
+}
