@@ -2,5 +2,7 @@
 
 pub mod export;
 pub mod gen;
+pub mod render;
 pub mod run;
 pub mod verify;
+pub mod view;
