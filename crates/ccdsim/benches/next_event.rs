@@ -1,50 +1,47 @@
-//! Next-event search per finder at several n, on the thesis scene in its steady state: the
-//! cost of one event (find the next event, resolve it, update the finder).
+//! Next-event search of the all-pairs oracle and the thesis's `bvh` on 2D gases,
+//! n = 64 … 4096.
+//!
+//! Each iteration is one `Simulation::step_event`: the finder's search for the next event
+//! plus its O(1) resolution, so the state evolves as in a real run and the `bvh`'s adaptive Δ
+//! is what a run would have. Compare medians across finders at the same n.
+//!
+//! `cargo bench -p ccdsim --bench next_event -- --warm-up-time 1 --measurement-time 3`
 
-use ccdsim::generate::{thesis, ThesisConfig};
-use ccdsim::{Simulation, FINDER_NAMES};
-use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
-use std::time::Duration;
+use ccdsim::generate::{gas, GasConfig};
+use ccdsim::Simulation;
+use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
+use std::hint::black_box;
 
-const SEED: u64 = 1;
-const SIZES: [usize; 3] = [64, 256, 1024];
+/// Seed of the benchmark gases.
+const SEED: u64 = 2024;
+/// Body counts.
+const NS: [usize; 7] = [64, 128, 256, 512, 1024, 2048, 4096];
+/// Finders compared.
+const FINDERS: [&str; 2] = ["all-pairs", "bvh"];
 
-fn per_event(c: &mut Criterion) {
-    let mut g = c.benchmark_group("event");
-    g.throughput(Throughput::Elements(1));
-    g.measurement_time(Duration::from_secs(4));
-    g.warm_up_time(Duration::from_secs(1));
-    for &n in &SIZES {
-        let scene = thesis::<2>(&ThesisConfig::new(n, SEED)).unwrap();
-        for &finder in FINDER_NAMES {
-            let mut sim = Simulation::new(&scene, finder).unwrap();
-            // Out of the initial transient: a few events per body.
-            sim.run_events(4 * n as u64);
-            g.bench_with_input(BenchmarkId::new(finder, n), &n, |b, _| {
-                b.iter(|| {
-                    sim.step_event()
-                        .expect("a walled table never runs out of events")
-                })
+fn next_event(c: &mut Criterion) {
+    let mut group = c.benchmark_group("next_event_gas2d");
+    group.sample_size(10);
+    for n in NS {
+        let scene = gas::<2>(&GasConfig {
+            n,
+            packing: 0.2,
+            radius_min: 0.5,
+            radius_max: 0.5,
+            speed_min: 0.0,
+            speed_max: 1.0,
+            seed: SEED,
+        })
+        .expect("gas");
+        for finder in FINDERS {
+            let mut sim = Simulation::new(&scene, finder).expect("simulation");
+            group.bench_with_input(BenchmarkId::new(finder, n), &n, |b, _| {
+                b.iter(|| black_box(sim.step_event()));
             });
         }
     }
-    g.finish();
+    group.finish();
 }
 
-fn setup(c: &mut Criterion) {
-    // Building a finder for a fresh scene (the BVH's build, the queue's first fill).
-    let mut g = c.benchmark_group("init");
-    g.measurement_time(Duration::from_secs(3));
-    for &n in &SIZES {
-        let scene = thesis::<2>(&ThesisConfig::new(n, SEED)).unwrap();
-        for &finder in FINDER_NAMES {
-            g.bench_with_input(BenchmarkId::new(finder, n), &n, |b, _| {
-                b.iter(|| Simulation::new(&scene, finder).unwrap())
-            });
-        }
-    }
-    g.finish();
-}
-
-criterion_group!(benches, per_event, setup);
+criterion_group!(benches, next_event);
 criterion_main!(benches);
