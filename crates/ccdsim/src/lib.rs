@@ -19,12 +19,15 @@
 #![forbid(unsafe_code)]
 
 pub mod bench;
+pub mod bench_gas;
 pub mod discrete;
 pub mod event;
 pub mod finder;
 pub mod generate;
 pub mod geom;
 pub mod narrow;
+pub mod observables;
+pub mod periodic;
 pub mod record;
 pub mod resolve;
 pub mod scene;
@@ -36,6 +39,7 @@ pub use event::{Event, EventKind};
 pub use finder::{make_finder, AllPairs, Finder, FinderError, FinderOptions, FINDER_NAMES};
 pub use geom::{Aabb, Vector};
 pub use narrow::Motion;
+pub use observables::Observables;
 pub use scene::{AnyScene, BodySpec, Scene, SceneError, Settings, Wall};
 pub use sim::{Collision, SimError, Simulation, Stats};
 pub use world::World;

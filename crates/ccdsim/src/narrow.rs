@@ -64,6 +64,25 @@ pub fn toi_circle_circle<const D: usize>(
     first_contact(dp, b.vel - a.vel, ra + rb).map(|dt| t0 + dt)
 }
 
+/// Time of impact of two balls when ball `b` is displaced by `shift` (one of its periodic
+/// images): [`toi_circle_circle`] with the displacement `(b.at(T) − a.at(T)) + shift`.
+///
+/// Every finder evaluates an image of a pair through this one function, so their times agree
+/// bit for bit.
+#[must_use]
+#[inline]
+pub fn toi_circle_circle_shifted<const D: usize>(
+    a: &Motion<D>,
+    ra: f64,
+    b: &Motion<D>,
+    rb: f64,
+    shift: Vector<D>,
+) -> Option<f64> {
+    let t0 = a.time.max(b.time);
+    let dp = (b.at(t0) - a.at(t0)) + shift;
+    first_contact(dp, b.vel - a.vel, ra + rb).map(|dt| t0 + dt)
+}
+
 /// Time of impact of a ball (radius `r`) with the segment `[a, b]`: its interior from either
 /// side, or one of its end points.
 #[must_use]

@@ -1,17 +1,22 @@
 //! Collision response: impulses along the contact normal, with masses and restitution.
 
 use crate::narrow::wall_normal;
+use crate::periodic::min_image;
 use crate::world::World;
 
 /// Resolves a body–body collision at time `t`: both bodies are moved to `t` and receive
-/// equal and opposite impulses along the line of centres (walls are not involved).
+/// equal and opposite impulses along the line of centres (walls are not involved). In a
+/// periodic world the line of centres is that of the nearest images.
 ///
 /// Returns the overlap depth at contact relative to the sum of radii (0 when not overlapping).
 pub fn resolve_body_body<const D: usize>(world: &mut World<D>, i: usize, j: usize, t: f64) -> f64 {
     let (pi, pj) = (world.position_at(i, t), world.position_at(j, t));
     let (vi, vj) = (world.velocities()[i], world.velocities()[j]);
     let (mi, mj) = (world.masses()[i], world.masses()[j]);
-    let d = pj - pi;
+    let d = match world.periodic() {
+        Some(size) => min_image(pj - pi, &size),
+        None => pj - pi,
+    };
     let dist = d.norm();
     let sigma = world.radii()[i] + world.radii()[j];
     let (mut vi2, mut vj2) = (vi, vj);
@@ -50,4 +55,22 @@ pub fn resolve_body_wall<const D: usize>(world: &mut World<D>, i: usize, w: usiz
     let clearance = crate::scene::wall_clearance(&wall, p);
     world.set_state(i, p, v2, t);
     ((r - clearance) / r).max(0.0)
+}
+
+/// Applies the exit of body `i` through face `face` (see [`crate::periodic`]) of the periodic
+/// box at time `t`: the body is moved to `t` and then by one period back into the box along
+/// the face's axis. Its velocity is unchanged.
+pub fn resolve_exit<const D: usize>(world: &mut World<D>, i: usize, face: usize, t: f64) {
+    let size = world
+        .periodic()
+        .expect("box exits happen in periodic worlds only");
+    let mut p = world.position_at(i, t);
+    let axis = face / 2;
+    if face % 2 == 1 {
+        p[axis] -= size[axis];
+    } else {
+        p[axis] += size[axis];
+    }
+    let v = world.velocities()[i];
+    world.set_state(i, p, v, t);
 }

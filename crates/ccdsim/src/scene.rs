@@ -102,6 +102,12 @@ pub struct Scene<const D: usize> {
     /// The static walls; a wall's index in this list names it in events.
     #[serde(default)]
     pub walls: Vec<Wall<D>>,
+    /// Periodic boundaries: the sides `[L₁, …, L_D]` of the box `[0, L₁) × … × [0, L_D)` whose
+    /// opposite faces are identified (see [`crate::periodic`]). A periodic scene has no walls,
+    /// every body starts inside the box, and every side exceeds twice the largest contact
+    /// distance (`4 · r_max`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub periodic: Option<Vector<D>>,
 }
 
 impl<const D: usize> Default for Scene<D> {
@@ -111,6 +117,7 @@ impl<const D: usize> Default for Scene<D> {
             start_time: 0.0,
             bodies: Vec::new(),
             walls: Vec::new(),
+            periodic: None,
         }
     }
 }
@@ -190,6 +197,14 @@ pub enum SceneError {
         /// The body.
         body: BodyName,
     },
+    /// The periodic box is invalid, or a body or wall does not fit a periodic scene.
+    #[error("field `{field}`: {why}")]
+    Periodic {
+        /// The offending field, e.g. `periodic` or `bodies[3].pos`.
+        field: String,
+        /// What is wrong.
+        why: String,
+    },
     /// Reading the file failed.
     #[error("{0}")]
     Io(String),
@@ -263,7 +278,9 @@ impl<const D: usize> Scene<D> {
 
     /// Checks every rule a run relies on: finite numbers, positive radii and masses,
     /// restitution in `[0, 1]`, unique ids, non-degenerate walls, no body overlapping another
-    /// body or a wall, and (2D) every body inside the closed table the walls form, if any.
+    /// body or a wall, (2D) every body inside the closed table the walls form, if any, and for
+    /// periodic scenes: no walls, sides finite and above `4 · r_max`, bodies inside the box,
+    /// overlaps measured between nearest images.
     pub fn validate(&self) -> Result<(), SceneError> {
         let r = self.settings.restitution;
         if !r.is_finite() {
@@ -310,7 +327,10 @@ impl<const D: usize> Scene<D> {
                 });
             }
         }
-        if let Some((a, b, depth)) = first_overlap(&self.bodies) {
+        if let Some(size) = self.periodic {
+            self.validate_periodic(size)?;
+        }
+        if let Some((a, b, depth)) = first_overlap(&self.bodies, self.periodic) {
             return Err(SceneError::Overlap {
                 a: self.name(a),
                 b: self.name(b),
@@ -335,6 +355,41 @@ impl<const D: usize> Scene<D> {
                         return Err(SceneError::OutsideTable { body: self.name(i) });
                     }
                 }
+            }
+        }
+        Ok(())
+    }
+}
+
+impl<const D: usize> Scene<D> {
+    fn validate_periodic(&self, size: Vector<D>) -> Result<(), SceneError> {
+        let bad = |field: String, why: String| Err(SceneError::Periodic { field, why });
+        if !size.is_finite() || (0..D).any(|d| size[d] <= 0.0) {
+            return bad(
+                "periodic".into(),
+                "sides must be finite and positive".into(),
+            );
+        }
+        if !self.walls.is_empty() {
+            return bad("walls".into(), "a periodic scene has no walls".into());
+        }
+        let r_max = self.bodies.iter().map(|b| b.radius).fold(0.0, f64::max);
+        if let Some(d) = (0..D).find(|&d| size[d] <= 4.0 * r_max) {
+            return bad(
+                "periodic".into(),
+                format!(
+                    "side {} must exceed twice the largest contact distance, {}",
+                    size[d],
+                    4.0 * r_max
+                ),
+            );
+        }
+        for (i, b) in self.bodies.iter().enumerate() {
+            if (0..D).any(|d| !(0.0..size[d]).contains(&b.pos[d])) {
+                return bad(
+                    format!("bodies[{i}].pos"),
+                    format!("{} is outside the periodic box [0, L)", self.name(i)),
+                );
             }
         }
         Ok(())
@@ -449,6 +504,8 @@ struct SceneFile<const D: usize> {
     bodies: Vec<BodySpec<D>>,
     #[serde(default)]
     walls: Vec<Wall<D>>,
+    #[serde(default)]
+    periodic: Option<Vector<D>>,
 }
 
 fn parse_typed<const D: usize>(text: &str) -> Result<Scene<D>, SceneError> {
@@ -463,6 +520,7 @@ fn parse_typed<const D: usize>(text: &str) -> Result<Scene<D>, SceneError> {
         start_time: f.start_time,
         bodies: f.bodies,
         walls: f.walls,
+        periodic: f.periodic,
     })
 }
 
@@ -514,17 +572,32 @@ pub fn wall_clearance<const D: usize>(wall: &Wall<D>, p: Vector<D>) -> f64 {
     }
 }
 
-/// The first overlapping pair `(i, j)`, `i < j`, in lexicographic order, with its depth.
-fn first_overlap<const D: usize>(bodies: &[BodySpec<D>]) -> Option<(usize, usize, f64)> {
+/// The first overlapping pair `(i, j)`, `i < j`, in lexicographic order, with its depth;
+/// in a periodic box of sides `period`, distances are between nearest images.
+fn first_overlap<const D: usize>(
+    bodies: &[BodySpec<D>],
+    period: Option<Vector<D>>,
+) -> Option<(usize, usize, f64)> {
     let max_r = bodies.iter().map(|b| b.radius).fold(0.0, f64::max);
     if bodies.len() < 2 || max_r <= 0.0 {
         return None;
     }
-    let cell = 2.0 * max_r;
+    // Cells at least 2·r_max wide; in a periodic box they tile it and keys wrap around.
+    let cells: [i64; D] = match period {
+        Some(p) => std::array::from_fn(|d| ((p[d] / (2.0 * max_r)).floor() as i64).max(1)),
+        None => [1; D],
+    };
+    let width: [f64; D] = match period {
+        Some(p) => std::array::from_fn(|d| p[d] / cells[d] as f64),
+        None => [2.0 * max_r; D],
+    };
     let key = |p: Vector<D>| {
         let mut k = [0i64; D];
         for d in 0..D {
-            k[d] = (p[d] / cell).floor() as i64;
+            k[d] = (p[d] / width[d]).floor() as i64;
+            if period.is_some() {
+                k[d] = k[d].rem_euclid(cells[d]);
+            }
         }
         k
     };
@@ -539,8 +612,11 @@ fn first_overlap<const D: usize>(bodies: &[BodySpec<D>]) -> Option<(usize, usize
         for code in 0..neighbours {
             let mut nk = k;
             let mut c = code;
-            for slot in nk.iter_mut() {
+            for (d, slot) in nk.iter_mut().enumerate() {
                 *slot += (c % 3) as i64 - 1;
+                if period.is_some() {
+                    *slot = slot.rem_euclid(cells[d]);
+                }
                 c /= 3;
             }
             let Some(list) = grid.get(&nk) else { continue };
@@ -551,7 +627,11 @@ fn first_overlap<const D: usize>(bodies: &[BodySpec<D>]) -> Option<(usize, usize
                 }
                 let bj = &bodies[j];
                 let sum = bi.radius + bj.radius;
-                let d = (bi.pos - bj.pos).norm();
+                let dp = bi.pos - bj.pos;
+                let d = match period {
+                    Some(p) => crate::periodic::min_image(dp, &p).norm(),
+                    None => dp.norm(),
+                };
                 if d < sum && best.is_none_or(|(bj0, _)| j < bj0) {
                     best = Some((j, sum - d));
                 }
@@ -717,6 +797,47 @@ mod tests {
         assert!(matches!(e, SceneError::Dimension(_)));
         let e = Scene::<3>::from_json(r#"{"dim": 2, "bodies": []}"#).unwrap_err();
         assert!(matches!(e, SceneError::Dimension(_)));
+    }
+
+    #[test]
+    fn periodic_scenes() {
+        let body = |p: [f64; 2]| BodySpec::new(Vector(p), Vector([1.0, 0.0]), 0.5);
+        let mut s = Scene::<2> {
+            bodies: vec![body([0.2, 1.0]), body([4.5, 1.0])],
+            periodic: Some(Vector([5.0, 3.0])),
+            ..Scene::default()
+        };
+        // 0.2 and 4.5 are 0.7 apart across the face x = 0: they overlap.
+        assert!(matches!(s.validate(), Err(SceneError::Overlap { .. })));
+        s.bodies[1].pos = Vector([3.5, 1.0]);
+        s.validate().unwrap();
+        let back = AnyScene::from_json(&s.to_json()).unwrap();
+        assert_eq!(back, AnyScene::D2(s.clone()));
+        assert!(s.to_json().contains("\"periodic\":[5.0,3.0]"));
+        let mut t = s.clone();
+        t.walls = table();
+        let e = t.validate().unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "field `walls`: a periodic scene has no walls"
+        );
+        let mut t = s.clone();
+        t.bodies[0].pos = Vector([5.0, 1.0]);
+        let e = t.validate().unwrap_err();
+        assert!(e.to_string().starts_with("field `bodies[0].pos`"), "{e}");
+        let mut t = s.clone();
+        t.periodic = Some(Vector([5.0, 2.0]));
+        let e = t.validate().unwrap_err();
+        assert!(e.to_string().starts_with("field `periodic`: side 2"), "{e}");
+        t.periodic = Some(Vector([5.0, f64::NAN]));
+        assert!(t.validate().is_err());
+        assert!(Scene::<2> {
+            periodic: None,
+            ..s.clone()
+        }
+        .to_json()
+        .find("periodic")
+        .is_none());
     }
 
     #[test]

@@ -3,7 +3,9 @@
 use crate::event::{Event, EventKind};
 use crate::finder::{make_finder, Finder, FinderError, FinderOptions};
 use crate::geom::Vector;
-use crate::resolve::{resolve_body_body, resolve_body_wall};
+use crate::observables::{observables, Observables};
+use crate::periodic::{min_image, wrap_point};
+use crate::resolve::{resolve_body_body, resolve_body_wall, resolve_exit};
 use crate::scene::{Scene, SceneError};
 use crate::world::World;
 
@@ -43,6 +45,14 @@ pub struct Stats {
     pub max_overlap: f64,
     /// Kinetic energy when the simulation was created, joules.
     pub kinetic_energy_start: f64,
+    /// Collision virial: the sum over body–body collisions of `r_ab · J_a`, the line of centres
+    /// (from `b` to `a`, nearest images in periodic worlds) dotted with the impulse `a`
+    /// received, kg·m²/s. Pressure and the compressibility factor follow from it (see
+    /// [`crate::observables`]).
+    pub virial: f64,
+    /// Periodic worlds: box exits applied (a body leaving through a face and re-entering
+    /// through the opposite one). Not events: never returned, recorded or counted above.
+    pub exits: u64,
 }
 
 /// Why a simulation could not be created.
@@ -81,6 +91,7 @@ pub struct Simulation<const D: usize> {
     finder: Box<dyn Finder<D>>,
     pending: Option<Option<Event>>,
     stats: Stats,
+    start_time: f64,
 }
 
 impl<const D: usize> Simulation<D> {
@@ -90,14 +101,20 @@ impl<const D: usize> Simulation<D> {
     }
 
     /// A simulation of `scene` with the given finder.
-    pub fn with_finder(scene: &Scene<D>, mut finder: Box<dyn Finder<D>>) -> Result<Self, SimError> {
-        let world = World::from_scene(scene)?;
+    pub fn with_finder(scene: &Scene<D>, finder: Box<dyn Finder<D>>) -> Result<Self, SimError> {
+        Self::from_world(World::from_scene(scene)?, finder)
+    }
+
+    /// A simulation of an already built world (see [`World::from_scene`]) with the given
+    /// finder; lets a caller drop a large scene before the finder allocates its structures.
+    pub fn from_world(world: World<D>, mut finder: Box<dyn Finder<D>>) -> Result<Self, SimError> {
         finder.init(&world)?;
         let stats = Stats {
             kinetic_energy_start: world.kinetic_energy(),
             ..Stats::default()
         };
         Ok(Simulation {
+            start_time: world.now(),
             world,
             finder,
             pending: None,
@@ -134,21 +151,81 @@ impl<const D: usize> Simulation<D> {
         &self.stats
     }
 
-    /// Position of body `i` at the current time.
+    /// Simulated time at which the simulation was created, seconds.
     #[must_use]
-    pub fn position(&self, i: usize) -> Vector<D> {
-        self.world.position_at(i, self.world.now())
+    pub fn start_time(&self) -> f64 {
+        self.start_time
     }
 
-    /// The next event, without resolving it.
-    pub fn peek_event(&mut self) -> Option<Event> {
+    /// Temperature, collision rate, pressure and compressibility factor over the whole run so
+    /// far (from [`Simulation::start_time`] to the current time); see [`crate::observables`].
+    #[must_use]
+    pub fn observables(&self) -> Observables {
+        observables(
+            &self.world,
+            self.stats.body_collisions,
+            self.stats.virial,
+            self.world.now() - self.start_time,
+        )
+    }
+
+    /// Position of body `i` at the current time (in a periodic world, inside the box).
+    #[must_use]
+    pub fn position(&self, i: usize) -> Vector<D> {
+        let p = self.world.position_at(i, self.world.now());
+        match self.world.periodic() {
+            Some(size) => wrap_point(p, &size),
+            None => p,
+        }
+    }
+
+    /// The finder's next event: a collision or, in periodic worlds, a box exit.
+    fn next_raw(&mut self) -> Option<Event> {
         if self.pending.is_none() {
             self.pending = Some(self.finder.next_event(&self.world));
         }
         self.pending.flatten()
     }
 
-    /// Resolves the next event and returns it, or `None` when no event will ever happen.
+    /// True for a box exit (a wall event naming a face after the walls).
+    fn is_exit(&self, e: &Event) -> bool {
+        e.kind == EventKind::Wall && e.b as usize >= self.world.walls().len()
+    }
+
+    /// Applies a box exit: the body re-enters through the opposite face; the current time
+    /// becomes the exit's.
+    fn apply_exit(&mut self, e: Event) {
+        self.pending = None;
+        self.world.set_now(e.time.max(self.world.now()));
+        let face = e.b as usize - self.world.walls().len();
+        resolve_exit(&mut self.world, e.a as usize, face, e.time);
+        self.finder.update(&self.world, &[e.a as usize]);
+        self.stats.exits += 1;
+    }
+
+    /// The next event (collision), without resolving it.
+    ///
+    /// In a periodic world, box exits before it are applied on the way (so the current time
+    /// may advance to the last of them), and `None` also comes when more than
+    /// `1024 + 64 · n` exits in a row bring no collision (bodies that may fly for ever).
+    pub fn peek_event(&mut self) -> Option<Event> {
+        let guard = 1024 + 64 * self.world.len() as u64;
+        let mut exits = 0;
+        loop {
+            let e = self.next_raw()?;
+            if !self.is_exit(&e) {
+                return Some(e);
+            }
+            if exits >= guard {
+                return None;
+            }
+            self.apply_exit(e);
+            exits += 1;
+        }
+    }
+
+    /// Resolves the next event and returns it, or `None` when no event will ever happen (see
+    /// [`Simulation::peek_event`] for periodic worlds).
     pub fn step_event(&mut self) -> Option<Collision<D>> {
         let event = self.peek_event()?;
         self.pending = None;
@@ -161,8 +238,16 @@ impl<const D: usize> Simulation<D> {
         let overlap;
         let out = match e.kind {
             EventKind::Body => {
+                let before = self.world.velocities()[a];
                 overlap = resolve_body_body(&mut self.world, a, b, e.time);
                 self.stats.body_collisions += 1;
+                let w = &self.world;
+                let r = w.positions()[a] - w.positions()[b];
+                let r = match w.periodic() {
+                    Some(size) => min_image(r, &size),
+                    None => r,
+                };
+                self.stats.virial += r.dot(w.velocities()[a] - before) * w.masses()[a];
                 self.finder.update(&self.world, &[a, b]);
                 let w = &self.world;
                 Collision {
@@ -188,15 +273,28 @@ impl<const D: usize> Simulation<D> {
         out
     }
 
+    /// Resolves the next event if it happens at or before `t` and returns it; otherwise
+    /// returns `None` and changes nothing after `t` (box exits up to `t` are applied).
+    pub fn step_event_until(&mut self, t: f64) -> Option<Collision<D>> {
+        loop {
+            let e = self.next_raw()?;
+            if e.time > t {
+                return None;
+            }
+            if self.is_exit(&e) {
+                self.apply_exit(e);
+                continue;
+            }
+            self.pending = None;
+            return Some(self.resolve(e));
+        }
+    }
+
     /// Resolves every event at or before `t`, calling `on_event` after each, then sets the
     /// current time to `t`. Returns the number of events resolved.
     pub fn run_until_with(&mut self, t: f64, mut on_event: impl FnMut(&Collision<D>)) -> u64 {
         let mut count = 0;
-        while let Some(e) = self.peek_event() {
-            if e.time > t {
-                break;
-            }
-            let c = self.step_event().expect("peeked");
+        while let Some(c) = self.step_event_until(t) {
             on_event(&c);
             count += 1;
         }
@@ -251,7 +349,7 @@ impl<const D: usize> Simulation<D> {
             )));
         }
         let t = self.world.now();
-        let p = self.world.position_at(i, t);
+        let p = self.position(i);
         self.world.set_state(i, p, vel, t);
         self.finder.update(&self.world, &[i]);
         self.pending = None;

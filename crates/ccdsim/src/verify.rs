@@ -5,11 +5,14 @@
 //! distance); momentum is conserved in body–body collisions and kinetic energy in elastic
 //! ones; and no pair of bodies and no body and wall came closer than `(1 − 1e-9)` times their
 //! contact distance at any time (a missed collision), using closed-form closest approach
-//! rather than the simulator's narrow phase.
+//! rather than the simulator's narrow phase. In a periodic scene, positions are compared and
+//! distances measured between nearest images, and closest approaches are searched over every
+//! image the relative motion passes.
 
 use crate::event::EventKind;
 use crate::geom::Vector;
 use crate::narrow::Motion;
+use crate::periodic::min_image;
 use crate::scene::{wall_clearance, Scene, Wall};
 use crate::sim::Collision;
 
@@ -53,6 +56,7 @@ pub struct Verifier<const D: usize> {
     radius: Vec<f64>,
     mass: Vec<f64>,
     walls: Vec<Wall<D>>,
+    period: Option<Vector<D>>,
     restitution: f64,
     last_time: f64,
     report: VerifyReport,
@@ -82,6 +86,7 @@ impl<const D: usize> Verifier<D> {
             radius: scene.bodies.iter().map(|b| b.radius).collect(),
             mass,
             walls: scene.walls.clone(),
+            period: scene.periodic,
             restitution: scene.settings.restitution,
             last_time: scene.start_time,
             report: VerifyReport {
@@ -115,7 +120,7 @@ impl<const D: usize> Verifier<D> {
             let expect = self.motion[i].at(t);
             let scale =
                 1.0 + expect.norm() + self.motion[i].vel.norm() * (t - self.motion[i].time).abs();
-            if (c.pos[s] - expect).norm() > 1e-9 * scale {
+            if self.image(c.pos[s] - expect).norm() > 1e-9 * scale {
                 return Err(self.fail(
                     t,
                     format!(
@@ -150,7 +155,7 @@ impl<const D: usize> Verifier<D> {
     fn check_pair(&mut self, c: &Collision<D>, i: usize, j: usize) -> Result<(), Violation> {
         let t = c.event.time;
         let sigma = self.radius[i] + self.radius[j];
-        let gap = ((c.pos[1] - c.pos[0]).norm() - sigma) / sigma;
+        let gap = (self.image(c.pos[1] - c.pos[0]).norm() - sigma) / sigma;
         if gap > OVERLAP_TOLERANCE {
             return Err(self.fail(
                 t,
@@ -233,7 +238,7 @@ impl<const D: usize> Verifier<D> {
             let mj = self.motion[j];
             let t0 = mi.time.max(mj.time);
             let sigma = self.radius[i] + self.radius[j];
-            let (d, at) = closest_approach(mi.at(t0), mi.vel, mj.at(t0), mj.vel, t - t0);
+            let (d, at) = self.approach(mi.at(t0), mi.vel, mj.at(t0), mj.vel, t - t0);
             let overlap = (sigma - d) / sigma;
             if overlap > OVERLAP_TOLERANCE {
                 return Err(self.fail(t, format!("bodies {i} and {j} overlap by {overlap:e} of their contact distance at t = {} (a missed collision)", t0 + at)));
@@ -274,7 +279,7 @@ impl<const D: usize> Verifier<D> {
             let mj = self.motion[j];
             let t0 = mi.time.max(mj.time);
             let sigma = self.radius[i] + self.radius[j];
-            let (d, at) = closest_approach(mi.at(t0), mi.vel, mj.at(t0), mj.vel, t - t0);
+            let (d, at) = self.approach(mi.at(t0), mi.vel, mj.at(t0), mj.vel, t - t0);
             let overlap = (sigma - d) / sigma;
             if overlap > OVERLAP_TOLERANCE {
                 return Err(self.fail(t0 + at, format!("bodies {i} and {j} overlap by {overlap:e} after the last event (a missed collision)")));
@@ -290,6 +295,56 @@ impl<const D: usize> Verifier<D> {
             }
         }
         Ok(())
+    }
+}
+
+impl<const D: usize> Verifier<D> {
+    /// The displacement `dp` itself, or its nearest image in a periodic scene.
+    fn image(&self, dp: Vector<D>) -> Vector<D> {
+        match self.period {
+            Some(size) => min_image(dp, &size),
+            None => dp,
+        }
+    }
+
+    /// Smallest distance between two points moving linearly over `[0, span]` (between nearest
+    /// images in a periodic scene), and the time offset where it occurs.
+    fn approach(
+        &self,
+        pa: Vector<D>,
+        va: Vector<D>,
+        pb: Vector<D>,
+        vb: Vector<D>,
+        span: f64,
+    ) -> (f64, f64) {
+        let Some(size) = self.period else {
+            return closest_approach(pa, va, pb, vb, span);
+        };
+        // Pieces short enough that the relative motion crosses a quarter box at most; in each,
+        // every image next to the nearest one at its start is tried.
+        let dv = vb - va;
+        let side = (0..D).map(|d| size[d]).fold(f64::INFINITY, f64::min);
+        let span = span.max(0.0);
+        let pieces = ((dv.norm() * span) / (0.25 * side)).ceil().clamp(1.0, 1e9) as u64;
+        let mut best = (f64::INFINITY, 0.0);
+        for k in 0..pieces {
+            let s0 = span * k as f64 / pieces as f64;
+            let s1 = span * (k + 1) as f64 / pieces as f64;
+            let start = min_image(pb - pa + dv * s0, &size);
+            for code in 0..3usize.pow(D as u32) {
+                let mut dp = start;
+                let mut c = code;
+                for d in 0..D {
+                    dp[d] += ((c % 3) as f64 - 1.0) * size[d];
+                    c /= 3;
+                }
+                let (dist, at) = closest_approach(Vector::ZERO, Vector::ZERO, dp, dv, s1 - s0);
+                if dist < best.0 {
+                    best = (dist, s0 + at);
+                }
+            }
+        }
+        best
     }
 }
 

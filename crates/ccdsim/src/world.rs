@@ -19,6 +19,7 @@ pub struct World<const D: usize> {
     id: Vec<u64>,
     changes: Vec<u64>,
     walls: Vec<Wall<D>>,
+    periodic: Option<Vector<D>>,
     restitution: f64,
     now: f64,
 }
@@ -37,6 +38,7 @@ impl<const D: usize> World<D> {
             id: (0..n).map(|i| scene.id_of(i)).collect(),
             changes: vec![0; n],
             walls: scene.walls.clone(),
+            periodic: scene.periodic,
             restitution: scene.settings.restitution,
             now: scene.start_time,
         })
@@ -123,6 +125,12 @@ impl<const D: usize> World<D> {
     #[must_use]
     pub fn walls(&self) -> &[Wall<D>] {
         &self.walls
+    }
+
+    /// The sides of the periodic box, for periodic worlds (see [`crate::periodic`]).
+    #[must_use]
+    pub fn periodic(&self) -> Option<Vector<D>> {
+        self.periodic
     }
 
     /// Coefficient of restitution used for every collision.

@@ -218,6 +218,7 @@ fn gas_scene<const D: usize>(n: usize, packing: f64, radii: (f64, f64), seed: u6
             speed_min: 0.0,
             speed_max: 1.0,
             seed,
+            ..GasConfig::default()
         }) {
             Ok(scene) => return scene,
             Err(GenerateError::Jammed { .. }) => packing *= 0.8,
@@ -674,6 +675,7 @@ fn grid_scene<const D: usize>(
         } else {
             Vec::new()
         },
+        periodic: None,
     }
 }
 

@@ -57,6 +57,7 @@ fn gas_scene<const D: usize>(seed: u64) -> Scene<D> {
         speed_min: 0.0,
         speed_max: 1.0,
         seed,
+        ..ccdsim::generate::GasConfig::default()
     })
     .unwrap()
 }

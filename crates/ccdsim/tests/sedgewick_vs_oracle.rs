@@ -38,6 +38,7 @@ fn gas_cfg(n: usize, seed: u64) -> GasConfig {
         speed_min: 0.0,
         speed_max: 5.0,
         seed,
+        ..GasConfig::default()
     }
 }
 

@@ -1,7 +1,7 @@
 //! `ccdsim gen`: write a generated scene as JSON.
 
 use anyhow::{Context, Result};
-use ccdsim::generate::{gas, rack, thesis, GasConfig, RackConfig, ThesisConfig};
+use ccdsim::generate::{gas, rack, thesis, GasConfig, Lattice, RackConfig, ThesisConfig};
 use ccdsim::AnyScene;
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -18,7 +18,7 @@ pub struct Args {
 
 #[derive(clap::Subcommand)]
 enum Kind {
-    /// Random non-overlapping bodies in a walled box.
+    /// Non-overlapping bodies in a walled or periodic box, at random or on a lattice.
     Gas(GasArgs),
     /// A 15-ball billiard rack with the cue ball shot into it (2D).
     Rack(RackArgs),
@@ -66,6 +66,43 @@ struct GasArgs {
     /// Dimension, 2 or 3.
     #[arg(long, default_value_t = 2, value_parser = clap::value_parser!(u8).range(2..=3))]
     dim: u8,
+    /// A periodic box (opposite faces identified) instead of walls.
+    #[arg(long)]
+    periodic: bool,
+    /// Start on a lattice (for dense packings); alone, the densest one: hex in 2D, fcc in 3D.
+    #[arg(long, value_enum, num_args = 0..=1, default_missing_value = "densest")]
+    lattice: Option<LatticeArg>,
+    /// Maxwell velocities at this temperature kT (k = 1) with zero total momentum, instead
+    /// of uniform speeds.
+    #[arg(long)]
+    temperature: Option<f64>,
+}
+
+/// Lattices of `--lattice`.
+#[derive(Clone, Copy, clap::ValueEnum)]
+enum LatticeArg {
+    /// Hexagonal in 2D, face-centred cubic in 3D.
+    Densest,
+    /// Hexagonal (2D).
+    Hex,
+    /// Square (2D).
+    Square,
+    /// Face-centred cubic (3D).
+    Fcc,
+    /// Simple cubic (3D).
+    Cubic,
+}
+
+impl From<LatticeArg> for Lattice {
+    fn from(l: LatticeArg) -> Self {
+        match l {
+            LatticeArg::Densest => Lattice::Densest,
+            LatticeArg::Hex => Lattice::Hexagonal,
+            LatticeArg::Square => Lattice::Square,
+            LatticeArg::Fcc => Lattice::Fcc,
+            LatticeArg::Cubic => Lattice::Cubic,
+        }
+    }
 }
 
 #[derive(clap::Args)]
@@ -90,6 +127,9 @@ pub fn run(args: Args) -> Result<ExitCode> {
                 speed_min: g.speed_min,
                 speed_max: g.speed_max,
                 seed: g.seed,
+                periodic: g.periodic,
+                lattice: g.lattice.map(Lattice::from),
+                temperature: g.temperature,
             };
             if g.dim == 2 {
                 gas::<2>(&cfg)?.into()

@@ -81,6 +81,14 @@ struct Summary {
     momentum_end: Vec<f64>,
     max_overlap: f64,
     record: Option<String>,
+    /// Kinetic temperature kT at the end (k = 1, the scene's units).
+    temperature: f64,
+    /// Body–body collisions per body per unit time.
+    collision_rate: f64,
+    /// Pressure from the collision virial; null without a volume (no periodic box or walls).
+    pressure: Option<f64>,
+    /// Compressibility factor Z = PV/(NkT); null when the pressure is.
+    compressibility: Option<f64>,
 }
 
 /// Runs the command.
@@ -137,12 +145,12 @@ fn simulate<const D: usize>(scene: &Scene<D>, args: &Args) -> Result<Summary> {
             let until = args.until.unwrap_or(10.0);
             let span = (until - t0).max(0.0);
             let mut progress = Progress::new(1000, "simulated time", args.quiet);
-            loop {
-                match sim.peek_event() {
-                    Some(e) if e.time <= until && sink.error.is_none() => {}
-                    _ => break,
-                }
-                let Some(c) = sim.step_event() else { break };
+            // `step_event_until` never goes past `until`, not even for the box exits of a
+            // periodic world.
+            while sink.error.is_none() {
+                let Some(c) = sim.step_event_until(until) else {
+                    break;
+                };
                 sink.take(&c);
                 count += 1;
                 if count % 4096 == 0 && span > 0.0 {
@@ -161,6 +169,7 @@ fn simulate<const D: usize>(scene: &Scene<D>, args: &Args) -> Result<Summary> {
         w.finish(sim.time())?;
     }
     let stats = *sim.stats();
+    let observables = sim.observables();
     let ke_end = sim.world().kinetic_energy();
     let drift = if stats.kinetic_energy_start > 0.0 {
         (ke_end - stats.kinetic_energy_start) / stats.kinetic_energy_start
@@ -188,6 +197,10 @@ fn simulate<const D: usize>(scene: &Scene<D>, args: &Args) -> Result<Summary> {
         momentum_end: sim.world().momentum().0.to_vec(),
         max_overlap: stats.max_overlap,
         record: args.record.as_ref().map(|p| p.display().to_string()),
+        temperature: observables.temperature,
+        collision_rate: observables.collision_rate,
+        pressure: observables.pressure,
+        compressibility: observables.compressibility,
     })
 }
 
@@ -220,6 +233,14 @@ fn print_summary(s: &Summary, builtin: bool) {
         "kinetic energy {:.9e} -> {:.9e} J (relative drift {:.2e}); largest overlap {:.2e} of a contact distance",
         s.kinetic_energy_start, s.kinetic_energy_end, s.kinetic_energy_drift, s.max_overlap
     );
+    print!(
+        "temperature kT {:.6e}; {:.6e} collisions per body per unit time",
+        s.temperature, s.collision_rate
+    );
+    match (s.pressure, s.compressibility) {
+        (Some(p), Some(z)) => println!("; pressure {p:.6e}, compressibility factor Z {z:.6}"),
+        _ => println!(),
+    }
     if let Some(r) = &s.record {
         println!("run file written to {r}");
     }

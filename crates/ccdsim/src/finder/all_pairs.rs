@@ -3,6 +3,7 @@
 use super::{Finder, FinderError};
 use crate::event::Event;
 use crate::narrow::{toi_circle_circle, toi_circle_wall};
+use crate::periodic::{toi_box_exit, toi_circle_circle_periodic};
 use crate::world::World;
 
 /// Checks every body pair and every (body, wall) pair on every query: O(n²) per event,
@@ -19,11 +20,31 @@ impl AllPairs {
 }
 
 /// The minimum event over all pairs of `world`: the definition of a correct answer.
+///
+/// In a periodic world (see [`crate::periodic`]) a pair's time is
+/// [`toi_circle_circle_periodic`], and every body's box exit is an event too (a wall event
+/// naming face `f` as wall `walls.len() + f`).
 #[must_use]
 pub fn all_pairs_next_event<const D: usize>(world: &World<D>) -> Option<Event> {
     let n = world.len();
     let radii = world.radii();
     let mut best: Option<Event> = None;
+    if let Some(size) = world.periodic() {
+        let faces_from = world.walls().len();
+        for i in 0..n {
+            let mi = world.motion(i);
+            for j in i + 1..n {
+                let mj = world.motion(j);
+                if let Some(t) = toi_circle_circle_periodic(&mi, radii[i], &mj, radii[j], &size) {
+                    best = Event::earliest(best, Some(Event::body(t, i, j)));
+                }
+            }
+            if let Some((t, face)) = toi_box_exit(&mi, &size) {
+                best = Event::earliest(best, Some(Event::wall(t, i, faces_from + face)));
+            }
+        }
+        return best;
+    }
     for i in 0..n {
         let mi = world.motion(i);
         for j in i + 1..n {

@@ -10,13 +10,22 @@
 //! [`toi_circle_wall`](crate::narrow::toi_circle_wall) over all (body, wall) pairs, evaluated
 //! on the world's stored states: what [`AllPairs`] computes. Any internal bookkeeping (cell
 //! crossings, rebuilt trees) stays inside the finder.
+//!
+//! In a periodic world ([`World::periodic`]) the pair function is
+//! [`toi_circle_circle_periodic`](crate::periodic::toi_circle_circle_periodic) and each body's
+//! exit from the box ([`toi_box_exit`](crate::periodic::toi_box_exit)) is an event too, a wall
+//! event naming face `f` as wall `walls.len() + f`; the simulation applies exits silently. A
+//! finder that cannot serve periodic worlds refuses them in `init` with
+//! [`FinderError::Unsupported`].
 
 mod all_pairs;
 pub mod bvh;
+mod cells;
 mod sedgewick;
 
 pub use all_pairs::{all_pairs_next_event, AllPairs};
 pub use bvh::BvhFinder;
+pub use cells::{Cells, CellsStats};
 pub use sedgewick::{Sedgewick, SedgewickStats};
 
 use crate::event::Event;
@@ -124,7 +133,7 @@ impl Default for FinderOptions {
 }
 
 /// Names of every finder [`make_finder`] knows.
-pub const FINDER_NAMES: &[&str] = &["all-pairs", "bvh", "sedgewick"];
+pub const FINDER_NAMES: &[&str] = &["all-pairs", "bvh", "sedgewick", "cells"];
 
 /// Makes the finder called `name`.
 pub fn make_finder<const D: usize>(
@@ -135,6 +144,7 @@ pub fn make_finder<const D: usize>(
         "all-pairs" => Ok(Box::new(AllPairs::new())),
         "bvh" => Ok(Box::new(BvhFinder::new(options)?)),
         "sedgewick" => Ok(Box::new(Sedgewick::new())),
+        "cells" => Ok(Box::new(Cells::<D>::new())),
         _ => Err(FinderError::Unknown {
             name: name.to_string(),
             known: FINDER_NAMES.join(", "),

@@ -186,6 +186,12 @@ impl<const D: usize> Finder<D> for Sedgewick {
                 why: "more than 2^31 bodies or walls".into(),
             });
         }
+        if world.periodic().is_some() {
+            return Err(FinderError::Unsupported {
+                finder: "sedgewick",
+                why: "periodic boundaries".into(),
+            });
+        }
         self.heap = BinaryHeap::new();
         self.stats = SedgewickStats::default();
         for i in 0..world.len() {

@@ -1,13 +1,16 @@
-//! Random gases of non-overlapping bodies in a walled box.
+//! Gases of non-overlapping bodies in a walled or periodic box: random or lattice starts,
+//! uniform-speed or Maxwell velocities.
 
-use super::{box_walls, random_direction, GenerateError};
+use super::{box_walls, random_direction, GenerateError, Lattice};
 use crate::geom::{ball_volume, Vector};
 use crate::scene::{BodySpec, Scene};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
+use rand_distr::StandardNormal;
 use std::collections::HashMap;
 
-/// Parameters of [`gas`].
+/// Parameters of [`gas`]. The defaults of the fields added after the first release
+/// (`periodic`, `lattice`, `temperature`) keep the original behaviour.
 #[derive(Clone, Debug, PartialEq)]
 pub struct GasConfig {
     /// Number of bodies.
@@ -19,11 +22,22 @@ pub struct GasConfig {
     /// See `radius_min`.
     pub radius_max: f64,
     /// Speeds are uniform in `[speed_min, speed_max]`, metres per second; directions uniform.
+    /// Ignored when `temperature` is set.
     pub speed_min: f64,
     /// See `speed_min`.
     pub speed_max: f64,
     /// Seed of the random generator (ChaCha8, so scenes are the same on every platform).
     pub seed: u64,
+    /// A periodic box (no walls) instead of a walled one.
+    pub periodic: bool,
+    /// Start on a lattice instead of at random positions (needed for dense packings, where
+    /// random placement jams). The box takes the lattice's shape (the hexagonal one is not
+    /// square).
+    pub lattice: Option<Lattice>,
+    /// Maxwell–Boltzmann velocities at this temperature `kT` (joules, k = 1; masses are the
+    /// bodies' unit-density masses) with zero total momentum, scaled so that the kinetic
+    /// temperature `2K / (D N)` is exactly `kT`; instead of uniform speeds.
+    pub temperature: Option<f64>,
 }
 
 impl Default for GasConfig {
@@ -36,19 +50,24 @@ impl Default for GasConfig {
             speed_min: 0.0,
             speed_max: 1.0,
             seed: 1,
+            periodic: false,
+            lattice: None,
+            temperature: None,
         }
     }
 }
 
-/// A cubic (square) box with walls holding `n` random non-overlapping bodies at the given
-/// packing fraction. The box side is chosen from the expected body volume.
+fn bad<T>(param: &'static str, why: &str) -> Result<T, GenerateError> {
+    Err(GenerateError::Param {
+        param,
+        why: why.to_string(),
+    })
+}
+
+/// A box with walls, or a periodic one, holding `n` non-overlapping bodies at the given
+/// packing fraction, at random positions or on a lattice. The box's volume is the bodies'
+/// volume over the packing fraction; it is a cube (square) for random starts.
 pub fn gas<const D: usize>(cfg: &GasConfig) -> Result<Scene<D>, GenerateError> {
-    let bad = |param, why: &str| {
-        Err(GenerateError::Param {
-            param,
-            why: why.to_string(),
-        })
-    };
     if !(cfg.packing > 0.0 && cfg.packing < 1.0) {
         return bad("packing", "must be in (0, 1)");
     }
@@ -58,20 +77,152 @@ pub fn gas<const D: usize>(cfg: &GasConfig) -> Result<Scene<D>, GenerateError> {
     if !(cfg.speed_min >= 0.0 && cfg.speed_min <= cfg.speed_max && cfg.speed_max.is_finite()) {
         return bad("speed", "need 0 ≤ speed_min ≤ speed_max");
     }
+    if cfg
+        .temperature
+        .is_some_and(|t| !(t.is_finite() && t >= 0.0))
+    {
+        return bad("temperature", "must be finite and ≥ 0");
+    }
     let mut rng = ChaCha8Rng::seed_from_u64(cfg.seed);
     let radii: Vec<f64> = (0..cfg.n)
         .map(|_| rng.random_range(cfg.radius_min..=cfg.radius_max))
         .collect();
-    let volume: f64 = radii.iter().map(|&r| ball_volume::<D>(r)).sum();
-    let side = (volume / cfg.packing)
+    let volume: f64 = radii.iter().map(|&r| ball_volume::<D>(r)).sum::<f64>() / cfg.packing;
+    let (size, pos) = match cfg.lattice {
+        Some(lattice) => lattice_positions::<D>(cfg, lattice, volume)?,
+        None => random_positions::<D>(cfg, &radii, volume, &mut rng)?,
+    };
+    if cfg.periodic && (0..D).any(|d| size[d] <= 4.0 * cfg.radius_max) {
+        return bad(
+            "packing",
+            "a periodic box must be wider than 4·radius_max: use more bodies or a lower packing",
+        );
+    }
+    let vel = match cfg.temperature {
+        Some(kt) => maxwell_velocities::<D>(&radii, kt, &mut rng),
+        None => (0..cfg.n)
+            .map(|_| {
+                let speed = rng.random_range(cfg.speed_min..=cfg.speed_max);
+                let dir: Vector<D> = random_direction(&mut rng);
+                dir * speed
+            })
+            .collect(),
+    };
+    let bodies = pos
+        .into_iter()
+        .zip(vel)
+        .zip(radii)
+        .map(|((p, v), r)| BodySpec::new(p, v, r))
+        .collect();
+    if cfg.periodic {
+        return Ok(Scene {
+            bodies,
+            periodic: Some(size),
+            ..Scene::default()
+        });
+    }
+    Ok(Scene {
+        bodies,
+        walls: box_walls(size),
+        ..Scene::default()
+    })
+}
+
+/// Positions on a lattice filling a box of the given volume: in a periodic box the lattice
+/// tiles it; in a walled box it is stretched to keep `radius_max` from the walls.
+fn lattice_positions<const D: usize>(
+    cfg: &GasConfig,
+    lattice: Lattice,
+    volume: f64,
+) -> Result<(Vector<D>, Vec<Vector<D>>), GenerateError> {
+    let sites = lattice.sites::<D>(cfg.n)?;
+    let spacing = (volume / sites.shape.iter().product::<f64>()).powf(1.0 / D as f64);
+    let size = Vector(sites.shape.map(|s| s * spacing));
+    let need = 2.0 * cfg.radius_max * (1.0 + 1e-9);
+    let too_dense = || {
+        bad(
+            "packing",
+            "too dense for this lattice and these radii (neighbours would overlap)",
+        )
+    };
+    if cfg.periodic {
+        if sites.nearest * spacing < need {
+            return too_dense();
+        }
+        let pos = sites
+            .points
+            .iter()
+            .map(|p| Vector(std::array::from_fn(|d| p[d] * size[d])))
+            .collect();
+        return Ok((size, pos));
+    }
+    let margin = cfg.radius_max * (1.0 + 1e-9);
+    let (mut lo, mut hi) = ([f64::INFINITY; D], [f64::NEG_INFINITY; D]);
+    for p in &sites.points {
+        for d in 0..D {
+            lo[d] = lo[d].min(p[d]);
+            hi[d] = hi[d].max(p[d]);
+        }
+    }
+    // Fractional extent of the sites along each axis mapped onto [margin, L − margin]; the
+    // nearest distance shrinks at most by the smallest of these stretches.
+    let mut stretch = f64::INFINITY;
+    let mut scale = [0.0; D];
+    for d in 0..D {
+        let span = hi[d] - lo[d];
+        scale[d] = if span > 0.0 {
+            (size[d] - 2.0 * margin) / span
+        } else {
+            0.0
+        };
+        if span > 0.0 {
+            stretch = stretch.min(scale[d] / size[d]);
+        }
+    }
+    if size.0.iter().any(|&s| s <= 2.0 * margin)
+        || (stretch.is_finite() && sites.nearest * spacing * stretch < need)
+    {
+        return too_dense();
+    }
+    let pos = sites
+        .points
+        .iter()
+        .map(|p| {
+            Vector(std::array::from_fn(|d| {
+                if scale[d] > 0.0 {
+                    margin + (p[d] - lo[d]) * scale[d]
+                } else {
+                    0.5 * size[d]
+                }
+            }))
+        })
+        .collect();
+    Ok((size, pos))
+}
+
+/// Random sequential placement in a cubic box of the given volume.
+fn random_positions<const D: usize>(
+    cfg: &GasConfig,
+    radii: &[f64],
+    volume: f64,
+    rng: &mut ChaCha8Rng,
+) -> Result<(Vector<D>, Vec<Vector<D>>), GenerateError> {
+    let side = volume
         .powf(1.0 / D as f64)
         .max(2.0 * cfg.radius_max * 1.000001);
     let size = Vector::<D>::splat(side);
     // Larger bodies first: they are the hardest to fit.
     let mut order: Vec<usize> = (0..cfg.n).collect();
     order.sort_by(|&a, &b| radii[b].total_cmp(&radii[a]));
-    let cell = 2.0 * cfg.radius_max;
-    let key = |p: Vector<D>| p.0.map(|x| (x / cell).floor() as i64);
+    // Cells at least 2·r_max wide; in a periodic box they tile it and keys wrap around.
+    let cells = ((side / (2.0 * cfg.radius_max)).floor() as i64).max(1);
+    let cell = if cfg.periodic {
+        side / cells as f64
+    } else {
+        2.0 * cfg.radius_max
+    };
+    let wrap = |k: i64| if cfg.periodic { k.rem_euclid(cells) } else { k };
+    let key = |p: Vector<D>| p.0.map(|x| wrap((x / cell).floor() as i64));
     let mut grid: HashMap<[i64; D], Vec<usize>> = HashMap::new();
     let mut pos = vec![Vector::<D>::ZERO; cfg.n];
     let mut attempts: u64 = 0;
@@ -89,8 +240,12 @@ pub fn gas<const D: usize>(cfg: &GasConfig) -> Result<Scene<D>, GenerateError> {
             }
             let mut p = Vector::<D>::ZERO;
             for k in 0..D {
-                // A hair of clearance keeps rounding from putting a body into a wall.
-                p[k] = rng.random_range(r * (1.0 + 1e-9)..=side - r * (1.0 + 1e-9));
+                p[k] = if cfg.periodic {
+                    rng.random_range(0.0..side)
+                } else {
+                    // A hair of clearance keeps rounding from putting a body into a wall.
+                    rng.random_range(r * (1.0 + 1e-9)..=side - r * (1.0 + 1e-9))
+                };
             }
             let k = key(p);
             let mut free = true;
@@ -98,13 +253,18 @@ pub fn gas<const D: usize>(cfg: &GasConfig) -> Result<Scene<D>, GenerateError> {
                 let mut nk = k;
                 let mut c = code;
                 for slot in nk.iter_mut() {
-                    *slot += (c % 3) as i64 - 1;
+                    *slot = wrap(*slot + (c % 3) as i64 - 1);
                     c /= 3;
                 }
                 if let Some(list) = grid.get(&nk) {
                     for &j in list {
                         let sum = (r + radii[j]) * (1.0 + 1e-9);
-                        if (pos[j] - p).norm_sq() < sum * sum {
+                        let dp = if cfg.periodic {
+                            crate::periodic::min_image(pos[j] - p, &size)
+                        } else {
+                            pos[j] - p
+                        };
+                        if dp.norm_sq() < sum * sum {
                             free = false;
                             break 'scan;
                         }
@@ -118,18 +278,45 @@ pub fn gas<const D: usize>(cfg: &GasConfig) -> Result<Scene<D>, GenerateError> {
             }
         }
     }
-    let bodies = (0..cfg.n)
-        .map(|i| {
-            let speed = rng.random_range(cfg.speed_min..=cfg.speed_max);
-            let dir: Vector<D> = random_direction(&mut rng);
-            BodySpec::new(pos[i], dir * speed, radii[i])
+    Ok((size, pos))
+}
+
+/// Maxwell–Boltzmann velocities at temperature `kt` for unit-density bodies of the given
+/// radii, with zero total momentum and kinetic temperature exactly `kt` (up to rounding).
+fn maxwell_velocities<const D: usize>(
+    radii: &[f64],
+    kt: f64,
+    rng: &mut ChaCha8Rng,
+) -> Vec<Vector<D>> {
+    let mass: Vec<f64> = radii.iter().map(|&r| ball_volume::<D>(r)).collect();
+    let mut vel: Vec<Vector<D>> = mass
+        .iter()
+        .map(|&m| {
+            let s = (kt / m).sqrt();
+            Vector(std::array::from_fn(|_| {
+                rng.sample::<f64, _>(StandardNormal) * s
+            }))
         })
         .collect();
-    Ok(Scene {
-        bodies,
-        walls: box_walls(size),
-        ..Scene::default()
-    })
+    let total: f64 = mass.iter().sum();
+    let momentum = vel
+        .iter()
+        .zip(&mass)
+        .fold(Vector::<D>::ZERO, |acc, (v, &m)| acc + *v * m);
+    let drift = momentum * (1.0 / total.max(f64::MIN_POSITIVE));
+    let mut kinetic = 0.0;
+    for (v, &m) in vel.iter_mut().zip(&mass) {
+        *v -= drift;
+        kinetic += 0.5 * m * v.norm_sq();
+    }
+    let now = 2.0 * kinetic / (D as f64 * radii.len().max(1) as f64);
+    if now > 0.0 {
+        let scale = (kt / now).sqrt();
+        for v in &mut vel {
+            *v = *v * scale;
+        }
+    }
+    vel
 }
 
 #[cfg(test)]
@@ -184,5 +371,83 @@ mod tests {
             }),
             Err(GenerateError::Jammed { .. })
         ));
+    }
+}
+
+#[cfg(test)]
+mod lattice_tests {
+    use super::*;
+    use crate::world::World;
+
+    #[test]
+    fn dense_periodic_lattices_with_maxwell_velocities() {
+        let cfg = GasConfig {
+            n: 10_000,
+            packing: 0.5,
+            periodic: true,
+            lattice: Some(Lattice::Densest),
+            temperature: Some(1.0),
+            ..GasConfig::default()
+        };
+        let s: Scene<2> = gas(&cfg).unwrap();
+        s.validate().unwrap();
+        assert_eq!(s.bodies.len(), 10_000);
+        let size = s.periodic.unwrap();
+        let covered: f64 = s.bodies.iter().map(|b| ball_volume::<2>(b.radius)).sum();
+        assert!((covered / (size[0] * size[1]) - 0.5).abs() < 1e-12);
+        let w = World::from_scene(&s).unwrap();
+        assert!(w.momentum().norm() < 1e-9);
+        assert!((crate::observables::temperature(&w) - 1.0).abs() < 1e-12);
+        let cfg3 = GasConfig {
+            n: 10_976,
+            packing: 0.45,
+            ..cfg.clone()
+        };
+        let s: Scene<3> = gas(&cfg3).unwrap();
+        s.validate().unwrap();
+        let size = s.periodic.unwrap();
+        assert_eq!(size[0], size[1]);
+        let covered: f64 = s.bodies.iter().map(|b| ball_volume::<3>(b.radius)).sum();
+        assert!((covered / (size[0] * size[1] * size[2]) - 0.45).abs() < 1e-12);
+        // Beyond close packing the lattice refuses.
+        assert!(gas::<3>(&GasConfig {
+            n: 500,
+            packing: 0.75,
+            ..cfg3
+        })
+        .is_err());
+    }
+
+    #[test]
+    fn walled_and_polydisperse_lattices() {
+        for lattice in [Lattice::Hexagonal, Lattice::Square] {
+            let s: Scene<2> = gas(&GasConfig {
+                n: 500,
+                packing: 0.5,
+                radius_min: 0.4,
+                radius_max: 0.5,
+                lattice: Some(lattice),
+                ..GasConfig::default()
+            })
+            .unwrap();
+            s.validate().unwrap();
+            assert_eq!(s.walls.len(), 4);
+        }
+        for lattice in [Lattice::Fcc, Lattice::Cubic] {
+            let s: Scene<3> = gas(&GasConfig {
+                n: 300,
+                packing: 0.3,
+                lattice: Some(lattice),
+                temperature: Some(2.0),
+                ..GasConfig::default()
+            })
+            .unwrap();
+            s.validate().unwrap();
+        }
+        assert!(gas::<2>(&GasConfig {
+            lattice: Some(Lattice::Fcc),
+            ..GasConfig::default()
+        })
+        .is_err());
     }
 }

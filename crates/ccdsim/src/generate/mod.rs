@@ -1,11 +1,14 @@
-//! Scene generators: random gases, the billiard rack and the thesis benchmark scene.
+//! Scene generators: gases (random or lattice starts, walled or periodic boxes), the
+//! billiard rack and the thesis benchmark scene.
 
 mod gas;
+mod lattice;
 mod place;
 mod rack;
 mod thesis;
 
 pub use gas::{gas, GasConfig};
+pub use lattice::Lattice;
 pub use rack::{rack, RackConfig};
 pub use thesis::{thesis, ThesisConfig, THESIS_DURATION, THESIS_TABLE_5_1, THESIS_TABLE_5_2};
 

@@ -26,6 +26,9 @@ struct Header<'a, const D: usize> {
     walls: &'a [Wall<D>],
     start_time: f64,
     restitution: f64,
+    /// Sides of the periodic box, for periodic scenes only.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    periodic: Option<Vector<D>>,
 }
 
 #[derive(Serialize)]
@@ -73,6 +76,7 @@ pub fn export_jsonl<R: Read, W: Write, const D: usize>(
         walls: &scene.walls,
         start_time: scene.start_time,
         restitution: scene.settings.restitution,
+        periodic: scene.periodic,
     };
     serde_json::to_writer(&mut *out, &header).map_err(std::io::Error::from)?;
     out.write_all(b"\n")?;

@@ -255,7 +255,13 @@ impl<const D: usize> Finder<D> for BvhFinder<D> {
         "bvh"
     }
 
-    fn init(&mut self, _world: &World<D>) -> Result<(), FinderError> {
+    fn init(&mut self, world: &World<D>) -> Result<(), FinderError> {
+        if world.periodic().is_some() {
+            return Err(FinderError::Unsupported {
+                finder: "bvh",
+                why: "periodic boundaries".into(),
+            });
+        }
         self.delta = self.initial_dt;
         self.tree = SweptTree::default();
         self.walls.clear();

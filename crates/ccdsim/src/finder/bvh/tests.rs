@@ -29,6 +29,7 @@ fn gas_scene<const D: usize>(n: usize, packing: f64, seed: u64) -> Scene<D> {
             speed_min: 0.0,
             speed_max: 2.0,
             seed,
+            ..GasConfig::default()
         });
         match made {
             Ok(scene) => return scene,

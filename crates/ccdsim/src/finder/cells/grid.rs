@@ -1,0 +1,821 @@
+//! The uniform grid of the `cells` finder: cell geometry, one linked list of bodies per cell,
+//! the walls each cell can reach, and cell-crossing times.
+//!
+//! Cells are at least the largest contact distance (times `1 + MARGIN`) wide along every axis.
+//! In an open (non-periodic) world the grid spans the bounding box of the bodies and walls at
+//! `init`, and its outermost cells extend to infinity, so every point of space is in exactly one
+//! cell and two cells that are not neighbours are separated by at least one whole cell. In a
+//! periodic world the grid tiles the box `[0, L)` exactly; an axis with fewer than three cells
+//! becomes a single cell whose three images (−L, 0, +L) are all neighbours.
+
+use super::queue::NONE;
+use crate::geom::Vector;
+use crate::narrow::Motion;
+use crate::scene::Wall;
+
+/// Relative margin by which cells are wider than the largest contact distance, and by which
+/// wall reach exceeds the largest radius: it absorbs the rounding of crossing times and
+/// positions (see the module docs of `cells`).
+pub(super) const MARGIN: f64 = 1e-6;
+
+/// Image code of the zero shift: digit 1 (no shift) on every axis, base 3.
+const fn zero_image(d: usize) -> u8 {
+    ((3usize.pow(d as u32) - 1) / 2) as u8
+}
+
+/// Along one axis: up to three (coordinate, shift) choices.
+#[derive(Clone, Copy)]
+struct AxisChoices {
+    coord: [usize; 3],
+    shift: [f64; 3],
+    len: usize,
+}
+
+impl AxisChoices {
+    fn push(&mut self, coord: usize, shift: f64) {
+        self.coord[self.len] = coord;
+        self.shift[self.len] = shift;
+        self.len += 1;
+    }
+}
+
+/// Geometry and contents of the grid.
+#[derive(Clone, Debug)]
+pub(super) struct Grid<const D: usize> {
+    /// Lower corner of cell (0, …, 0) (0 in a periodic world).
+    origin: [f64; D],
+    /// Cell widths.
+    width: [f64; D],
+    /// Cells per axis.
+    dims: [usize; D],
+    /// Linear index strides (axis 0 fastest).
+    stride: [usize; D],
+    /// Box sides of a periodic world.
+    period: Option<[f64; D]>,
+    /// Linear offsets of the 3^D neighbours of an interior cell.
+    interior: Vec<isize>,
+    /// Linear offsets, from an interior cell, of the layer entered by a move along axis `a`
+    /// in direction `up`: entry `2a + up`.
+    layers: Vec<Vec<isize>>,
+    /// First body of each cell, or `NONE`.
+    head: Vec<u32>,
+    /// Next body in the same cell, or `NONE`.
+    next: Vec<u32>,
+    /// Cell coordinates of each body.
+    coords: Vec<[u32; D]>,
+    /// Walls within reach of cell `c`: `wall_ids[wall_start[c]..wall_start[c + 1]]` (empty
+    /// vectors when the world has no walls).
+    wall_start: Vec<u32>,
+    wall_ids: Vec<u32>,
+}
+
+impl<const D: usize> Grid<D> {
+    /// Image code of the zero shift.
+    pub const ZERO_IMAGE: u8 = zero_image(D);
+
+    /// A grid for `n` bodies whose cells are at least `min_width` wide, spanning `lo..hi` (open
+    /// worlds) or the periodic box `period`, with at most about `4n + 64` cells.
+    pub fn new(
+        n: usize,
+        min_width: f64,
+        lo: Vector<D>,
+        hi: Vector<D>,
+        period: Option<Vector<D>>,
+    ) -> Self {
+        let cap = 4.0 * n as f64 + 64.0;
+        let mut w = min_width;
+        let (origin, extent) = match period {
+            Some(p) => ([0.0; D], p.0),
+            None => (lo.0, (hi - lo).0),
+        };
+        let mut dims = [1usize; D];
+        loop {
+            let mut total = 1.0;
+            for d in 0..D {
+                let k = (extent[d] / w).floor();
+                dims[d] = if k.is_finite() && k >= 1.0 {
+                    k as usize
+                } else {
+                    1
+                };
+                // A periodic axis needs three distinct neighbour cells; with fewer it is one
+                // cell whose three images are searched.
+                if period.is_some() && dims[d] < 3 {
+                    dims[d] = 1;
+                }
+                total *= dims[d] as f64;
+            }
+            if total <= cap {
+                break;
+            }
+            w *= (total / cap).powf(1.0 / D as f64).max(1.0 + 1e-9);
+        }
+        let mut width = [0.0; D];
+        let mut stride = [0usize; D];
+        let mut s = 1usize;
+        for d in 0..D {
+            width[d] = if dims[d] > 1 {
+                extent[d] / dims[d] as f64
+            } else {
+                extent[d].max(min_width)
+            };
+            stride[d] = s;
+            s *= dims[d];
+        }
+        let mut interior = Vec::with_capacity(3usize.pow(D as u32));
+        for code in 0..3usize.pow(D as u32) {
+            let mut c = code;
+            let mut off = 0isize;
+            for st in stride {
+                off += ((c % 3) as isize - 1) * st as isize;
+                c /= 3;
+            }
+            interior.push(off);
+        }
+        let layers = (0..2 * D)
+            .map(|code| {
+                let (axis, up) = (code / 2, code % 2 == 1);
+                let mut offs = Vec::new();
+                for other in 0..3usize.pow(D as u32 - 1) {
+                    let mut c = other;
+                    let mut off = 0isize;
+                    for (d, &st) in stride.iter().enumerate() {
+                        let step = if d == axis {
+                            if up {
+                                1
+                            } else {
+                                -1
+                            }
+                        } else {
+                            let s = (c % 3) as isize - 1;
+                            c /= 3;
+                            s
+                        };
+                        off += step * st as isize;
+                    }
+                    offs.push(off);
+                }
+                offs
+            })
+            .collect();
+        Grid {
+            layers,
+            origin,
+            width,
+            dims,
+            stride,
+            period: period.map(|p| p.0),
+            interior,
+            head: vec![NONE; s],
+            next: vec![NONE; n],
+            coords: vec![[u32::MAX; D]; n],
+            wall_start: Vec::new(),
+            wall_ids: Vec::new(),
+        }
+    }
+
+    /// Number of cells.
+    pub fn cell_count(&self) -> usize {
+        self.head.len()
+    }
+
+    /// Cells per axis.
+    pub fn dims(&self) -> [usize; D] {
+        self.dims
+    }
+
+    /// Bytes held (payload).
+    pub fn bytes(&self) -> usize {
+        4 * (self.head.capacity()
+            + self.next.capacity()
+            + D * self.coords.capacity()
+            + self.wall_start.capacity()
+            + self.wall_ids.capacity())
+            + std::mem::size_of::<isize>() * (self.interior.capacity() + 3usize.pow(D as u32))
+    }
+
+    /// Cell coordinates of the point `p` (outer cells of open worlds extend to infinity;
+    /// periodic coordinates are clamped into the box, since stored positions are in it up to
+    /// rounding).
+    pub fn coords_of_point(&self, p: &Vector<D>) -> [usize; D] {
+        let mut k = [0usize; D];
+        for d in 0..D {
+            let x = ((p[d] - self.origin[d]) / self.width[d]).floor();
+            k[d] = if x >= (self.dims[d] - 1) as f64 {
+                self.dims[d] - 1
+            } else if x >= 0.0 {
+                x as usize
+            } else {
+                0
+            };
+        }
+        k
+    }
+
+    /// Linear index of cell coordinates.
+    #[inline]
+    pub fn linear(&self, k: &[usize; D]) -> u32 {
+        k.iter()
+            .zip(&self.stride)
+            .map(|(k, s)| k * s)
+            .sum::<usize>() as u32
+    }
+
+    /// Cell coordinates of a linear index.
+    #[inline]
+    pub fn coords(&self, c: u32) -> [usize; D] {
+        let c = c as usize;
+        std::array::from_fn(|d| (c / self.stride[d]) % self.dims[d])
+    }
+
+    /// Linear index of the cell body `i` is filed in.
+    #[inline]
+    pub fn cell_of(&self, i: usize) -> u32 {
+        self.linear_u32(&self.coords[i])
+    }
+
+    /// Cell coordinates of body `i`.
+    #[inline]
+    pub fn coords_of(&self, i: usize) -> [u32; D] {
+        self.coords[i]
+    }
+
+    #[inline]
+    fn linear_u32(&self, k: &[u32; D]) -> u32 {
+        k.iter()
+            .zip(&self.stride)
+            .map(|(&k, s)| k as usize * s)
+            .sum::<usize>() as u32
+    }
+
+    /// Files body `i` (not filed anywhere) in the cell of coordinates `k`.
+    pub fn insert(&mut self, i: usize, k: [usize; D]) {
+        let k = k.map(|x| x as u32);
+        let c = self.linear_u32(&k) as usize;
+        self.next[i] = self.head[c];
+        self.head[c] = i as u32;
+        self.coords[i] = k;
+    }
+
+    /// Takes body `i` out of its cell.
+    pub fn remove(&mut self, i: usize) {
+        let c = self.cell_of(i) as usize;
+        let mut at = self.head[c];
+        if at == i as u32 {
+            self.head[c] = self.next[i];
+        } else {
+            // Cells hold a handful of bodies: a scan is cheaper than a second link per body.
+            while self.next[at as usize] != i as u32 {
+                at = self.next[at as usize];
+                debug_assert!(at != NONE, "body {i} not in its cell {c}");
+            }
+            self.next[at as usize] = self.next[i];
+        }
+        self.next[i] = NONE;
+        self.coords[i] = [u32::MAX; D];
+    }
+
+    /// Moves body `i` to the cell of coordinates `k`.
+    pub fn relocate(&mut self, i: usize, k: [usize; D]) {
+        if self.coords[i] != k.map(|x| x as u32) {
+            self.remove(i);
+            self.insert(i, k);
+        }
+    }
+
+    /// Moves body `i` one cell along `axis` (`up` or down); that cell must exist without
+    /// wrapping around a periodic box.
+    pub fn step(&mut self, i: usize, axis: usize, up: bool) {
+        let mut k = self.coords[i].map(|x| x as usize);
+        if up {
+            k[axis] += 1;
+        } else {
+            k[axis] -= 1;
+        }
+        self.remove(i);
+        self.insert(i, k);
+    }
+
+    /// First body of cell `c`, or `NONE`.
+    #[inline]
+    pub fn first(&self, c: u32) -> u32 {
+        self.head[c as usize]
+    }
+
+    /// Body after `i` in its cell, or `NONE`.
+    #[inline]
+    pub fn after(&self, i: u32) -> u32 {
+        self.next[i as usize]
+    }
+
+    /// Walls within reach of cell `c`.
+    #[inline]
+    pub fn walls_of(&self, c: u32) -> &[u32] {
+        if self.wall_start.is_empty() {
+            return &[];
+        }
+        let c = c as usize;
+        &self.wall_ids[self.wall_start[c] as usize..self.wall_start[c + 1] as usize]
+    }
+
+    /// The choices along axis `d` around coordinate `k`: the cell before, the cell itself and
+    /// the cell after, as they exist, with their periodic shifts.
+    fn axis_choices(&self, d: usize, k: usize) -> AxisChoices {
+        let mut a = AxisChoices {
+            coord: [0; 3],
+            shift: [0.0; 3],
+            len: 0,
+        };
+        let n = self.dims[d];
+        match self.period {
+            Some(p) if n == 1 => {
+                a.push(0, -p[d]);
+                a.push(0, 0.0);
+                a.push(0, p[d]);
+            }
+            Some(p) => {
+                if k == 0 {
+                    a.push(n - 1, -p[d]);
+                } else {
+                    a.push(k - 1, 0.0);
+                }
+                a.push(k, 0.0);
+                if k + 1 == n {
+                    a.push(0, p[d]);
+                } else {
+                    a.push(k + 1, 0.0);
+                }
+            }
+            None => {
+                if k > 0 {
+                    a.push(k - 1, 0.0);
+                }
+                a.push(k, 0.0);
+                if k + 1 < n {
+                    a.push(k + 1, 0.0);
+                }
+            }
+        }
+        a
+    }
+
+    /// The one layer entered along axis `axis` in direction `up` from coordinate `k` (the cell
+    /// beyond `k`), if it exists.
+    fn layer_choice(&self, axis: usize, k: usize, up: bool) -> AxisChoices {
+        let mut a = AxisChoices {
+            coord: [0; 3],
+            shift: [0.0; 3],
+            len: 0,
+        };
+        let n = self.dims[axis];
+        let p = self.period.map_or(0.0, |p| p[axis]);
+        if up {
+            if k + 1 < n {
+                a.push(k + 1, 0.0);
+            } else if self.period.is_some() {
+                a.push(0, p);
+            }
+        } else if k > 0 {
+            a.push(k - 1, 0.0);
+        } else if self.period.is_some() {
+            a.push(n - 1, -p);
+        }
+        a
+    }
+
+    /// Calls `f(cell, shift, image)` for every combination of the axes' choices; `image` is
+    /// the shift's code, one base-3 digit per axis (0: −L, 1: none, 2: +L).
+    #[inline]
+    fn visit_product(&self, axes: &[AxisChoices; D], f: &mut impl FnMut(u32, &Vector<D>, u8)) {
+        if axes.iter().any(|a| a.len == 0) {
+            return;
+        }
+        let mut idx = [0usize; D];
+        loop {
+            let mut c = 0;
+            let mut image = 0u8;
+            let mut shift = Vector::<D>::ZERO;
+            let mut pow = 1u8;
+            for d in 0..D {
+                c += axes[d].coord[idx[d]] * self.stride[d];
+                let s = axes[d].shift[idx[d]];
+                shift[d] = s;
+                let digit = if s < 0.0 {
+                    0
+                } else if s > 0.0 {
+                    2
+                } else {
+                    1
+                };
+                image += digit * pow;
+                pow *= 3;
+            }
+            f(c as u32, &shift, image);
+            let mut d = 0;
+            loop {
+                idx[d] += 1;
+                if idx[d] < axes[d].len {
+                    break;
+                }
+                idx[d] = 0;
+                d += 1;
+                if d == D {
+                    return;
+                }
+            }
+        }
+    }
+
+    /// True for a cell with a neighbour on both sides along every axis, without wrapping.
+    #[inline]
+    fn is_interior(&self, k: &[u32; D]) -> bool {
+        (0..D).all(|d| k[d] >= 1 && k[d] as usize + 2 <= self.dims[d])
+    }
+
+    /// Calls `f(cell, shift, image)` for every cell whose bodies can touch a body filed at
+    /// coordinates `k` before it leaves its cell: the 3^D block around it (fewer at the border
+    /// of an open world), with the image shift to add to their displacement and its code.
+    #[inline]
+    pub fn visit_neighbours(&self, k: &[u32; D], mut f: impl FnMut(u32, &Vector<D>, u8)) {
+        if self.is_interior(k) {
+            let c = self.linear_u32(k) as isize;
+            let zero = Vector::ZERO;
+            for &off in &self.interior {
+                f((c + off) as u32, &zero, Self::ZERO_IMAGE);
+            }
+            return;
+        }
+        let axes: [AxisChoices; D] = std::array::from_fn(|d| self.axis_choices(d, k[d] as usize));
+        self.visit_product(&axes, &mut f);
+    }
+
+    /// Calls `f(cell, shift, image)` for the cells that became neighbours of a body that
+    /// moved into the cell of coordinates `k` along `axis` in direction `up`: the layer of
+    /// the block beyond it.
+    pub fn visit_entered_layer(
+        &self,
+        k: &[u32; D],
+        axis: usize,
+        up: bool,
+        mut f: impl FnMut(u32, &Vector<D>, u8),
+    ) {
+        if self.is_interior(k) {
+            let c = self.linear_u32(k) as isize;
+            let zero = Vector::ZERO;
+            for &off in &self.layers[2 * axis + usize::from(up)] {
+                f((c + off) as u32, &zero, Self::ZERO_IMAGE);
+            }
+            return;
+        }
+        let axes: [AxisChoices; D] = std::array::from_fn(|d| {
+            if d == axis {
+                self.layer_choice(d, k[d] as usize, up)
+            } else {
+                self.axis_choices(d, k[d] as usize)
+            }
+        });
+        self.visit_product(&axes, &mut f);
+    }
+
+    /// The shift of image code `image` (see [`Grid::visit_neighbours`]).
+    pub fn shift_of(&self, image: u8) -> Vector<D> {
+        let mut shift = Vector::ZERO;
+        let mut code = image;
+        if let Some(p) = self.period {
+            for d in 0..D {
+                shift[d] = match code % 3 {
+                    0 => -p[d],
+                    2 => p[d],
+                    _ => 0.0,
+                };
+                code /= 3;
+            }
+        }
+        shift
+    }
+
+    /// The next time a body with motion `m` filed at coordinates `k` leaves its cell through a face
+    /// between two cells, with the face's code `2·axis + up`: faces of the outer cells of an
+    /// open world towards infinity, and the faces of a periodic box (box exits are real
+    /// events) are not crossings. Ties go to the lower axis.
+    #[inline]
+    pub fn next_crossing(&self, k: &[u32; D], m: &Motion<D>) -> Option<(f64, u8)> {
+        let mut best: Option<(f64, u8)> = None;
+        for (d, &kd) in k.iter().enumerate() {
+            let kd = kd as usize;
+            let v = m.vel[d];
+            let bound = if v > 0.0 && kd + 1 < self.dims[d] {
+                self.origin[d] + (kd + 1) as f64 * self.width[d]
+            } else if v < 0.0 && kd > 0 {
+                self.origin[d] + kd as f64 * self.width[d]
+            } else {
+                continue;
+            };
+            let t = m.time + (bound - m.pos[d]) / v;
+            if best.is_none_or(|(bt, _)| t < bt) {
+                best = Some((t, (2 * d + usize::from(v > 0.0)) as u8));
+            }
+        }
+        best
+    }
+
+    /// The closed box of cell coordinates `k` (outer cells of open worlds are unbounded).
+    pub fn cell_box(&self, k: &[usize; D]) -> (Vector<D>, Vector<D>) {
+        let mut lo = Vector::<D>::ZERO;
+        let mut hi = Vector::<D>::ZERO;
+        for d in 0..D {
+            let open = self.period.is_none();
+            lo[d] = if open && k[d] == 0 {
+                f64::NEG_INFINITY
+            } else {
+                self.origin[d] + k[d] as f64 * self.width[d]
+            };
+            hi[d] = if open && k[d] + 1 == self.dims[d] {
+                f64::INFINITY
+            } else {
+                self.origin[d] + (k[d] + 1) as f64 * self.width[d]
+            };
+        }
+        (lo, hi)
+    }
+
+    /// The box of cell coordinates `k` as laid out, without extending outer cells (for
+    /// drawing).
+    pub fn nominal_box(&self, k: &[usize; D]) -> (Vector<D>, Vector<D>) {
+        let mut lo = Vector::<D>::ZERO;
+        let mut hi = Vector::<D>::ZERO;
+        for d in 0..D {
+            lo[d] = self.origin[d] + k[d] as f64 * self.width[d];
+            hi[d] = lo[d] + self.width[d];
+        }
+        (lo, hi)
+    }
+
+    /// Lists, for every cell, the walls that come within `reach` of it.
+    pub fn file_walls(&mut self, walls: &[Wall<D>], reach: f64) {
+        self.wall_start.clear();
+        self.wall_ids.clear();
+        if walls.is_empty() {
+            return;
+        }
+        let mut pairs: Vec<(u32, u32)> = Vec::new();
+        let all = [0usize; D];
+        let last: [usize; D] = std::array::from_fn(|d| self.dims[d] - 1);
+        for (w, wall) in walls.iter().enumerate() {
+            let (from, to) = match *wall {
+                Wall::Segment { a, b } => {
+                    let e = Vector::splat(reach);
+                    (
+                        self.coords_of_point(&(a.min(b) - e)),
+                        self.coords_of_point(&(a.max(b) + e)),
+                    )
+                }
+                Wall::Plane { .. } => (all, last),
+            };
+            let mut k = from;
+            loop {
+                let (lo, hi) = self.cell_box(&k);
+                let near = match *wall {
+                    Wall::Segment { a, b } => {
+                        segment_box_distance_sq(a, b, lo, hi) <= reach * reach
+                    }
+                    Wall::Plane { point, normal } => {
+                        plane_box_min_distance(point, normal, lo, hi) <= reach
+                    }
+                };
+                if near {
+                    pairs.push((self.linear(&k), w as u32));
+                }
+                let mut d = 0;
+                loop {
+                    if k[d] < to[d] {
+                        k[d] += 1;
+                        break;
+                    }
+                    k[d] = from[d];
+                    d += 1;
+                    if d == D {
+                        break;
+                    }
+                }
+                if d == D {
+                    break;
+                }
+            }
+        }
+        pairs.sort_unstable();
+        self.wall_start = vec![0; self.cell_count() + 1];
+        for &(c, _) in &pairs {
+            self.wall_start[c as usize + 1] += 1;
+        }
+        for c in 0..self.cell_count() {
+            self.wall_start[c + 1] += self.wall_start[c];
+        }
+        self.wall_ids = pairs.into_iter().map(|(_, w)| w).collect();
+    }
+
+    /// Checks the lists: every body filed once, in the cell recorded for it.
+    pub fn validate(&self) -> Result<(), String> {
+        let mut seen = vec![false; self.coords.len()];
+        for c in 0..self.head.len() {
+            let mut at = self.head[c];
+            while at != NONE {
+                let i = at as usize;
+                if seen[i] {
+                    return Err(format!("body {i} filed twice"));
+                }
+                seen[i] = true;
+                if self.cell_of(i) != c as u32 {
+                    return Err(format!(
+                        "body {i} in cell {c} but recorded in {:?}",
+                        self.coords[i]
+                    ));
+                }
+                at = self.next[i];
+            }
+        }
+        match seen.iter().position(|s| !s) {
+            Some(i) => Err(format!("body {i} is in no cell")),
+            None => Ok(()),
+        }
+    }
+}
+
+/// Squared distance between the segment `[a, b]` and the closed box `[lo, hi]` (whose bounds
+/// may be infinite). The squared distance is a convex piecewise quadratic function of the
+/// segment parameter, with breaks where a coordinate crosses a box bound; each piece is
+/// minimised exactly.
+pub(super) fn segment_box_distance_sq<const D: usize>(
+    a: Vector<D>,
+    b: Vector<D>,
+    lo: Vector<D>,
+    hi: Vector<D>,
+) -> f64 {
+    let u = b - a;
+    let mut breaks = [0.0f64; 8];
+    let mut nb = 0;
+    breaks[nb] = 0.0;
+    nb += 1;
+    breaks[nb] = 1.0;
+    nb += 1;
+    for d in 0..D {
+        if u[d] != 0.0 {
+            for bound in [lo[d], hi[d]] {
+                if bound.is_finite() {
+                    let s = (bound - a[d]) / u[d];
+                    if s > 0.0 && s < 1.0 && nb < breaks.len() {
+                        breaks[nb] = s;
+                        nb += 1;
+                    }
+                }
+            }
+        }
+    }
+    let breaks = &mut breaks[..nb];
+    breaks.sort_unstable_by(f64::total_cmp);
+    let dist_sq = |s: f64| {
+        let mut acc = 0.0;
+        for d in 0..D {
+            let x = a[d] + u[d] * s;
+            let e = if x < lo[d] {
+                lo[d] - x
+            } else if x > hi[d] {
+                x - hi[d]
+            } else {
+                0.0
+            };
+            acc += e * e;
+        }
+        acc
+    };
+    let mut best = f64::INFINITY;
+    for w in breaks.windows(2) {
+        let (s0, s1) = (w[0], w[1]);
+        best = best.min(dist_sq(s0)).min(dist_sq(s1));
+        // Inside the piece each axis is below, inside or above the box throughout: the
+        // distance is a quadratic q(s) = Σ (a_d + u_d s − bound_d)², minimal at its vertex.
+        let mid = 0.5 * (s0 + s1);
+        let (mut num, mut den) = (0.0, 0.0);
+        for d in 0..D {
+            let x = a[d] + u[d] * mid;
+            let bound = if x < lo[d] {
+                lo[d]
+            } else if x > hi[d] {
+                hi[d]
+            } else {
+                continue;
+            };
+            num += (bound - a[d]) * u[d];
+            den += u[d] * u[d];
+        }
+        if den > 0.0 {
+            let s = num / den;
+            if s > s0 && s < s1 {
+                best = best.min(dist_sq(s));
+            }
+        }
+    }
+    best
+}
+
+/// Smallest signed distance from the plane through `point` with normal `normal` to a point of
+/// the closed box `[lo, hi]` (negative behind the plane; −∞ for unbounded boxes reaching
+/// behind it).
+pub(super) fn plane_box_min_distance<const D: usize>(
+    point: Vector<D>,
+    normal: Vector<D>,
+    lo: Vector<D>,
+    hi: Vector<D>,
+) -> f64 {
+    let mut s = 0.0;
+    for d in 0..D {
+        let n = normal[d];
+        if n > 0.0 {
+            s += (lo[d] - point[d]) * n;
+        } else if n < 0.0 {
+            s += (hi[d] - point[d]) * n;
+        }
+    }
+    s / normal.norm()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn segment_box_distances() {
+        let lo = Vector([0.0, 0.0]);
+        let hi = Vector([1.0, 1.0]);
+        // Crossing the box.
+        let d = segment_box_distance_sq(Vector([-1.0, 0.5]), Vector([2.0, 0.5]), lo, hi);
+        assert_eq!(d, 0.0);
+        // Parallel above it.
+        let d = segment_box_distance_sq(Vector([-1.0, 3.0]), Vector([2.0, 3.0]), lo, hi);
+        assert!((d - 4.0).abs() < 1e-12);
+        // Diagonal past the corner (2,2)-(1,1) direction: closest point to corner (1,1).
+        let d = segment_box_distance_sq(Vector([3.0, 1.0]), Vector([1.0, 3.0]), lo, hi);
+        assert!((d - 2.0).abs() < 1e-12, "{d}");
+        // Unbounded box.
+        let d = segment_box_distance_sq(
+            Vector([5.0, 5.0]),
+            Vector([6.0, 9.0]),
+            Vector([f64::NEG_INFINITY, 0.0]),
+            Vector([1.0, f64::INFINITY]),
+        );
+        assert!((d - 16.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn plane_box_distances() {
+        let d = plane_box_min_distance(
+            Vector([0.0, 0.0, 0.0]),
+            Vector([0.0, 0.0, 2.0]),
+            Vector([0.0, 0.0, 1.0]),
+            Vector([1.0, 1.0, 3.0]),
+        );
+        assert_eq!(d, 1.0);
+        let d = plane_box_min_distance(
+            Vector([0.0, 0.0, 0.0]),
+            Vector([0.0, 0.0, 1.0]),
+            Vector([0.0, 0.0, f64::NEG_INFINITY]),
+            Vector([1.0, 1.0, 3.0]),
+        );
+        assert_eq!(d, f64::NEG_INFINITY);
+    }
+
+    fn collect<const D: usize>(
+        g: &Grid<D>,
+        visit: impl FnOnce(&mut dyn FnMut(u32, &Vector<D>, u8)),
+    ) -> Vec<([usize; D], [f64; D], u8)> {
+        let mut out = Vec::new();
+        visit(&mut |c, s, i| out.push((g.coords(c), s.0, i)));
+        out
+    }
+
+    #[test]
+    fn neighbours_and_layers() {
+        let g = Grid::<2>::new(4, 1.0, Vector([0.0, 0.0]), Vector([5.0, 5.0]), None);
+        assert_eq!(g.dims(), [5, 5]);
+        let count = |k: [u32; 2]| collect(&g, |f| g.visit_neighbours(&k, f)).len();
+        assert_eq!(count([2, 2]), 9);
+        assert_eq!(count([0, 0]), 4);
+        assert_eq!(count([0, 2]), 6);
+        let layer = collect(&g, |f| g.visit_entered_layer(&[1, 2], 0, true, f));
+        let cells: Vec<[usize; 2]> = layer.iter().map(|x| x.0).collect();
+        assert_eq!(cells, vec![[2, 1], [2, 2], [2, 3]]);
+        assert!(collect(&g, |f| g.visit_entered_layer(&[4, 2], 0, true, f)).is_empty());
+        let p = Grid::<2>::new(4, 1.0, Vector::ZERO, Vector::ZERO, Some(Vector([5.0, 2.5])));
+        assert_eq!(p.dims(), [5, 1]);
+        let nb = collect(&p, |f| p.visit_neighbours(&[0, 0], f));
+        assert_eq!(nb.len(), 9);
+        let corner = nb
+            .iter()
+            .find(|x| x.0 == [4, 0] && x.1 == [-5.0, 2.5])
+            .unwrap();
+        assert_eq!(p.shift_of(corner.2).0, corner.1);
+        for (_, shift, image) in collect(&p, |f| p.visit_neighbours(&[2, 0], f)) {
+            assert_eq!(p.shift_of(image).0, shift);
+        }
+    }
+}

@@ -1,0 +1,423 @@
+//! The `cells` finder: a uniform grid, one cached prediction per body and an event queue;
+//! O(1) predictions and O(log n) queue work per event.
+//!
+//! # How it works
+//!
+//! * **Grid** ([`grid`]): cells at least the largest contact distance `σ_max = r₁ + r₂` (the
+//!   two largest radii) wide, times `1 + MARGIN`. Every body is filed in one cell. A body's
+//!   *neighbourhood* is the 3^D block of cells around its own. Each cell also lists the walls
+//!   that come within `r_max` (times the same margin) of it.
+//! * **Predictions** ([`predict`]): for each body `i` the finder caches `best(i)`, the minimum
+//!   under [`Event`]'s full order (time, kind, a, b) of the times of impact of `i` with every
+//!   body in its neighbourhood, every wall of its cell and (periodic worlds) its box exit,
+//!   together with the image of the partner it was computed for. Each time is computed by the
+//!   same pure function on the same stored states, with the same argument order, as
+//!   [`all_pairs_next_event`](super::all_pairs_next_event): a cached time *is* the oracle's
+//!   time for that pair (image), bit for bit, as long as neither body's state changed.
+//! * **Crossings**: the time body `i` leaves its cell through a face shared with another cell.
+//!   Crossings are internal: they move the body to the next cell and offer it the pairs of the
+//!   layer of cells that just became neighbours (and the walls of its new cell). They are never
+//!   returned and change no stored state.
+//! * **Queue** ([`queue`]): one entry per body keyed by `min(best(i), crossing(i))` in an
+//!   indexed 4-ary heap. Keys are compared in the full event order; a crossing goes first at
+//!   equal times.
+//!
+//! `next_event` looks at the top of the queue: a crossing is processed; a body event is
+//! evaluated again on the current states (one time of impact) and if it no longer comes out
+//! bit for bit the same it is *stale* and the body is recomputed from scratch; anything else
+//! is returned. `update` refiles and recomputes the bodies that changed. Nothing else is
+//! touched: a collision costs two neighbourhood scans, a few heap operations and, later, one
+//! rescan for each body whose cached event involved the colliding bodies.
+//!
+//! # Why every returned event is the oracle's
+//!
+//! Call a term *live* if it is the time of impact of a pair (or body and wall) on the current
+//! stored states. Two invariants hold between calls:
+//!
+//! 1. *Every key is a lower bound of what it stands for.* `best(i)` is a minimum of terms that
+//!    were live when computed. A term computed with partner `j` stays live until `j` (or `i`)
+//!    changes; when `i` changes it is recomputed at once, and when `j` changes the entry may
+//!    be stale: still a lower bound of `i`'s other terms, which have not changed. A key that
+//!    passes the re-evaluation at the top is a live term (the re-evaluated pair, same image,
+//!    same function, same states).
+//! 2. *Every live term whose pair is responsible is covered by a key.* Call a pair responsible
+//!    when the bodies are in neighbouring cells (a body and a wall: the wall is listed by the
+//!    body's cell). The pair's term was computed at the later of (a) the last state change of
+//!    either body (full recompute of that body, which scans its whole neighbourhood and its
+//!    cell's walls), (b) the last crossing of either body that made them neighbours (the layer
+//!    scan). Since then the term sits in that body's `best`, and `best` only ever decreases
+//!    except through a full recompute, which covers the pair again.
+//!
+//! Let `E` be the oracle's event: the minimum live term, at time `t`. While a crossing or a
+//! stale key precedes `E` in the queue, it is processed, never returned (crossings are finitely
+//! many before `t` since each moves a body one cell forward; a stale key is replaced by its
+//! body's live minimum). When the top is a live key it is a live term, hence `≥ E`. It is also
+//! `≤ E`, because `E`'s pair is responsible: every crossing of `E`'s bodies before `t` has been
+//! processed, so at time `t` each body lies in its cell, up to the rounding of crossing times
+//! (far below the margin); at `t` the two bodies are `σ ≤ σ_max` apart (a body is within `r`
+//! of its wall), and cells that are not neighbours are at least one cell, `σ_max (1 + MARGIN)`,
+//! apart. So the top *is* `E`, ties included, since keys order exactly like events.
+//!
+//! Outer cells of an open world extend to infinity, so bodies that leave the initial bounding
+//! box are still filed; two outer cells that are not neighbours still have a whole inner cell
+//! between them.
+//!
+//! A periodic world has no walls; its grid tiles the box `[0, L)` and neighbour cells across
+//! the box faces carry the image shift ±L. Stored positions stay in the box (exits are
+//! events, see [`crate::periodic`]), so the image that makes two bodies neighbours is one of
+//! the `3^D` images the oracle tries, and with at least three cells per axis two cells are
+//! neighbours through one image only: the contact that matters is the one through the
+//! neighbouring image, and the time cached for it is the oracle's. An axis too short for
+//! three cells is a single cell whose three images are all scanned, like the oracle does.
+//!
+//! The margin covers rounding as long as positions are computed to better than `MARGIN·σ_max`
+//! (that is, `|x| + |v|·|t|` below about 10⁹ σ_max), which is far beyond where the simulation's
+//! own overlap tolerance of 10⁻⁹ would already fail.
+//!
+//! # Edits behind the finder's clock
+//!
+//! `next_event` may process crossings beyond the time of a state change made afterwards (a
+//! velocity set after peeking). `update` then undoes, latest first, every crossing processed
+//! after the change's time (moving the body back and recomputing it), so cells again match
+//! positions at that time.
+
+mod grid;
+mod predict;
+mod queue;
+
+use super::{DebugBox, Finder, FinderError, FinderMemory};
+use crate::event::Event;
+use crate::geom::{Aabb, Vector};
+use crate::scene::Wall;
+use crate::world::World;
+use grid::{Grid, MARGIN};
+use predict::{tie_of, Best, Probe};
+use queue::{EventQueue, Key, MAX_INDEX};
+
+/// Crossing code of a body that crosses no face.
+const NO_CROSSING: u8 = 0x7F;
+/// Flag on a crossing code: the body's queue key is the crossing, not its cached event.
+const KEY_IS_CROSSING: u8 = 0x80;
+
+/// Counters of a [`Cells`] finder since its last `init`.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct CellsStats {
+    /// Cell crossings processed (internal, never returned).
+    pub crossings: u64,
+    /// Cached events found stale at the top of the queue.
+    pub stale: u64,
+    /// Full neighbourhood scans.
+    pub recomputes: u64,
+    /// Crossings undone because a state changed behind them.
+    pub undone: u64,
+}
+
+/// The grid finder with cached predictions and an event queue; see the module docs.
+#[derive(Clone, Debug)]
+pub struct Cells<const D: usize> {
+    grid: Grid<D>,
+    /// Cached earliest event of each body.
+    best: Vec<Key>,
+    /// Image code of the partner of `best` (body events).
+    image: Vec<u8>,
+    /// Code `2·axis + up` of each body's next crossing, or `NO_CROSSING`, with the flag
+    /// `KEY_IS_CROSSING` when the crossing is the body's queue key.
+    cross: Vec<u8>,
+    queue: EventQueue,
+    /// The world is periodic.
+    periodic: bool,
+    /// Wall index of the first periodic face (the number of walls).
+    faces_from: usize,
+    /// Crossings processed since the last `update`: body, code, time.
+    log: Vec<(u32, u8, f64)>,
+    stats: CellsStats,
+    peak_bytes: usize,
+}
+
+impl<const D: usize> Default for Cells<D> {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl<const D: usize> Cells<D> {
+    /// An empty finder; [`Finder::init`] fills it.
+    #[must_use]
+    pub fn new() -> Self {
+        Cells {
+            grid: Grid::new(0, 1.0, Vector::ZERO, Vector::ZERO, None),
+            best: Vec::new(),
+            image: Vec::new(),
+            cross: Vec::new(),
+            queue: EventQueue::default(),
+            periodic: false,
+            faces_from: 0,
+            log: Vec::new(),
+            stats: CellsStats::default(),
+            peak_bytes: 0,
+        }
+    }
+
+    /// Counters since the last `init`.
+    #[must_use]
+    pub fn stats(&self) -> CellsStats {
+        self.stats
+    }
+
+    /// Cells per axis of the grid.
+    #[must_use]
+    pub fn grid_dims(&self) -> [usize; D] {
+        self.grid.dims()
+    }
+
+    fn bytes(&self) -> usize {
+        self.grid.bytes()
+            + self.queue.bytes()
+            + std::mem::size_of::<Key>() * self.best.capacity()
+            + self.image.capacity()
+            + self.cross.capacity()
+            + std::mem::size_of::<(u32, u8, f64)>() * self.log.capacity()
+    }
+
+    /// The queue key body `i` should have.
+    fn key_of(&self, i: usize) -> Key {
+        if self.cross[i] & KEY_IS_CROSSING != 0 {
+            Key {
+                time: self.queue_time(i),
+                tie: Key::crossing(0.0).tie,
+            }
+        } else {
+            self.best[i]
+        }
+    }
+
+    fn queue_time(&self, i: usize) -> u64 {
+        self.queue.time_of(i)
+    }
+
+    /// Checks the structures against `world`: the cell lists, the heap, every key being the
+    /// minimum of the body's cached event and next crossing, and every body lying in its cell
+    /// (up to rounding) at the time of the queue's top. For tests.
+    pub fn validate(&self, world: &World<D>) -> Result<(), String> {
+        self.grid.validate()?;
+        self.queue
+            .validate(|j| tie_of(&self.best, &self.cross, j))?;
+        let clock = match self.queue.top().map(|i| self.key_of(i)) {
+            Some(k) if !k.is_never() => k.seconds().max(world.now()),
+            _ => world.now(),
+        };
+        for i in 0..world.len() {
+            let m = world.motion(i);
+            let k = self.grid.coords_of(i);
+            let crossing = self
+                .grid
+                .next_crossing(&k, &m)
+                .map_or(Key::NEVER, |(t, _)| Key::crossing(t));
+            if self.key_of(i) != crossing.min(self.best[i]) {
+                return Err(format!("body {i}: queue key is not min(event, crossing)"));
+            }
+            let p = m.at(clock);
+            let (lo, hi) = self.grid.cell_box(&k.map(|x| x as usize));
+            for d in 0..D {
+                let tol = 1e-9 * (1.0 + p[d].abs() + m.vel[d].abs() * (clock - m.time).abs());
+                if p[d] < lo[d] - tol || p[d] > hi[d] + tol {
+                    return Err(format!(
+                        "body {i} at {:?} (t = {clock}) is outside its cell {:?}..{:?}",
+                        p.0, lo.0, hi.0
+                    ));
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// Processes body `i`'s crossing, due at `time`: the body moves to the next cell and is
+    /// offered the layer of cells that became its neighbours, and its new cell's walls.
+    fn cross(&mut self, world: &World<D>, i: usize, time: f64) {
+        self.stats.crossings += 1;
+        let code = self.cross[i] & !KEY_IS_CROSSING;
+        let (axis, up) = ((code >> 1) as usize, code & 1 == 1);
+        self.grid.step(i, axis, up);
+        self.log.push((i as u32, code, time));
+        let p = Probe::of(world, i);
+        let mut best = Best {
+            key: self.best[i],
+            image: self.image[i],
+        };
+        self.scan_entered_layer(world, &p, axis, up, &mut best);
+        self.scan_walls(world, &p, &mut best);
+        self.best[i] = best.key;
+        self.image[i] = best.image;
+        self.schedule(i, &p.m);
+    }
+
+    /// Undoes the crossings processed after time `t`, latest first.
+    fn undo_crossings_after(&mut self, world: &World<D>, t: f64) {
+        while let Some(&(i, code, time)) = self.log.last() {
+            if time <= t {
+                break;
+            }
+            self.log.pop();
+            self.stats.undone += 1;
+            let i = i as usize;
+            let (axis, up) = ((code >> 1) as usize, code & 1 == 1);
+            self.grid.step(i, axis, !up);
+            self.recompute(world, i);
+        }
+        self.log.clear();
+    }
+}
+
+/// The largest and second largest radius.
+fn two_largest(radii: &[f64]) -> (f64, f64) {
+    let (mut r1, mut r2) = (0.0f64, 0.0f64);
+    for &r in radii {
+        if r > r1 {
+            r2 = r1;
+            r1 = r;
+        } else if r > r2 {
+            r2 = r;
+        }
+    }
+    (r1, r2)
+}
+
+impl<const D: usize> Finder<D> for Cells<D> {
+    fn name(&self) -> &'static str {
+        "cells"
+    }
+
+    fn init(&mut self, world: &World<D>) -> Result<(), FinderError> {
+        let unsupported = |why: &str| {
+            Err(FinderError::Unsupported {
+                finder: "cells",
+                why: why.to_string(),
+            })
+        };
+        if D > 3 {
+            return unsupported("more than 3 dimensions");
+        }
+        let n = world.len();
+        if n > MAX_INDEX || world.walls().len() + 2 * D > MAX_INDEX {
+            return unsupported("more than 2^31 − 1 bodies or walls");
+        }
+        let (r1, r2) = two_largest(world.radii());
+        let sigma_max = if n >= 2 { r1 + r2 } else { 2.0 * r1.max(0.5) };
+        let now = world.now();
+        let period = world.periodic();
+        self.periodic = period.is_some();
+        self.faces_from = world.walls().len();
+        let (mut lo, mut hi) = (Vector::ZERO, Vector::ZERO);
+        if period.is_none() {
+            lo = Vector::splat(f64::INFINITY);
+            hi = Vector::splat(f64::NEG_INFINITY);
+            let mut grow = |p: Vector<D>| {
+                lo = lo.min(p);
+                hi = hi.max(p);
+            };
+            for i in 0..n {
+                grow(world.position_at(i, now));
+            }
+            for wall in world.walls() {
+                match *wall {
+                    Wall::Segment { a, b } => {
+                        grow(a);
+                        grow(b);
+                    }
+                    Wall::Plane { point, .. } => grow(point),
+                }
+            }
+            if n == 0 && world.walls().is_empty() {
+                lo = Vector::ZERO;
+                hi = Vector::ZERO;
+            }
+        }
+        self.grid = Grid::new(n, sigma_max * (1.0 + MARGIN), lo, hi, period);
+        for i in 0..n {
+            let k = self.grid.coords_of_point(&world.position_at(i, now));
+            self.grid.insert(i, k);
+        }
+        self.grid.file_walls(world.walls(), r1 + MARGIN * sigma_max);
+        self.best = vec![Key::NEVER; n];
+        self.image = vec![Grid::<D>::ZERO_IMAGE; n];
+        self.cross = vec![NO_CROSSING; n];
+        self.queue = EventQueue::new(n);
+        self.log = Vec::new();
+        self.stats = CellsStats::default();
+        for i in 0..n {
+            self.recompute(world, i);
+        }
+        self.stats.recomputes = 0;
+        self.peak_bytes = self.bytes();
+        Ok(())
+    }
+
+    fn update(&mut self, world: &World<D>, changed: &[usize]) {
+        let Some(t) = changed
+            .iter()
+            .map(|&i| world.times()[i])
+            .min_by(f64::total_cmp)
+        else {
+            return;
+        };
+        self.undo_crossings_after(world, t);
+        for &i in changed {
+            let k = self.grid.coords_of_point(&world.positions()[i]);
+            self.grid.relocate(i, k);
+        }
+        for &i in changed {
+            self.recompute(world, i);
+        }
+    }
+
+    fn next_event(&mut self, world: &World<D>) -> Option<Event> {
+        loop {
+            let i = self.queue.top()?;
+            if self.cross[i] & KEY_IS_CROSSING != 0 {
+                let t = Key {
+                    time: self.queue_time(i),
+                    tie: 0,
+                };
+                self.cross(world, i, t.seconds());
+                continue;
+            }
+            let key = self.best[i];
+            if key.is_never() {
+                return None;
+            }
+            if !self.is_live(world, i) {
+                self.stats.stale += 1;
+                self.recompute(world, i);
+                continue;
+            }
+            return Some(key.event());
+        }
+    }
+
+    fn debug_boxes(&mut self, _world: &World<D>) -> Vec<DebugBox<D>> {
+        let mut out = Vec::new();
+        for c in 0..self.grid.cell_count() as u32 {
+            if self.grid.first(c) == queue::NONE {
+                continue;
+            }
+            let (lo, hi) = self.grid.nominal_box(&self.grid.coords(c));
+            out.push(DebugBox {
+                aabb: Aabb { min: lo, max: hi },
+                depth: 0,
+                leaf: false,
+            });
+        }
+        out
+    }
+
+    fn memory(&self) -> Option<FinderMemory> {
+        let bytes = self.bytes();
+        Some(FinderMemory {
+            bytes,
+            peak_bytes: self.peak_bytes.max(bytes),
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests;

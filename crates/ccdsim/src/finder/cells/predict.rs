@@ -1,0 +1,240 @@
+//! Predictions of the `cells` finder: scanning a body's neighbour cells and walls for its
+//! earliest event, checking that a cached event is still live, and scheduling the body's next
+//! cell crossing.
+
+use super::grid::Grid;
+use super::queue::{Key, NONE};
+use super::{Cells, KEY_IS_CROSSING, NO_CROSSING};
+use crate::geom::Vector;
+use crate::narrow::{toi_circle_circle, toi_circle_circle_shifted, toi_circle_wall, Motion};
+use crate::periodic::toi_box_exit;
+use crate::world::World;
+
+/// The running minimum of one body's candidate events.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Best {
+    /// The earliest candidate so far under the full event order.
+    pub key: Key,
+    /// For a body–body candidate: the image code of the partner (see `Grid::visit_neighbours`).
+    pub image: u8,
+}
+
+impl Best {
+    /// No candidate yet.
+    pub const NONE: Best = Best {
+        key: Key::NEVER,
+        image: 0,
+    };
+}
+
+/// A body whose events are being predicted: index, stored motion and radius.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Probe<const D: usize> {
+    /// Body index.
+    pub i: usize,
+    /// Its stored motion.
+    pub m: Motion<D>,
+    /// Its radius.
+    pub r: f64,
+}
+
+impl<const D: usize> Probe<D> {
+    /// Body `i` of `world`.
+    #[inline]
+    pub fn of(world: &World<D>, i: usize) -> Self {
+        Probe {
+            i,
+            m: world.motion(i),
+            r: world.radii()[i],
+        }
+    }
+}
+
+impl<const D: usize> Cells<D> {
+    /// Time of impact of body `p` with body `j` (motion `mj`, radius `rj`; image displaced by
+    /// `shift`), computed exactly as the oracle does: by the same pure function, lower index
+    /// first.
+    #[inline(always)]
+    fn pair_toi(
+        &self,
+        p: &Probe<D>,
+        j: usize,
+        mj: &Motion<D>,
+        rj: f64,
+        shift: &Vector<D>,
+    ) -> Option<f64> {
+        let (i, mi, ri) = (p.i, &p.m, p.r);
+        if self.periodic {
+            if i < j {
+                toi_circle_circle_shifted(mi, ri, mj, rj, *shift)
+            } else {
+                toi_circle_circle_shifted(mj, rj, mi, ri, -*shift)
+            }
+        } else if i < j {
+            toi_circle_circle(mi, ri, mj, rj)
+        } else {
+            toi_circle_circle(mj, rj, mi, ri)
+        }
+    }
+
+    /// Offers body `p` every pair with a body filed in cell `cell`, through the image `shift`
+    /// (code `image`).
+    #[inline(always)]
+    fn scan_cell(
+        &self,
+        world: &World<D>,
+        p: &Probe<D>,
+        cell: u32,
+        shift: &Vector<D>,
+        image: u8,
+        best: &mut Best,
+    ) {
+        let i = p.i;
+        let radii = world.radii();
+        let (positions, velocities, times) = (world.positions(), world.velocities(), world.times());
+        let mut j = self.grid.first(cell);
+        while j != NONE {
+            let ju = j as usize;
+            j = self.grid.after(j);
+            if ju == i {
+                continue;
+            }
+            let mj = Motion {
+                pos: positions[ju],
+                vel: velocities[ju],
+                time: times[ju],
+            };
+            if let Some(t) = self.pair_toi(p, ju, &mj, radii[ju], shift) {
+                let key = Key::body(t, i.min(ju), i.max(ju));
+                if key < best.key {
+                    *best = Best { key, image };
+                }
+            }
+        }
+    }
+
+    /// Offers body `p` every pair with a body in its neighbour cells.
+    pub(super) fn scan_neighbours(&self, world: &World<D>, p: &Probe<D>, best: &mut Best) {
+        let k = self.grid.coords_of(p.i);
+        self.grid.visit_neighbours(&k, |cell, shift, image| {
+            self.scan_cell(world, p, cell, shift, image, best);
+        });
+    }
+
+    /// Offers body `i`, just moved into its cell along `axis` in direction `up`, every pair
+    /// with a body in the layer of cells that became its neighbours.
+    pub(super) fn scan_entered_layer(
+        &self,
+        world: &World<D>,
+        p: &Probe<D>,
+        axis: usize,
+        up: bool,
+        best: &mut Best,
+    ) {
+        let k = self.grid.coords_of(p.i);
+        self.grid
+            .visit_entered_layer(&k, axis, up, |cell, shift, image| {
+                self.scan_cell(world, p, cell, shift, image, best);
+            });
+    }
+
+    /// Offers body `p` every wall within reach of its cell.
+    #[inline]
+    pub(super) fn scan_walls(&self, world: &World<D>, p: &Probe<D>, best: &mut Best) {
+        let walls = self.grid.walls_of(self.grid.cell_of(p.i));
+        for &w in walls {
+            if let Some(t) = toi_circle_wall(&p.m, p.r, &world.walls()[w as usize]) {
+                let key = Key::wall(t, p.i, w as usize);
+                if key < best.key {
+                    *best = Best {
+                        key,
+                        image: Grid::<D>::ZERO_IMAGE,
+                    };
+                }
+            }
+        }
+    }
+
+    /// Offers body `p` its exit from the periodic box, if the world is periodic.
+    #[inline]
+    pub(super) fn scan_exit(&self, world: &World<D>, p: &Probe<D>, best: &mut Best) {
+        let Some(size) = world.periodic() else {
+            return;
+        };
+        if let Some((t, face)) = toi_box_exit(&p.m, &size) {
+            let key = Key::wall(t, p.i, self.faces_from + face);
+            if key < best.key {
+                *best = Best {
+                    key,
+                    image: Grid::<D>::ZERO_IMAGE,
+                };
+            }
+        }
+    }
+
+    /// True when body `i`'s cached event is still a live term: a wall event depends on `i`
+    /// alone (recomputed whenever `i` changes); a body event is evaluated again, for the same
+    /// image, on the current stored states and must come out bit for bit the same.
+    pub(super) fn is_live(&self, world: &World<D>, i: usize) -> bool {
+        let key = self.best[i];
+        let Some(j) = key.partner(i) else {
+            return true;
+        };
+        let shift = self.grid.shift_of(self.image[i]);
+        let t = self.pair_toi(
+            &Probe::of(world, i),
+            j,
+            &world.motion(j),
+            world.radii()[j],
+            &shift,
+        );
+        t.is_some_and(|t| Key::body(t, i.min(j), i.max(j)) == key)
+    }
+
+    /// Recomputes body `i`'s earliest event from scratch (after its state changed, or when its
+    /// cached event went stale) and reschedules it.
+    pub(super) fn recompute(&mut self, world: &World<D>, i: usize) {
+        self.stats.recomputes += 1;
+        let p = Probe::of(world, i);
+        let mut best = Best::NONE;
+        self.scan_neighbours(world, &p, &mut best);
+        self.scan_walls(world, &p, &mut best);
+        self.scan_exit(world, &p, &mut best);
+        self.best[i] = best.key;
+        self.image[i] = best.image;
+        self.schedule(i, &p.m);
+    }
+
+    /// Sets body `i`'s queue key: its next crossing or its cached event, whichever is first.
+    pub(super) fn schedule(&mut self, i: usize, mi: &Motion<D>) {
+        let k = self.grid.coords_of(i);
+        let key = match self.grid.next_crossing(&k, mi) {
+            Some((t, code)) => {
+                let crossing = Key::crossing(t);
+                if crossing < self.best[i] {
+                    self.cross[i] = code | KEY_IS_CROSSING;
+                    crossing
+                } else {
+                    self.cross[i] = code;
+                    self.best[i]
+                }
+            }
+            None => {
+                self.cross[i] = NO_CROSSING;
+                self.best[i]
+            }
+        };
+        let (best, cross) = (&self.best, &self.cross);
+        self.queue.set(i, key, |j| tie_of(best, cross, j));
+    }
+}
+
+/// The tie word of body `j`'s queue key.
+#[inline]
+pub(super) fn tie_of(best: &[Key], cross: &[u8], j: u32) -> u64 {
+    if cross[j as usize] & KEY_IS_CROSSING != 0 {
+        Key::crossing(0.0).tie
+    } else {
+        best[j as usize].tie
+    }
+}
