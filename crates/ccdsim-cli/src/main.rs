@@ -24,6 +24,12 @@ enum Command {
     Verify(commands::verify::Args),
     /// Convert a run file to another format.
     Export(commands::export::Args),
+    /// Run a benchmark workload and print its table (writes CSV, JSON and plots).
+    Bench(commands::bench::Args),
+    /// Play a run file in the browser (served on 127.0.0.1).
+    View(commands::view::Args),
+    /// Draw a run file to a PNG frame or an animated GIF.
+    Render(commands::render::Args),
 }
 
 fn main() -> ExitCode {
@@ -33,6 +39,9 @@ fn main() -> ExitCode {
         Command::Gen(a) => commands::gen::run(a),
         Command::Verify(a) => commands::verify::run(a),
         Command::Export(a) => commands::export::run(a),
+        Command::Bench(a) => commands::bench::run(a),
+        Command::View(a) => commands::view::run(a),
+        Command::Render(a) => commands::render::run(a),
     };
     match result {
         Ok(code) => code,

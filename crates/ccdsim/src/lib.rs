@@ -18,7 +18,9 @@
 #![deny(missing_docs)]
 #![forbid(unsafe_code)]
 
+pub mod bench;
 pub mod bench_gas;
+pub mod discrete;
 pub mod event;
 pub mod finder;
 pub mod generate;

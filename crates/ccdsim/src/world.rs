@@ -155,6 +155,22 @@ impl<const D: usize> World<D> {
         self.changes[i] += 1;
     }
 
+    /// Replaces body `i`'s stored state with `motion`, for tools that rebuild a world from a
+    /// record (a viewer restoring the state at some instant from a run file). A running
+    /// [`Simulation`](crate::Simulation) only lends its world immutably, so this cannot
+    /// desynchronise a simulation from its finder; a finder serving this world must be told
+    /// through [`Finder::update`](crate::Finder::update) or re-initialised.
+    pub fn set_motion(&mut self, i: usize, motion: Motion<D>) {
+        self.set_state(i, motion.pos, motion.vel, motion.time);
+    }
+
+    /// Sets the current simulated time, seconds, for tools that rebuild a world at a given
+    /// instant (see [`World::set_motion`]); the caller promises that no event lies between the
+    /// stored states' times and `t`.
+    pub fn set_time(&mut self, t: f64) {
+        self.now = t;
+    }
+
     /// Total kinetic energy, joules.
     #[must_use]
     pub fn kinetic_energy(&self) -> f64 {

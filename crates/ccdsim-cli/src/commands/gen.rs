@@ -1,7 +1,7 @@
 //! `ccdsim gen`: write a generated scene as JSON.
 
 use anyhow::{Context, Result};
-use ccdsim::generate::{gas, rack, GasConfig, Lattice, RackConfig};
+use ccdsim::generate::{gas, rack, thesis, GasConfig, Lattice, RackConfig, ThesisConfig};
 use ccdsim::AnyScene;
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -22,6 +22,22 @@ enum Kind {
     Gas(GasArgs),
     /// A 15-ball billiard rack with the cue ball shot into it (2D).
     Rack(RackArgs),
+    /// The thesis's benchmark scene (§5.2): a walled table of constant body density, sized for
+    /// n; the constants are calibrated against its Table 5.1 (docs/benchmarks.md).
+    Thesis(ThesisArgs),
+}
+
+#[derive(clap::Args)]
+struct ThesisArgs {
+    /// Number of bodies.
+    #[arg(long, default_value_t = 1024)]
+    n: usize,
+    /// Random seed.
+    #[arg(long, default_value_t = 1)]
+    seed: u64,
+    /// Dimension, 2 (the thesis's 4-wall table) or 3 (a box of 6 planes).
+    #[arg(long, default_value_t = 2, value_parser = clap::value_parser!(u8).range(2..=3))]
+    dim: u8,
 }
 
 #[derive(clap::Args)]
@@ -129,6 +145,14 @@ pub fn run(args: Args) -> Result<ExitCode> {
             });
             scene.validate().context("rack")?;
             scene.into()
+        }
+        Kind::Thesis(t) => {
+            let cfg = ThesisConfig::new(t.n, t.seed);
+            if t.dim == 2 {
+                thesis::<2>(&cfg)?.into()
+            } else {
+                thesis::<3>(&cfg)?.into()
+            }
         }
     };
     let json = scene.to_json();

@@ -1,6 +1,9 @@
 //! One module per subcommand.
 
+pub mod bench;
 pub mod export;
 pub mod gen;
+pub mod render;
 pub mod run;
 pub mod verify;
+pub mod view;

@@ -22,48 +22,74 @@ use super::{Finder, FinderError, FinderMemory};
 use crate::event::{Event, EventKind};
 use crate::narrow::{toi_circle_circle, toi_circle_wall};
 use crate::world::World;
-use std::cmp::{Ordering, Reverse};
+use std::cmp::Reverse;
 use std::collections::BinaryHeap;
 
-/// One prediction with the change counts of its bodies at prediction time.
-#[derive(Clone, Copy, Debug)]
+/// One prediction with the change counts of its bodies at prediction time, packed so that the
+/// derived lexicographic order of the fields is [`Event`]'s total order (then the counts): the
+/// heap compares two integers instead of a float, an enum and two indices.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
 struct Entry {
-    event: Event,
-    /// Change count of body `event.a` when predicted.
+    /// The time's bits mapped so that unsigned order is `f64::total_cmp`'s order.
+    time_key: u64,
+    /// `kind << 62 | a << 31 | b` (indices below 2³¹, checked by `init`).
+    who: u64,
+    /// Change count of body `a` when predicted.
     count_a: u64,
-    /// Change count of body `event.b` (body events only; 0 for wall events).
+    /// Change count of body `b` (body events only; 0 for wall events).
     count_b: u64,
 }
 
-impl Entry {
-    fn is_current<const D: usize>(&self, world: &World<D>) -> bool {
-        let e = &self.event;
-        world.change_count(e.a as usize) == self.count_a
-            && (e.kind == EventKind::Wall || world.change_count(e.b as usize) == self.count_b)
-    }
-}
+/// Indices must stay below this for [`Entry::who`]'s packing.
+const MAX_INDEX: usize = 1 << 31;
 
-// Ordered by the event first, so the heap's minimum among current entries is the oracle's
-// event; the counts only make the order total.
-impl Ord for Entry {
-    fn cmp(&self, o: &Self) -> Ordering {
-        self.event
-            .cmp(&o.event)
-            .then(self.count_a.cmp(&o.count_a))
-            .then(self.count_b.cmp(&o.count_b))
+impl Entry {
+    #[inline]
+    fn new(event: Event, count_a: u64, count_b: u64) -> Self {
+        let bits = event.time.to_bits();
+        let time_key = if bits >> 63 == 1 {
+            !bits
+        } else {
+            bits | 1 << 63
+        };
+        let who = (event.kind as u64) << 62 | u64::from(event.a) << 31 | u64::from(event.b);
+        Entry {
+            time_key,
+            who,
+            count_a,
+            count_b,
+        }
+    }
+
+    #[inline]
+    fn event(&self) -> Event {
+        let bits = if self.time_key >> 63 == 1 {
+            self.time_key & !(1 << 63)
+        } else {
+            !self.time_key
+        };
+        let mask = (1 << 31) - 1;
+        Event {
+            time: f64::from_bits(bits),
+            kind: if self.who >> 62 == 0 {
+                EventKind::Body
+            } else {
+                EventKind::Wall
+            },
+            a: ((self.who >> 31) & mask) as u32,
+            b: (self.who & mask) as u32,
+        }
+    }
+
+    #[inline]
+    fn is_current<const D: usize>(&self, world: &World<D>) -> bool {
+        let mask = (1 << 31) - 1;
+        let a = ((self.who >> 31) & mask) as usize;
+        let b = (self.who & mask) as usize;
+        world.change_count(a) == self.count_a
+            && (self.who >> 62 != 0 || world.change_count(b) == self.count_b)
     }
 }
-impl PartialOrd for Entry {
-    fn partial_cmp(&self, o: &Self) -> Option<Ordering> {
-        Some(self.cmp(o))
-    }
-}
-impl PartialEq for Entry {
-    fn eq(&self, o: &Self) -> bool {
-        self.cmp(o) == Ordering::Equal
-    }
-}
-impl Eq for Entry {}
 
 /// Counters of a [`Sedgewick`] finder since its last `init`.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -133,20 +159,16 @@ impl Sedgewick {
                 (world.motion(j), mi)
             };
             if let Some(t) = toi_circle_circle(&ma, radii[a], &mb, radii[b]) {
-                self.push(Entry {
-                    event: Event::body(t, a, b),
-                    count_a: world.change_count(a),
-                    count_b: world.change_count(b),
-                });
+                self.push(Entry::new(
+                    Event::body(t, a, b),
+                    world.change_count(a),
+                    world.change_count(b),
+                ));
             }
         }
         for (w, wall) in world.walls().iter().enumerate() {
             if let Some(t) = toi_circle_wall(&mi, radii[i], wall) {
-                self.push(Entry {
-                    event: Event::wall(t, i, w),
-                    count_a: ci,
-                    count_b: 0,
-                });
+                self.push(Entry::new(Event::wall(t, i, w), ci, 0));
             }
         }
     }
@@ -158,10 +180,10 @@ impl<const D: usize> Finder<D> for Sedgewick {
     }
 
     fn init(&mut self, world: &World<D>) -> Result<(), FinderError> {
-        if world.len() > u32::MAX as usize || world.walls().len() > u32::MAX as usize {
+        if world.len() > MAX_INDEX || world.walls().len() > MAX_INDEX {
             return Err(FinderError::Unsupported {
                 finder: "sedgewick",
-                why: "more than 2^32 bodies or walls".into(),
+                why: "more than 2^31 bodies or walls".into(),
             });
         }
         if world.periodic().is_some() {
@@ -193,7 +215,7 @@ impl<const D: usize> Finder<D> for Sedgewick {
     fn next_event(&mut self, world: &World<D>) -> Option<Event> {
         while let Some(Reverse(top)) = self.heap.peek() {
             if top.is_current(world) {
-                return Some(top.event);
+                return Some(top.event());
             }
             self.heap.pop();
             self.stats.discarded += 1;
@@ -254,6 +276,37 @@ mod tests {
         })
         .unwrap();
         assert_eq!(differential(&scene, 3000), 3000);
+    }
+
+    #[test]
+    fn packing_keeps_the_event_order() {
+        let times = [
+            -1.5,
+            -0.0,
+            0.0,
+            1e-300,
+            0.5,
+            0.5000000000000001,
+            3.0,
+            f64::INFINITY,
+        ];
+        let mut events = Vec::new();
+        for &t in &times {
+            events.push(Event::body(t, 0, 1));
+            events.push(Event::body(t, 2, 7));
+            events.push(Event::body(t, MAX_INDEX - 2, MAX_INDEX - 1));
+            events.push(Event::wall(t, 0, 3));
+            events.push(Event::wall(t, MAX_INDEX - 1, 0));
+        }
+        for x in &events {
+            let ex = Entry::new(*x, 5, 6);
+            let back = ex.event();
+            assert_eq!(x.time.to_bits(), back.time.to_bits());
+            assert_eq!((x.kind, x.a, x.b), (back.kind, back.a, back.b));
+            for y in &events {
+                assert_eq!(x.cmp(y), ex.cmp(&Entry::new(*y, 5, 6)), "{x:?} vs {y:?}");
+            }
+        }
     }
 
     #[test]

@@ -1,13 +1,16 @@
-//! Scene generators: gases (random or lattice starts, walled or periodic boxes) and the
-//! billiard rack.
+//! Scene generators: gases (random or lattice starts, walled or periodic boxes), the
+//! billiard rack and the thesis benchmark scene.
 
 mod gas;
 mod lattice;
+mod place;
 mod rack;
+mod thesis;
 
 pub use gas::{gas, GasConfig};
 pub use lattice::Lattice;
 pub use rack::{rack, RackConfig};
+pub use thesis::{thesis, ThesisConfig, THESIS_DURATION, THESIS_TABLE_5_1, THESIS_TABLE_5_2};
 
 use crate::geom::Vector;
 use crate::scene::Wall;

@@ -43,8 +43,26 @@ impl<const D: usize> SweptTree<D> {
             count: 0,
         };
         self.nodes.resize(2 * n - 1, placeholder);
-        split(&mut self.nodes, &mut self.order, &self.leaf_boxes, 0, 0, 0);
+        // Select on a contiguous copy of the keys: the selections then touch sequential
+        // memory instead of chasing body indices into the boxes.
+        let boxes = &self.leaf_boxes;
+        self.items.clear();
+        self.items.extend(self.order.iter().map(|&body| Item {
+            key: std::array::from_fn(|axis| key(&boxes[body as usize], axis)),
+            body,
+        }));
+        split(&mut self.nodes, &mut self.items, boxes, 0, 0, 0);
+        for (slot, item) in self.order.iter_mut().zip(&self.items) {
+            *slot = item.body;
+        }
     }
+}
+
+/// A body and twice the centre of its swept box, the build's sort key.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Item<const D: usize> {
+    key: [f64; D],
+    body: u32,
 }
 
 /// Twice the centre of `b` along `axis` (the factor ½ does not change the order).
@@ -53,33 +71,37 @@ fn key<const D: usize>(b: &Aabb<D>, axis: usize) -> f64 {
     b.min[axis] + b.max[axis]
 }
 
-/// Order of two bodies along `axis`: by box centre, ties by index so that builds never depend
-/// on anything but the boxes and the previous permutation.
+/// Order of two bodies along `axis`: by the centres of their boxes (the build's order; equal
+/// centres fall on either side).
 #[inline]
 pub(crate) fn along<const D: usize>(boxes: &[Aabb<D>], axis: usize, a: u32, b: u32) -> Ordering {
-    key(&boxes[a as usize], axis)
-        .total_cmp(&key(&boxes[b as usize], axis))
-        .then(a.cmp(&b))
+    key(&boxes[a as usize], axis).total_cmp(&key(&boxes[b as usize], axis))
 }
 
-/// Builds node `k` over `order[start..]` with `order.len()` bodies at tree level `level`;
-/// returns the node's box.
+/// Builds node `k` over the bodies of `items` (the `items.len()` bodies from position
+/// `start` of the order) at tree level `level`; returns the node's box.
 fn split<const D: usize>(
     nodes: &mut [Node<D>],
-    order: &mut [u32],
+    items: &mut [Item<D>],
     boxes: &[Aabb<D>],
     k: usize,
     start: usize,
     level: usize,
 ) -> Aabb<D> {
-    let count = order.len();
+    let count = items.len();
     let aabb = if count == 1 {
-        boxes[order[0] as usize]
+        boxes[items[0].body as usize]
     } else {
         let half = count / 2;
         let axis = level % D;
-        order.select_nth_unstable_by(half, |&a, &b| along(boxes, axis, a, b));
-        let (lo, hi) = order.split_at_mut(half);
+        if count == 2 {
+            if items[1].key[axis].total_cmp(&items[0].key[axis]).is_lt() {
+                items.swap(0, 1);
+            }
+        } else {
+            items.select_nth_unstable_by(half, |a, b| a.key[axis].total_cmp(&b.key[axis]));
+        }
+        let (lo, hi) = items.split_at_mut(half);
         let (left, right) = super::tree::children(k, count as u32);
         let a = split(nodes, lo, boxes, left, start, level + 1);
         let b = split(nodes, hi, boxes, right, start + half, level + 1);

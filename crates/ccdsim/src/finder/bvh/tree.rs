@@ -53,6 +53,8 @@ pub(crate) struct SweptTree<const D: usize> {
     pub order: Vec<u32>,
     /// Scratch: each body's swept box during a build, by body index.
     pub leaf_boxes: Vec<Aabb<D>>,
+    /// Scratch: the bodies with their sort keys during a build.
+    pub items: Vec<super::build::Item<D>>,
     /// Start of the swept interval, seconds (the world's current time at the build).
     pub now: f64,
     /// End of the swept interval, seconds: `now + Δ`.
@@ -72,6 +74,7 @@ impl<const D: usize> Default for SweptTree<D> {
             nodes: Vec::new(),
             order: Vec::new(),
             leaf_boxes: Vec::new(),
+            items: Vec::new(),
             now: 0.0,
             horizon: 0.0,
             built_horizon: 0.0,

@@ -1,0 +1,130 @@
+//! `ccdsim bench thesis`: Table 5.1 and Figure 5.1 of the thesis, for every finder.
+
+use super::plot::{plot_times, Series};
+use super::{parse_list, write_file};
+use crate::progress::Progress;
+use anyhow::{anyhow, Result};
+use ccdsim::bench::{run_thesis_bench, CellStatus, ThesisBenchConfig};
+use ccdsim::generate::THESIS_TABLE_5_1;
+use ccdsim::FINDER_NAMES;
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+/// Arguments of `ccdsim bench thesis`.
+#[derive(clap::Args)]
+pub struct Args {
+    /// Numbers of bodies, comma-separated, increasing.
+    #[arg(long, default_value = "8,16,32,64,128,256,512,1024,2048", value_parser = parse_list::<usize>)]
+    sizes: std::vec::Vec<usize>,
+    /// Runs (seeds) per size and finder; times and counts are averaged.
+    #[arg(long, default_value_t = 3)]
+    runs: u32,
+    /// Seed of the first run.
+    #[arg(long, default_value_t = 1)]
+    seed: u64,
+    /// Finders, comma-separated (default: every finder).
+    #[arg(long, value_parser = parse_list::<String>)]
+    finders: Option<std::vec::Vec<String>>,
+    /// Time budget of each finder over all its sizes, seconds. A size predicted not to fit in
+    /// what is left, or whose runs use it up, is shown as skipped, and so are the finder's
+    /// larger sizes.
+    #[arg(long, default_value_t = 120.0)]
+    budget: f64,
+    /// Simulated seconds per run.
+    #[arg(long, default_value_t = 5.0)]
+    duration: f64,
+    /// Dimension, 2 (the thesis's) or 3.
+    #[arg(long, default_value_t = 2, value_parser = clap::value_parser!(u8).range(2..=3))]
+    dim: u8,
+    /// Directory for thesis.csv, thesis.json, thesis.png and thesis.svg.
+    #[arg(long, default_value = "target/ccdsim-bench")]
+    out: PathBuf,
+    /// No progress bar.
+    #[arg(long, short)]
+    quiet: bool,
+}
+
+/// Runs the command.
+pub fn run(args: Args) -> Result<ExitCode> {
+    let cfg = ThesisBenchConfig {
+        sizes: args.sizes,
+        runs: args.runs,
+        first_seed: args.seed,
+        finders: args
+            .finders
+            .unwrap_or_else(|| FINDER_NAMES.iter().map(|s| (*s).to_string()).collect()),
+        budget_seconds: args.budget,
+        duration: args.duration,
+        dim: usize::from(args.dim),
+    };
+    if cfg.runs == 0 {
+        return Err(anyhow!("--runs must be at least 1"));
+    }
+    let total = (cfg.sizes.len() * cfg.finders.len()) as u64 * u64::from(cfg.runs);
+    let mut progress = Progress::new(total, "thesis bench", args.quiet);
+    let report = run_thesis_bench(&cfg, |done, _| progress.set(done)).map_err(|e| anyhow!(e))?;
+    progress.finish();
+    println!(
+        "Thesis §5.2 scene, {}D, {} simulated s per run, mean of {} run(s) per cell, budget {} s per finder",
+        cfg.dim, cfg.duration, cfg.runs, cfg.budget_seconds
+    );
+    print!("{}", report.table());
+    println!("largest n completed:");
+    for (f, n) in report.largest_sizes() {
+        println!(
+            "  {f:>10}: {}",
+            n.map_or("none".to_string(), |n| n.to_string())
+        );
+    }
+    println!("total {:.1} s", report.total_seconds);
+
+    write_file(&args.out, "thesis.csv", &report.csv())?;
+    write_file(
+        &args.out,
+        "thesis.json",
+        &(serde_json::to_string_pretty(&report)? + "\n"),
+    )?;
+    let mut series: Vec<Series> = cfg
+        .finders
+        .iter()
+        .enumerate()
+        .map(|(k, f)| Series {
+            label: f.clone(),
+            colour: k,
+            points: report
+                .cells
+                .iter()
+                .filter(|c| &c.finder == f && c.status == CellStatus::Done)
+                .map(|c| (c.n as f64, c.mean_seconds))
+                .collect(),
+            thesis: false,
+        })
+        .collect();
+    if cfg.dim == 2 && cfg.duration == 5.0 {
+        for (finder, k) in [("all-pairs", 2), ("bvh", 3)] {
+            let colour = cfg
+                .finders
+                .iter()
+                .position(|f| f == finder)
+                .unwrap_or(cfg.finders.len() + k);
+            series.push(Series {
+                label: format!("thesis {finder} (i7-2630QM)"),
+                colour,
+                points: THESIS_TABLE_5_1
+                    .iter()
+                    .filter(|r| cfg.sizes.contains(&r.0))
+                    .map(|r| (r.0 as f64, if k == 2 { r.2 } else { r.3 }))
+                    .collect(),
+                thesis: true,
+            });
+        }
+    }
+    let title = format!(
+        "Thesis scene ({}D, {} s simulated): seconds per run against n",
+        cfg.dim, cfg.duration
+    );
+    plot_times(&args.out.join("thesis.png"), &title, &series)?;
+    plot_times(&args.out.join("thesis.svg"), &title, &series)?;
+    println!("wrote {}/thesis.{{csv,json,png,svg}}", args.out.display());
+    Ok(ExitCode::SUCCESS)
+}

@@ -1,0 +1,606 @@
+// The ccdsim viewer page: streams a run from the server (snapshots to seek, windows of events
+// to play) and draws it with the software rasteriser of raster.js.
+//
+// State is kept as the simulator keeps it: body i is at P[i] at time T0[i] and moves with
+// V[i], so drawing at time t is P + V·(t − T0) and an event only rewrites its two bodies.
+'use strict';
+
+(() => {
+  const $ = (id) => document.getElementById(id);
+  const canvas = $('view');
+  const ctx = canvas.getContext('2d');
+  const WINDOW = 4096; // events per /api/events request
+  const FLASH_MS = 350; // how long a colliding pair stays highlighted, wall milliseconds
+  // In a dense run (a gas of 10^5 bodies) events come by the ten thousand per second: the
+  // flash is shortened so that no more than this share of the bodies (or 6) is lit at once.
+  const FLASH_SHARE = 0.02;
+  const CATCH_UP_WALL = 0.25; // playback may lag the clock by this many wall seconds
+  const SLOWMO_WALL = 0.4; // slow motion starts this many wall seconds from an event
+  const STATE_HEADER = 8; // f64 values before a snapshot's arrays (src/wire.rs)
+
+  const S = {
+    meta: null, D: 2, n: 0, stride: 12,
+    radius: null, ids: null, idBucket: null,
+    P: null, V: null, T0: null, flash: null, evTime: null,
+    time: 0, applied: 0, lastEvent: null,
+    buf: { start: 0, count: 0, data: new Float64Array(0) },
+    fetching: false, seekToken: 0, seekBusy: false, seekWanted: null,
+    playing: false, speed: 1, slowmo: false, colour: 'id',
+    boxes: { on: false, data: null, time: NaN, busy: false, error: null, finder: '', sentAt: -Infinity, latencyMs: 0 },
+    view: { zoom: 1, panX: 0, panY: 0, yaw: 35, pitch: 25 },
+    surface: null, frames: 0, prevNow: null, error: null, seeking: false,
+    window: WINDOW, eventRate: 0, flashMs: FLASH_MS, drawMs: 0, want: 0, seekMs: 50,
+  };
+
+  function setStatus(text, ok = false) {
+    const el = $('status');
+    el.textContent = text;
+    el.className = ok ? 'ok' : '';
+  }
+
+  async function json(url) {
+    const r = await fetch(url);
+    const body = await r.json();
+    if (!r.ok) throw new Error(body.error || `${url}: HTTP ${r.status}`);
+    return body;
+  }
+
+  async function bin(url) {
+    const r = await fetch(url);
+    if (!r.ok) {
+      let msg = `${url}: HTTP ${r.status}`;
+      try { msg = (await r.json()).error || msg; } catch (_) { /* not JSON */ }
+      throw new Error(msg);
+    }
+    return r.arrayBuffer();
+  }
+
+  // ---- the run's state ---------------------------------------------------------------
+
+  function loadSnapshot(ab) {
+    const h = new Float64Array(ab, 0, STATE_HEADER);
+    const { n, D } = S;
+    const pos = new Float32Array(ab, 8 * STATE_HEADER, n * D);
+    const vel = new Float32Array(ab, 8 * STATE_HEADER + 4 * n * D, n * D);
+    S.time = h[0];
+    S.applied = h[1];
+    S.P.set(pos);
+    S.V.set(vel);
+    S.T0.fill(S.time);
+    S.lastEvent = h[4] >= 0 ? { t: h[5], kind: h[4], a: h[6], b: h[7] } : null;
+    // Flashes of the events played before a jump mean nothing after it.
+    S.flash.fill(-Infinity);
+    S.evTime.fill(-Infinity);
+    if (S.lastEvent) markEvent(S.lastEvent);
+    S.buf = { start: S.applied, count: 0, data: new Float64Array(0) };
+    S.fetching = false;
+    // Landing exactly on an event (a step, or a seek to an event's time): flash its pair.
+    if (S.lastEvent && S.lastEvent.t === S.time) flashEvent(S.lastEvent);
+  }
+
+  // Remembers when each body last collided, so that a view paused at an event shows its pair
+  // highlighted for as long as it stays there.
+  function markEvent(e) {
+    S.evTime[e.a] = e.t;
+    if (e.kind === 0) S.evTime[e.b] = e.t;
+  }
+
+  function flashEvent(e) {
+    const now = performance.now();
+    S.flash[e.a] = now;
+    if (e.kind === 0) S.flash[e.b] = now;
+  }
+
+  // Seeks to time t (seconds); concurrent calls collapse to the latest target. A catch-up
+  // seek (while playing) leaves the clock running; any other one sets it to t.
+  async function seek(t, catchUp = false) {
+    S.seekWanted = t;
+    if (!catchUp) S.want = t;
+    if (S.seekBusy) return;
+    S.seekBusy = true;
+    try {
+      while (S.seekWanted !== null) {
+        const target = Math.min(Math.max(S.seekWanted, S.meta.start_time), S.meta.end_time);
+        S.seekWanted = null;
+        const token = ++S.seekToken;
+        const t0 = performance.now();
+        const ab = await bin(`/api/state?t=${target}`);
+        S.seekMs = 0.5 * S.seekMs + 0.5 * (performance.now() - t0);
+        if (token !== S.seekToken) continue;
+        loadSnapshot(ab);
+        if (S.want < S.time || !S.playing) S.want = S.time;
+        fetchEvents();
+      }
+    } catch (e) {
+      fail(e);
+    } finally {
+      S.seekBusy = false;
+    }
+  }
+
+  async function fetchEvents() {
+    const { buf, meta } = S;
+    const from = buf.start + buf.count;
+    if (S.fetching || from >= meta.events) return;
+    S.fetching = true;
+    const token = S.seekToken;
+    try {
+      const ab = await bin(`/api/events?from=${from}&count=${S.window}`);
+      if (token !== S.seekToken) return;
+      const fresh = new Float64Array(ab);
+      // Keep only what is not applied yet.
+      const drop = Math.max(0, Math.min(S.applied, from) - buf.start);
+      const keep = buf.data.subarray(drop * S.stride, buf.count * S.stride);
+      const data = new Float64Array(keep.length + fresh.length);
+      data.set(keep);
+      data.set(fresh, keep.length);
+      S.buf = { start: buf.start + drop, count: buf.count - drop + fresh.length / S.stride, data };
+    } catch (e) {
+      fail(e);
+    } finally {
+      if (token === S.seekToken) S.fetching = false;
+    }
+  }
+
+  // Offset in the buffer of event k, or −1 when it is not buffered.
+  function eventOffset(k) {
+    const { buf } = S;
+    return k >= buf.start && k < buf.start + buf.count ? (k - buf.start) * S.stride : -1;
+  }
+
+  function applyEvent(o) {
+    const d = S.buf.data, D = S.D;
+    const t = d[o], kind = d[o + 1], a = d[o + 2], b = d[o + 3];
+    const set = (i, p) => {
+      for (let k = 0; k < D; k++) {
+        S.P[i * D + k] = d[p + k];
+        S.V[i * D + k] = d[p + D + k];
+      }
+      S.T0[i] = t;
+    };
+    set(a, o + 4);
+    if (kind === 0) set(b, o + 4 + 2 * D);
+    S.lastEvent = { t, kind, a, b };
+    markEvent(S.lastEvent);
+    flashEvent(S.lastEvent);
+    S.applied++;
+  }
+
+  // Moves the clock forward to `target`, applying the events on the way. Returns false when
+  // the clock had to stop at the end of the buffered events.
+  function advanceTo(target) {
+    target = Math.min(target, S.meta.end_time);
+    while (S.applied < S.meta.events) {
+      const o = eventOffset(S.applied);
+      if (o < 0) {
+        // The next event is not here yet: it is no earlier than the last one applied.
+        const known = S.lastEvent ? S.lastEvent.t : S.meta.start_time;
+        S.time = Math.max(S.time, Math.min(target, known));
+        // Starved: ask for bigger windows (the server caps them at 65536 events).
+        if (!S.fetching) S.window = Math.min(65536, S.window * 2);
+        fetchEvents();
+        return false;
+      }
+      if (S.buf.data[o] > target) break;
+      applyEvent(o);
+    }
+    S.time = target;
+    if (S.buf.start + S.buf.count - S.applied < S.window / 2) fetchEvents();
+    return true;
+  }
+
+  function slowFactor() {
+    if (!S.slowmo) return 1;
+    let dist = Infinity;
+    const o = eventOffset(S.applied);
+    if (o >= 0) dist = S.buf.data[o] - S.time;
+    if (S.lastEvent) dist = Math.min(dist, S.time - S.lastEvent.t);
+    return Math.min(1, Math.max(0.05, dist / S.speed / SLOWMO_WALL));
+  }
+
+  async function step(dir) {
+    pause();
+    try {
+      if (dir > 0) {
+        const o = eventOffset(S.applied);
+        if (o >= 0 && S.buf.data[o] > S.time) { advanceTo(S.buf.data[o]); S.want = S.time; return; }
+      }
+      const r = await json(`/api/step?dir=${dir > 0 ? 'next' : 'prev'}&t=${S.time}`);
+      if (r.time !== null) await seek(r.time);
+    } catch (e) {
+      fail(e);
+    }
+  }
+
+  // ---- view --------------------------------------------------------------------------
+
+  function rotation() {
+    if (S.D === 2) return [[1, 0, 0], [0, 1, 0], [0, 0, 1]];
+    const y = (S.view.yaw * Math.PI) / 180, p = (S.view.pitch * Math.PI) / 180;
+    const [sy, cy, sp, cp] = [Math.sin(y), Math.cos(y), Math.sin(p), Math.cos(p)];
+    // Rx(pitch) · Ry(yaw), as the PNG renderer (src/render/camera.rs).
+    return [[cy, 0, sy], [sp * sy, cp, -sp * cy], [-cp * sy, sp, cp * cy]];
+  }
+
+  // The transform from world to device pixels for the current canvas size and view.
+  function makeCamera() {
+    const { bounds } = S.meta;
+    const D = S.D, R = rotation();
+    const c = [0, 1, 2].map((k) => (k < D ? (bounds.min[k] + bounds.max[k]) / 2 : 0));
+    const view = (p) => {
+      const d = [p[0] - c[0], p[1] - c[1], D > 2 ? p[2] - c[2] : 0];
+      return [0, 1, 2].map((i) => R[i][0] * d[0] + R[i][1] * d[1] + R[i][2] * d[2]);
+    };
+    let lo = [Infinity, Infinity], hi = [-Infinity, -Infinity];
+    for (let corner = 0; corner < 1 << D; corner++) {
+      const p = [];
+      for (let k = 0; k < D; k++) p.push((corner >> k) & 1 ? bounds.max[k] : bounds.min[k]);
+      const q = view(p);
+      for (let k = 0; k < 2; k++) { lo[k] = Math.min(lo[k], q[k]); hi[k] = Math.max(hi[k], q[k]); }
+    }
+    const W = S.surface.w, H = S.surface.h, margin = 10;
+    const fit = Math.min((W - 2 * margin) / Math.max(hi[0] - lo[0], 1e-12), (H - 2 * margin) / Math.max(hi[1] - lo[1], 1e-12));
+    const scale = fit * S.view.zoom;
+    const mid = [(lo[0] + hi[0]) / 2, (lo[1] + hi[1]) / 2];
+    const ox = W / 2 + S.view.panX * dpr(), oy = H / 2 + S.view.panY * dpr();
+    return {
+      scale, R, c,
+      project(x, y, z) {
+        const d0 = x - c[0], d1 = y - c[1], d2 = D > 2 ? z - c[2] : 0;
+        const q0 = R[0][0] * d0 + R[0][1] * d1 + R[0][2] * d2;
+        const q1 = R[1][0] * d0 + R[1][1] * d1 + R[1][2] * d2;
+        const q2 = R[2][0] * d0 + R[2][1] * d1 + R[2][2] * d2;
+        return [ox + scale * (q0 - mid[0]), oy - scale * (q1 - mid[1]), scale * q2];
+      },
+      unproject2(sx, sy) {
+        return [(sx - ox) / scale + mid[0] + c[0], -(sy - oy) / scale + mid[1] + c[1]];
+      },
+    };
+  }
+
+  const dpr = () => Math.min(2, window.devicePixelRatio || 1);
+
+  function ensureSurface() {
+    const w = Math.max(1, Math.round(canvas.clientWidth * dpr()));
+    const h = Math.max(1, Math.round(canvas.clientHeight * dpr()));
+    if (!S.surface || S.surface.w !== w || S.surface.h !== h) {
+      canvas.width = w;
+      canvas.height = h;
+      S.surface = new Raster.Surface(ctx, w, h);
+    }
+  }
+
+  function position(i, t, out) {
+    const D = S.D, dt = t - S.T0[i];
+    for (let k = 0; k < D; k++) out[k] = S.P[i * D + k] + S.V[i * D + k] * dt;
+    return out;
+  }
+
+  function bodyWord(i) {
+    if (S.colour === 'speed') {
+      const D = S.D;
+      let v2 = 0;
+      for (let k = 0; k < D; k++) v2 += S.V[i * D + k] ** 2;
+      return Raster.SPEED_WORDS[Raster.speedBucket(Math.sqrt(v2), S.meta.max_speed)];
+    }
+    return Raster.ID_WORDS[S.idBucket[i]];
+  }
+
+  function bodyRgb(i) {
+    const w = bodyWord(i);
+    return [w & 255, (w >>> 8) & 255, (w >>> 16) & 255];
+  }
+
+  function drawWalls(cam, surf) {
+    const D = S.D, { bounds } = S.meta;
+    const span = Math.hypot(...bounds.max.map((x, k) => x - bounds.min[k])) || 1;
+    let planes = false;
+    const seg = (a, b) => {
+      const p = cam.project(a[0], a[1], a[2]), q = cam.project(b[0], b[1], b[2]);
+      surf.line(p[0], p[1], q[0], q[1], Raster.WALL_WORD, 2);
+    };
+    for (const w of S.meta.walls) {
+      if (w.a) seg(w.a, w.b);
+      else if (D === 2) {
+        const len = Math.hypot(w.normal[0], w.normal[1]);
+        const d = [(-w.normal[1] / len) * 10 * span, (w.normal[0] / len) * 10 * span];
+        seg([w.point[0] - d[0], w.point[1] - d[1]], [w.point[0] + d[0], w.point[1] + d[1]]);
+      } else planes = true;
+    }
+    if (planes || (D === 3 && S.meta.walls.length === 0)) boxEdges(cam, surf, bounds.min, bounds.max, Raster.WALL_WORD);
+  }
+
+  function boxEdges(cam, surf, min, max, word) {
+    const D = S.D;
+    if (D === 2) {
+      const a = cam.project(min[0], min[1]), b = cam.project(max[0], max[1]);
+      surf.rect(a[0], a[1], b[0], b[1], word);
+      return;
+    }
+    const pts = [];
+    for (let c = 0; c < 8; c++) {
+      pts.push(cam.project(c & 1 ? max[0] : min[0], c & 2 ? max[1] : min[1], c & 4 ? max[2] : min[2]));
+    }
+    for (let c = 0; c < 8; c++) {
+      for (let k = 0; k < 3; k++) {
+        if (!((c >> k) & 1)) {
+          const a = pts[c], b = pts[c | (1 << k)];
+          surf.line(a[0], a[1], b[0], b[1], word);
+        }
+      }
+    }
+  }
+
+  function drawBoxes(cam, surf) {
+    const data = S.boxes.data;
+    if (!S.boxes.on || !data) return;
+    const D = S.D, stride = 2 + 2 * D;
+    const min = [0, 0, 0], max = [0, 0, 0];
+    // Inner nodes first (by depth, as in the thesis's Figure 5.3), then the swept leaves.
+    for (const leafPass of [0, 1]) {
+      for (let o = 0; o < data.length; o += stride) {
+        if (data[o + 1] !== leafPass) continue;
+        for (let k = 0; k < D; k++) { min[k] = data[o + 2 + k]; max[k] = data[o + 2 + D + k]; }
+        const word = leafPass ? Raster.LEAF_WORD : Raster.DEPTH_WORDS[data[o] % Raster.DEPTH_WORDS.length];
+        boxEdges(cam, surf, min, max, word);
+      }
+    }
+  }
+
+  function draw() {
+    ensureSurface();
+    const surf = S.surface, cam = makeCamera();
+    S.camera = cam;
+    const { n, D } = S, t = S.time, now = performance.now();
+    const p = [0, 0, 0];
+    surf.clear();
+    drawWalls(cam, surf);
+    const flashing = [];
+    const lit = (i) => now - S.flash[i] < S.flashMs || (!S.playing && S.evTime[i] === t);
+    if (D === 2) {
+      for (let i = 0; i < n; i++) {
+        position(i, t, p);
+        const [x, y] = cam.project(p[0], p[1]);
+        const r = S.radius[i] * cam.scale;
+        if (lit(i)) { flashing.push(i); continue; }
+        surf.disc(x, y, r, bodyWord(i));
+      }
+    } else {
+      surf.useDepth();
+      for (let i = 0; i < n; i++) {
+        position(i, t, p);
+        const [x, y, z] = cam.project(p[0], p[1], p[2]);
+        const r = S.radius[i] * cam.scale;
+        const on = lit(i);
+        if (on) flashing.push(i);
+        surf.sphere(x, y, z, r, on ? Raster.FLASH_FILL : bodyRgb(i));
+      }
+    }
+    drawBoxes(cam, surf);
+    for (const i of flashing) {
+      position(i, t, p);
+      const [x, y] = cam.project(p[0], p[1], p[2]);
+      const r = S.radius[i] * cam.scale;
+      // In 2D a ring marks bodies big enough to see one around (tiny ones just turn white);
+      // in 3D the white sphere alone, since a ring would show through nearer spheres.
+      if (D === 2) {
+        surf.disc(x, y, r, Raster.FLASH_FILL_WORD);
+        if (r >= 2) surf.ring(x, y, r + 1.5 * dpr(), r + 4 * dpr(), Raster.FLASH_RING_WORD);
+      }
+    }
+    // Progress along the run at the foot of the view.
+    const span = S.meta.end_time - S.meta.start_time;
+    if (span > 0) surf.fillRect(0, surf.h - 3, (surf.w * (t - S.meta.start_time)) / span, surf.h, Raster.pack([90, 140, 220]));
+    surf.present();
+    S.frames++;
+  }
+
+  // ---- boxes -------------------------------------------------------------------------
+
+  // Asks for the boxes at the current time when they are stale. While playing, requests
+  // are spaced by twice the last one's latency, so that a big run's boxes (a world rebuilt
+  // and a BVH built on the server) never crowd out the events playback needs.
+  async function refreshBoxes() {
+    const B = S.boxes;
+    if (!B.on || B.busy || (B.time === S.time && B.finder === finderName())) return;
+    const now = performance.now();
+    if (S.playing && now - B.sentAt < 2 * B.latencyMs) return;
+    B.busy = true;
+    B.sentAt = now;
+    const t = S.time, finder = finderName();
+    try {
+      const ab = await bin(`/api/boxes?t=${t}&finder=${encodeURIComponent(finder)}`);
+      B.data = new Float32Array(ab);
+      B.error = null;
+      const count = B.data.length / (2 + 2 * S.D);
+      $('hint').textContent = `${count} boxes from ${finder} at t = ${t.toPrecision(6)} s`;
+      if (count === 0) $('hint').textContent += ` (${finder} has no spatial structure to show)`;
+    } catch (e) {
+      B.data = null;
+      B.error = e.message;
+      $('hint').textContent = `boxes: ${e.message}`;
+    } finally {
+      B.latencyMs = performance.now() - B.sentAt;
+      B.time = t;
+      B.finder = finder;
+      B.busy = false;
+    }
+  }
+
+  const finderName = () => $('finder').value.trim() || S.meta.finder;
+
+  // ---- controls ----------------------------------------------------------------------
+
+  function play() {
+    if (S.time >= S.meta.end_time) seek(S.meta.start_time);
+    S.playing = true;
+    S.want = S.time;
+    $('play').textContent = '■ pause';
+  }
+
+  function pause() {
+    S.playing = false;
+    S.want = S.time;
+    $('play').textContent = '▶ play';
+  }
+
+  function fail(e) {
+    S.error = e.message || String(e);
+    setStatus(S.error);
+  }
+
+  function updateLabels() {
+    const { meta } = S;
+    $('time').textContent = `t = ${S.time.toFixed(6)} s`;
+    $('events').textContent = `event ${S.applied} / ${meta.events}`;
+    if (!S.seeking) {
+      const span = meta.end_time - meta.start_time;
+      $('seek').value = span > 0 ? Math.round(((S.time - meta.start_time) / span) * 100000) : 0;
+    }
+  }
+
+  function bindControls() {
+    $('play').onclick = () => (S.playing ? pause() : play());
+    $('next').onclick = () => step(1);
+    $('prev').onclick = () => step(-1);
+    const seekBar = $('seek');
+    const seekTo = () => {
+      const span = S.meta.end_time - S.meta.start_time;
+      seek(S.meta.start_time + (seekBar.value / 100000) * span);
+    };
+    seekBar.addEventListener('input', () => { S.seeking = true; seekTo(); });
+    seekBar.addEventListener('change', () => { S.seeking = false; seekTo(); });
+    const speed = $('speed');
+    const setSpeed = () => {
+      S.speed = 10 ** Number(speed.value);
+      $('speed-label').textContent = `${S.speed < 0.1 ? S.speed.toFixed(3) : S.speed.toFixed(2)}×`;
+    };
+    speed.addEventListener('input', setSpeed);
+    setSpeed();
+    $('slowmo').onchange = (e) => { S.slowmo = e.target.checked; };
+    $('colour').onchange = (e) => { S.colour = e.target.value; };
+    $('boxes').onchange = (e) => {
+      S.boxes.on = e.target.checked;
+      S.boxes.time = NaN;
+      if (!S.boxes.on) $('hint').textContent = '';
+    };
+    $('finder').onchange = () => { S.boxes.time = NaN; };
+    // Typing a time (e.g. an event's, as `ccdsim export` prints it) seeks there exactly.
+    $('goto').addEventListener('keydown', (e) => {
+      if (e.key !== 'Enter') return;
+      const t = Number(e.target.value);
+      if (e.target.value.trim() === '' || !Number.isFinite(t)) { setStatus(`go to: \`${e.target.value}\` is not a time`); return; }
+      pause();
+      seek(t);
+    });
+    window.addEventListener('keydown', (e) => {
+      if (e.target.tagName === 'INPUT' && e.target.type === 'text') return;
+      if (e.key === ' ') { e.preventDefault(); S.playing ? pause() : play(); }
+      else if (e.key === 'ArrowRight') step(1);
+      else if (e.key === 'ArrowLeft') step(-1);
+    });
+    // Drag pans (2D) or orbits (3D); the wheel zooms; a double click resets the view.
+    let drag = null;
+    canvas.addEventListener('pointerdown', (e) => { drag = { x: e.clientX, y: e.clientY }; canvas.setPointerCapture(e.pointerId); });
+    canvas.addEventListener('pointerup', () => { drag = null; });
+    canvas.addEventListener('pointermove', (e) => {
+      if (!drag) return;
+      const dx = e.clientX - drag.x, dy = e.clientY - drag.y;
+      drag = { x: e.clientX, y: e.clientY };
+      if (S.D === 2) { S.view.panX += dx; S.view.panY += dy; }
+      else {
+        S.view.yaw += dx * 0.4;
+        S.view.pitch = Math.max(-89, Math.min(89, S.view.pitch + dy * 0.4));
+      }
+    });
+    canvas.addEventListener('wheel', (e) => {
+      e.preventDefault();
+      const f = Math.exp(-e.deltaY * 0.0015);
+      const rect = canvas.getBoundingClientRect();
+      // Zoom about the cursor: keep the point under it fixed.
+      const mx = e.clientX - rect.left - rect.width / 2, my = e.clientY - rect.top - rect.height / 2;
+      S.view.panX = mx - (mx - S.view.panX) * f;
+      S.view.panY = my - (my - S.view.panY) * f;
+      S.view.zoom *= f;
+    }, { passive: false });
+    canvas.addEventListener('dblclick', () => { S.view = { zoom: 1, panX: 0, panY: 0, yaw: 35, pitch: 25 }; });
+  }
+
+  function frame(now) {
+    const dt = S.prevNow === null ? 0 : Math.min(0.1, (now - S.prevNow) / 1000);
+    S.prevNow = now;
+    if (S.playing) {
+      // `want` is where the clock should be; `time` follows it as far as the events at hand
+      // allow. When events arrive slower than the clock needs them (a dense run at high
+      // speed), a snapshot jumps ahead to where the clock will be when it arrives.
+      const before = S.time, applied0 = S.applied;
+      S.want = Math.min(S.meta.end_time, S.want + dt * S.speed * slowFactor());
+      if (!S.seekBusy) advanceTo(S.want);
+      if (!S.seekBusy && S.want - S.time > CATCH_UP_WALL * S.speed) {
+        seek(Math.min(S.meta.end_time, S.want + (S.speed * S.seekMs) / 1000), true);
+      }
+      if (S.time >= S.meta.end_time && before < S.meta.end_time) pause();
+      if (dt > 0) {
+        S.eventRate = 0.9 * S.eventRate + 0.1 * ((S.applied - applied0) / dt);
+        const lit = Math.max(6, FLASH_SHARE * S.n);
+        S.flashMs = Math.min(FLASH_MS, (1000 * lit) / Math.max(1, 2 * S.eventRate));
+      }
+    }
+    const d0 = performance.now();
+    draw();
+    S.drawMs = 0.9 * S.drawMs + 0.1 * (performance.now() - d0);
+    updateLabels();
+    refreshBoxes();
+    requestAnimationFrame(frame);
+  }
+
+  async function start() {
+    try {
+      const meta = await json('/api/meta');
+      S.meta = meta;
+      S.D = meta.dim;
+      S.n = meta.bodies;
+      S.stride = 4 + 4 * meta.dim;
+      const bodies = new Float64Array(await bin('/api/bodies'));
+      S.radius = bodies.subarray(0, S.n);
+      S.ids = bodies.subarray(S.n, 2 * S.n);
+      S.idBucket = Uint8Array.from(S.ids, Raster.idBucket);
+      S.P = new Float64Array(S.n * S.D);
+      S.V = new Float64Array(S.n * S.D);
+      S.T0 = new Float64Array(S.n);
+      S.flash = new Float64Array(S.n).fill(-Infinity);
+      S.evTime = new Float64Array(S.n).fill(-Infinity);
+      $('file').textContent = `${meta.file} · ${meta.dim}D · ${meta.bodies} bodies · ${meta.events} events${meta.complete ? '' : ' (no end record)'}`;
+      $('finder').value = meta.finder;
+      bindControls();
+      await seek(meta.start_time);
+      setStatus(meta.dim === 3 ? 'orthographic view: drag to orbit, wheel to zoom' : 'top-down view: drag to pan, wheel to zoom', true);
+      requestAnimationFrame(frame);
+      window.ccdsim.ready = true;
+    } catch (e) {
+      fail(e);
+    }
+  }
+
+  // A small window into the page for tests and the curious console user.
+  window.ccdsim = {
+    ready: false,
+    time: () => S.time,
+    applied: () => S.applied,
+    playing: () => S.playing,
+    speed: () => S.speed,
+    frames: () => S.frames,
+    drawMs: () => S.drawMs,
+    error: () => S.error,
+    boxes: () => ({ on: S.boxes.on, count: S.boxes.data ? S.boxes.data.length / (2 + 2 * S.D) : 0, time: S.boxes.time, error: S.boxes.error }),
+    seek: (t) => seek(t),
+    // Body i at the current time, in CSS pixels from the canvas's top-left corner.
+    bodyOnScreen(i) {
+      const p = position(i, S.time, [0, 0, 0]);
+      const [x, y] = S.camera.project(p[0], p[1], p[2]);
+      return { x: x / dpr(), y: y / dpr(), r: (S.radius[i] * S.camera.scale) / dpr() };
+    },
+  };
+
+  start();
+})();

@@ -1,0 +1,249 @@
+//! Drawing one frame with tiny-skia: walls, the finder's boxes, bodies, collision flashes and
+//! a progress bar.
+
+use super::camera::Camera;
+use super::colour::{self, ColourBy, Rgb, BUCKETS};
+use crate::playback::Snapshot;
+use ccdsim::finder::DebugBox;
+use ccdsim::{Aabb, Scene, Vector, Wall};
+use tiny_skia::{Color, FillRule, Paint, PathBuilder, Pixmap, Rect, Stroke, Transform};
+
+/// Everything one frame shows.
+pub struct FrameInput<'a, const D: usize> {
+    /// The run's scene (radii, ids, walls).
+    pub scene: &'a Scene<D>,
+    /// The state to draw, at its time.
+    pub snap: &'a Snapshot<D>,
+    /// The finder's boxes at that time (empty to draw none).
+    pub boxes: &'a [DebugBox<D>],
+    /// How bodies are coloured.
+    pub colour: ColourBy,
+    /// The run's top speed, m/s, for [`ColourBy::Speed`].
+    pub max_speed: f64,
+    /// Bodies whose last collision is at most this long before the frame's time flash,
+    /// seconds (0: only those colliding exactly at it).
+    pub flash_window: f64,
+    /// Where the frame's time lies in the run, 0 to 1, drawn as a bar; `None` for no bar.
+    pub progress: Option<f64>,
+    /// The run's bounds (3D runs draw them as a wire box).
+    pub bounds: Aabb<D>,
+}
+
+fn paint(c: Rgb, alpha: u8) -> Paint<'static> {
+    let mut p = Paint::default();
+    p.set_color(Color::from_rgba8(c[0], c[1], c[2], alpha));
+    p.anti_alias = true;
+    p
+}
+
+fn stroke(width: f32) -> Stroke {
+    Stroke {
+        width,
+        ..Stroke::default()
+    }
+}
+
+/// Draws a frame into a new pixmap of the camera's size.
+#[must_use]
+pub fn draw_frame<const D: usize>(cam: &Camera, f: &FrameInput<'_, D>) -> Pixmap {
+    let mut pm = Pixmap::new(cam.width, cam.height).expect("camera size is at least 16×16");
+    let bg = colour::BACKGROUND;
+    pm.fill(Color::from_rgba8(bg[0], bg[1], bg[2], 255));
+    draw_walls(&mut pm, cam, f);
+    draw_boxes(&mut pm, cam, f.boxes);
+    draw_bodies(&mut pm, cam, f);
+    if let Some(p) = f.progress {
+        let w = (f64::from(cam.width) * p.clamp(0.0, 1.0)) as f32;
+        if let Some(r) = Rect::from_xywh(0.0, cam.height as f32 - 3.0, w.max(1.0), 3.0) {
+            pm.fill_rect(
+                r,
+                &paint(colour::PROGRESS, 255),
+                Transform::identity(),
+                None,
+            );
+        }
+    }
+    pm
+}
+
+/// Adds the segment `a`–`b` to a path.
+fn segment<const D: usize>(pb: &mut PathBuilder, cam: &Camera, a: Vector<D>, b: Vector<D>) {
+    let (x0, y0, _) = cam.project(a);
+    let (x1, y1, _) = cam.project(b);
+    pb.move_to(x0, y0);
+    pb.line_to(x1, y1);
+}
+
+/// Adds the edges of a box to a path: 4 in 2D, 12 in 3D.
+fn box_edges<const D: usize>(pb: &mut PathBuilder, cam: &Camera, b: &Aabb<D>) {
+    let corner = |bits: usize| {
+        let mut p = Vector::<D>::ZERO;
+        for k in 0..D {
+            p[k] = if bits >> k & 1 == 1 {
+                b.max[k]
+            } else {
+                b.min[k]
+            };
+        }
+        p
+    };
+    for c in 0..(1usize << D) {
+        for k in 0..D {
+            if c >> k & 1 == 0 {
+                segment(pb, cam, corner(c), corner(c | 1 << k));
+            }
+        }
+    }
+}
+
+fn draw_walls<const D: usize>(pm: &mut Pixmap, cam: &Camera, f: &FrameInput<'_, D>) {
+    let mut pb = PathBuilder::new();
+    let span = (f.bounds.max - f.bounds.min).norm().max(1e-9);
+    let mut planes = false;
+    for w in &f.scene.walls {
+        match *w {
+            Wall::Segment { a, b } => segment(&mut pb, cam, a, b),
+            Wall::Plane { point, normal } if D == 2 => {
+                // A line in 2D: draw it across the whole view.
+                let mut dir = Vector::<D>::ZERO;
+                dir[0] = -normal[1];
+                dir[1] = normal[0];
+                let dir = dir * (10.0 * span / dir.norm());
+                segment(&mut pb, cam, point - dir, point + dir);
+            }
+            Wall::Plane { .. } => planes = true,
+        }
+    }
+    if planes || (D == 3 && f.scene.walls.is_empty()) {
+        // Planes have no edges to draw; a wire box of the run's bounds shows the room.
+        box_edges(&mut pb, cam, &f.bounds);
+    }
+    if let Some(path) = pb.finish() {
+        pm.stroke_path(
+            &path,
+            &paint(colour::WALL, 255),
+            &stroke(1.5),
+            Transform::identity(),
+            None,
+        );
+    }
+}
+
+fn draw_boxes<const D: usize>(pm: &mut Pixmap, cam: &Camera, boxes: &[DebugBox<D>]) {
+    let max_depth = boxes.iter().map(|b| b.depth).max().unwrap_or(0) as usize;
+    let mut inner: Vec<PathBuilder> = (0..=max_depth).map(|_| PathBuilder::new()).collect();
+    let mut leaves = PathBuilder::new();
+    for b in boxes {
+        if b.leaf {
+            box_edges(&mut leaves, cam, &b.aabb);
+        } else {
+            box_edges(&mut inner[b.depth as usize], cam, &b.aabb);
+        }
+    }
+    for (depth, pb) in inner.into_iter().enumerate() {
+        if let Some(path) = pb.finish() {
+            let c = colour::depth_colour(depth as u32);
+            pm.stroke_path(
+                &path,
+                &paint(c, 200),
+                &stroke(1.0),
+                Transform::identity(),
+                None,
+            );
+        }
+    }
+    if let Some(path) = leaves.finish() {
+        pm.stroke_path(
+            &path,
+            &paint(colour::LEAF_BOX, 220),
+            &stroke(1.0),
+            Transform::identity(),
+            None,
+        );
+    }
+}
+
+fn draw_bodies<const D: usize>(pm: &mut Pixmap, cam: &Camera, f: &FrameInput<'_, D>) {
+    let s = &f.snap.states;
+    let t = f.snap.time;
+    let start = f.scene.start_time;
+    let flashing =
+        |i: usize| s.time[i] > start && s.time[i] <= t && t - s.time[i] <= f.flash_window;
+    let bucket = |i: usize| match f.colour {
+        ColourBy::Id => colour::id_bucket(f.scene.id_of(i)),
+        ColourBy::Speed => colour::speed_bucket(s.vel[i].norm(), f.max_speed),
+    };
+    let bucket_colour = |b: usize| match f.colour {
+        ColourBy::Id => colour::id_colour(b),
+        ColourBy::Speed => colour::speed_colour(b),
+    };
+    let disc = |i: usize| {
+        let (x, y, z) = cam.project(s.position_at(i, t));
+        let r = (f.scene.bodies[i].radius * cam.scale).max(0.75) as f32;
+        (x, y, z, r)
+    };
+    let mut flashes = Vec::new();
+    if D == 2 {
+        // Bodies never overlap in 2D, so drawing order is free: one path per colour.
+        let mut paths: Vec<PathBuilder> = (0..BUCKETS).map(|_| PathBuilder::new()).collect();
+        for i in 0..s.len() {
+            if flashing(i) {
+                flashes.push(i);
+                continue;
+            }
+            let (x, y, _, r) = disc(i);
+            paths[bucket(i)].push_circle(x, y, r);
+        }
+        for (b, pb) in paths.into_iter().enumerate() {
+            if let Some(path) = pb.finish() {
+                pm.fill_path(
+                    &path,
+                    &paint(bucket_colour(b), 255),
+                    FillRule::Winding,
+                    Transform::identity(),
+                    None,
+                );
+            }
+        }
+    } else {
+        // 3D: far bodies first (painter's order), each shaded with a highlight.
+        let mut order: Vec<(f64, usize)> = (0..s.len()).map(|i| (disc(i).2, i)).collect();
+        order.sort_by(|a, b| a.0.total_cmp(&b.0));
+        for (_, i) in order {
+            if flashing(i) {
+                flashes.push(i);
+                continue;
+            }
+            let (x, y, _, r) = disc(i);
+            let c = bucket_colour(bucket(i));
+            fill_circle(pm, x, y, r, c);
+            let light = [c[0] / 2 + 128, c[1] / 2 + 128, c[2] / 2 + 128];
+            fill_circle(pm, x - 0.3 * r, y - 0.3 * r, 0.35 * r, light);
+        }
+    }
+    for i in flashes {
+        let (x, y, _, r) = disc(i);
+        fill_circle(pm, x, y, r, colour::FLASH_FILL);
+        if let Some(path) = PathBuilder::from_circle(x, y, r + 2.0) {
+            pm.stroke_path(
+                &path,
+                &paint(colour::FLASH_RING, 255),
+                &stroke(2.0),
+                Transform::identity(),
+                None,
+            );
+        }
+    }
+}
+
+fn fill_circle(pm: &mut Pixmap, x: f32, y: f32, r: f32, c: Rgb) {
+    if let Some(path) = PathBuilder::from_circle(x, y, r) {
+        pm.fill_path(
+            &path,
+            &paint(c, 255),
+            FillRule::Winding,
+            Transform::identity(),
+            None,
+        );
+    }
+}

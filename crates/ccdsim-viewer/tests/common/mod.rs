@@ -1,0 +1,65 @@
+//! Helpers shared by the viewer's integration tests: recording runs and a raw HTTP client.
+
+#![allow(dead_code)]
+
+use ccdsim::record::RunWriter;
+use ccdsim::{Scene, Simulation};
+use std::io::{Read, Write};
+use std::path::{Path, PathBuf};
+
+/// A fresh directory for one test's files.
+pub fn temp_dir(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("ccdsim-viewer-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+/// Records `scene` run until `until` with the all-pairs finder to `path`; returns the events.
+pub fn record<const D: usize>(scene: &Scene<D>, until: f64, path: &Path) -> u64 {
+    let mut sim = Simulation::new(scene, "all-pairs").unwrap();
+    let mut w = RunWriter::create(path, scene).unwrap();
+    let n = sim.run_until_with(until, |c| w.write_event(c).unwrap());
+    w.finish(until).unwrap();
+    n
+}
+
+/// One HTTP answer.
+pub struct Answer {
+    pub status: u16,
+    pub head: String,
+    pub body: Vec<u8>,
+}
+
+/// GETs `path` from 127.0.0.1:`port` over a raw HTTP/1.0 connection.
+pub fn get(port: u16, path: &str) -> Answer {
+    let mut s = std::net::TcpStream::connect(("127.0.0.1", port)).unwrap();
+    write!(s, "GET {path} HTTP/1.0\r\nHost: 127.0.0.1\r\n\r\n").unwrap();
+    let mut raw = Vec::new();
+    s.read_to_end(&mut raw).unwrap();
+    let split = raw
+        .windows(4)
+        .position(|w| w == b"\r\n\r\n")
+        .expect("HTTP head");
+    let head = String::from_utf8(raw[..split].to_vec()).unwrap();
+    let status = head.split_whitespace().nth(1).unwrap().parse().unwrap();
+    Answer {
+        status,
+        head,
+        body: raw[split + 4..].to_vec(),
+    }
+}
+
+/// Little-endian `f64`s.
+pub fn f64s(b: &[u8]) -> Vec<f64> {
+    b.chunks_exact(8)
+        .map(|c| f64::from_le_bytes(c.try_into().unwrap()))
+        .collect()
+}
+
+/// Little-endian `f32`s.
+pub fn f32s(b: &[u8]) -> Vec<f32> {
+    b.chunks_exact(4)
+        .map(|c| f32::from_le_bytes(c.try_into().unwrap()))
+        .collect()
+}
