@@ -31,6 +31,7 @@ fn next_event(c: &mut Criterion) {
             speed_min: 0.0,
             speed_max: 1.0,
             seed: SEED,
+            ..GasConfig::default()
         })
         .expect("gas");
         for finder in FINDERS {

@@ -19,7 +19,6 @@
 #![forbid(unsafe_code)]
 
 pub mod bench;
-pub mod bench_gas;
 pub mod discrete;
 pub mod event;
 pub mod finder;

@@ -1,14 +1,20 @@
 //! Benchmark drivers behind `ccdsim bench`: the thesis's Table 5.1 (running time against the
-//! number of bodies for every finder) and Table 5.2 (the exact simulation against a
-//! discrete-time stepper and the collisions it misses). They print tables and return data; the
+//! number of bodies for every finder), Table 5.2 (the exact simulation against a
+//! discrete-time stepper and the collisions it misses) and the gas workload (collisions per
+//! second and the equation of state of hard discs and spheres). They print tables and return data; the
 //! command-line tool adds the files and plots.
 
 mod budget;
 mod discrete;
+mod gas;
 mod thesis;
 
 pub use budget::{CellStatus, Planner};
 pub use discrete::{run_discrete_bench, DiscreteBenchConfig, DiscreteBenchReport, DiscreteRow};
+pub use gas::{
+    carnahan_starling_z, enskog_collision_rate, eos_z, gas_bench, henderson_z, standard_error,
+    GasBenchConfig, GasBenchError, GasBenchReport,
+};
 pub use thesis::{
     fmt_seconds, run_thesis_bench, run_thesis_once, thesis_row, ThesisBenchConfig,
     ThesisBenchReport, ThesisCell, ThesisRun,

@@ -2,6 +2,7 @@
 //! One file per workload.
 
 mod discrete;
+mod gas;
 mod plot;
 mod thesis;
 
@@ -24,6 +25,9 @@ enum Workload {
     /// The thesis's Table 5.2: the exact simulation against a discrete-time stepper, with the
     /// collisions the stepper misses.
     Discrete(discrete::Args),
+    /// Hard discs or spheres in a periodic box: collisions per second, peak memory per body,
+    /// and the equation of state (Z, collision rate) against Henderson / Carnahan–Starling.
+    Gas(gas::Args),
 }
 
 /// Runs the command.
@@ -31,6 +35,7 @@ pub fn run(args: Args) -> Result<ExitCode> {
     match args.workload {
         Workload::Thesis(a) => thesis::run(a),
         Workload::Discrete(a) => discrete::run(a),
+        Workload::Gas(a) => gas::run(a),
     }
 }
 
