@@ -8,7 +8,7 @@
 //! periodic world the grid tiles the box `[0, L)` exactly; an axis with fewer than three cells
 //! becomes a single cell whose three images (−L, 0, +L) are all neighbours.
 
-use super::queue::NONE;
+use super::key::NONE;
 use crate::geom::Vector;
 use crate::narrow::Motion;
 use crate::scene::Wall;

@@ -3,7 +3,7 @@
 //! cell crossing.
 
 use super::grid::Grid;
-use super::queue::{ordered, Key};
+use super::key::{ordered, Key};
 use super::{Cells, KEY_IS_CROSSING, NO_CROSSING, SECOND_KNOWN};
 use crate::geom::Vector;
 use crate::narrow::{toi_circle_circle, toi_circle_circle_shifted, toi_circle_wall, Motion};
