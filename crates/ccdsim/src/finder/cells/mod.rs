@@ -1,5 +1,5 @@
-//! The `cells` finder: a uniform grid, one cached prediction per body and an event queue;
-//! O(1) predictions and O(log n) queue work per event.
+//! The `cells` finder: a uniform grid, cached predictions per body and a calendar queue; a
+//! bounded number of predictions and O(1) expected queue work per event.
 //!
 //! # How it works
 //!
@@ -54,8 +54,8 @@
 //!    body's cell). The pair's term was computed at the later of (a) the last state change of
 //!    either body (full recompute of that body, which scans its whole neighbourhood and its
 //!    cell's walls), (b) the last crossing of either body that made them neighbours (the layer
-//!    scan). Since then the term sits in that body's `best`, and `best` only ever decreases
-//!    except through a full recompute, which covers the pair again.
+//!    scan). Since then the term is covered by that body's records: merges only lower them,
+//!    a promotion keeps the coverage (see 1), and a full recompute covers the pair again.
 //!
 //! Let `E` be the oracle's event: the minimum live term, at time `t`. While a crossing or a
 //! stale key precedes `E` in the queue, it is processed, never returned (crossings are finitely
