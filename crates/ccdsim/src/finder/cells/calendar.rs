@@ -414,15 +414,40 @@ impl CalendarQueue {
     }
 }
 
-/// Index of the bucket of width `width` holding time `t`.
+/// Index of the bucket of width `width` holding time `t`: `⌊t / width⌋`, saturating.
 #[inline]
 fn bucket_of(t: f64, width: f64) -> i64 {
-    (t / width).floor() as i64
+    // `f64::floor` is a library call on the baseline x86-64 target; truncation and a
+    // correction for negative quotients is the same floor, inline.
+    let q = t / width;
+    let k = q as i64;
+    if (k as f64) > q {
+        k.saturating_sub(1)
+    } else {
+        k
+    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn buckets_floor() {
+        for (t, w, k) in [
+            (0.0, 1.0, 0),
+            (0.99, 1.0, 0),
+            (1.0, 1.0, 1),
+            (-0.5, 1.0, -1),
+            (-1.0, 1.0, -1),
+            (-1.5, 0.5, -3),
+            (1e300, 1e-300, i64::MAX),
+            (f64::INFINITY, 1.0, i64::MAX),
+            (f64::NEG_INFINITY, 1.0, i64::MIN),
+        ] {
+            assert_eq!(bucket_of(t, w), k, "{t} / {w}");
+        }
+    }
 
     #[test]
     fn pops_in_key_order() {

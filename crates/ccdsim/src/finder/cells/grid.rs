@@ -200,7 +200,8 @@ impl<const D: usize> Grid<D> {
     pub fn coords_of_point(&self, p: &Vector<D>) -> [usize; D] {
         let mut k = [0usize; D];
         for d in 0..D {
-            let x = ((p[d] - self.origin[d]) / self.width[d]).floor();
+            // Truncation is the floor for the non-negative quotients it is used on.
+            let x = (p[d] - self.origin[d]) / self.width[d];
             k[d] = if x >= (self.dims[d] - 1) as f64 {
                 self.dims[d] - 1
             } else if x >= 0.0 {
