@@ -89,6 +89,9 @@ struct Summary {
     pressure: Option<f64>,
     /// Compressibility factor Z = PV/(NkT); null when the pressure is.
     compressibility: Option<f64>,
+    /// The finder's internal work (e.g. `cells`: crossings, stale predictions, rescans), by
+    /// name; empty for finders that keep no counters.
+    finder_counters: std::collections::BTreeMap<String, u64>,
 }
 
 /// Runs the command.
@@ -201,6 +204,13 @@ fn simulate<const D: usize>(scene: &Scene<D>, args: &Args) -> Result<Summary> {
         collision_rate: observables.collision_rate,
         pressure: observables.pressure,
         compressibility: observables.compressibility,
+        finder_counters: sim
+            .finder_mut()
+            .0
+            .counters()
+            .into_iter()
+            .map(|(name, count)| (name.to_string(), count))
+            .collect(),
     })
 }
 

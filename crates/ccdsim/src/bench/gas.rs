@@ -100,6 +100,9 @@ pub struct GasBenchReport {
     pub finder_bytes: Option<usize>,
     /// Box exits applied during the measurement (not collisions).
     pub exits: u64,
+    /// The finder's internal work during the measurement (see
+    /// [`Finder::counters`](crate::Finder::counters)): name and count.
+    pub finder_counters: Vec<(String, u64)>,
 }
 
 /// Why the benchmark could not run.
@@ -195,6 +198,7 @@ pub fn gas_bench<const D: usize>(
         }
     }
     let start = *sim.stats();
+    let counters_start = sim.finder_mut().0.counters();
     let t_start = sim.time();
     let clock = Instant::now();
     let cpu_start = cpu_clock.map(|c| c());
@@ -229,6 +233,19 @@ pub fn gas_bench<const D: usize>(
         _ => None,
     };
     let end = *sim.stats();
+    let finder_counters = sim
+        .finder_mut()
+        .0
+        .counters()
+        .into_iter()
+        .map(|(name, count)| {
+            let before = counters_start
+                .iter()
+                .find(|(n, _)| *n == name)
+                .map_or(0, |c| c.1);
+            (name.to_string(), count - before)
+        })
+        .collect();
     let span = sim.time() - t_start;
     let whole = observables(
         sim.world(),
@@ -266,6 +283,7 @@ pub fn gas_bench<const D: usize>(
             .memory()
             .map(|m: FinderMemory| m.peak_bytes),
         exits: end.exits - start.exits,
+        finder_counters,
     })
 }
 

@@ -59,6 +59,12 @@ pub trait Finder<const D: usize>: Send {
     fn memory(&self) -> Option<FinderMemory> {
         None
     }
+
+    /// Counters of the finder's internal work since its last `init` (name, count), for
+    /// benchmarks and profiling; empty for finders that keep none.
+    fn counters(&self) -> Vec<(&'static str, u64)> {
+        Vec::new()
+    }
 }
 
 /// Memory held by a finder's own structures, bytes (payload only: allocator overhead and

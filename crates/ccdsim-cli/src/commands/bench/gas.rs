@@ -166,4 +166,12 @@ fn print_table(o: &Output) {
         r.collision_rate_eos,
         dev(r.collision_rate, r.collision_rate_eos)
     );
+    if !r.finder_counters.is_empty() && r.collisions > 0 {
+        let per: Vec<String> = r
+            .finder_counters
+            .iter()
+            .map(|(name, count)| format!("{name} {:.3}", *count as f64 / r.collisions as f64))
+            .collect();
+        println!("finder work         per collision: {}", per.join(", "));
+    }
 }

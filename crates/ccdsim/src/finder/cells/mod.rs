@@ -458,6 +458,16 @@ impl<const D: usize> Finder<D> for Cells<D> {
         out
     }
 
+    fn counters(&self) -> Vec<(&'static str, u64)> {
+        let s = self.stats;
+        vec![
+            ("crossings", s.crossings),
+            ("stale", s.stale),
+            ("recomputes", s.recomputes),
+            ("undone", s.undone),
+        ]
+    }
+
     fn memory(&self) -> Option<FinderMemory> {
         let bytes = self.bytes();
         Some(FinderMemory {
