@@ -141,6 +141,28 @@ fn unknown_fields_and_finders() {
 }
 
 #[test]
+fn bad_finder_options_are_named_by_their_flag() {
+    for (flag, value, why) in [
+        ("--bvh-grow", "0.5", "greater than 1"),
+        ("--bvh-shrink", "2", "outside (0, 1]"),
+        ("--bvh-initial-dt", "0", "greater than 0"),
+    ] {
+        let rec = tmp(&format!("option{flag}.ccd"));
+        let out = ccdsim()
+            .args(["run", "--finder", "bvh", flag, value, "--record"])
+            .arg(&rec)
+            .output()
+            .unwrap();
+        assert_eq!(out.status.code(), Some(2), "{flag}");
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(err.contains(&format!("{flag}: {value}")), "{err}");
+        assert!(err.contains(why), "{err}");
+        assert_eq!(err.trim().lines().count(), 1, "{err}");
+        assert!(!rec.exists());
+    }
+}
+
+#[test]
 fn builtin_break_prints_a_readable_summary() {
     let out = run_ok(ccdsim().arg("run").arg("--quiet"));
     let text = String::from_utf8_lossy(&out.stdout);
@@ -167,6 +189,7 @@ fn json_summary_has_the_interface_fields() {
     }
     assert_eq!(v["sim_time"], 3.0);
     assert_eq!(v["finder"], "all-pairs");
+    assert!(v["finder_counters"].as_object().unwrap().is_empty());
     assert_eq!(
         v["events"].as_u64().unwrap(),
         v["body_collisions"].as_u64().unwrap() + v["wall_collisions"].as_u64().unwrap()

@@ -116,6 +116,16 @@ fn periodic_lattice_gas_runs_identically_with_every_finder_that_serves_it() {
         assert!(v["collision_rate"].as_f64().unwrap() > 0.0);
         assert!(v["pressure"].as_f64().unwrap() > 0.0);
         assert!(v["compressibility"].as_f64().unwrap() > 1.0);
+        if finder == "cells" {
+            // Internal work is reported apart from events: 3000 events, and the grid's
+            // crossings and rescans counted on their own.
+            let counters = v["finder_counters"].as_object().unwrap();
+            assert!(counters["crossings"].as_u64().unwrap() > 0, "{counters:?}");
+            assert!(
+                counters["recomputes"].as_u64().unwrap() >= 3000,
+                "{counters:?}"
+            );
+        }
         files.push(std::fs::read(&rec).unwrap());
         run_ok(ccdsim().args(["verify", rec.to_str().unwrap()]));
     }

@@ -61,9 +61,32 @@ pub fn toi_box_exit<const D: usize>(m: &Motion<D>, size: &Vector<D>) -> Option<(
 #[inline]
 pub fn min_image<const D: usize>(mut dp: Vector<D>, size: &Vector<D>) -> Vector<D> {
     for d in 0..D {
-        dp[d] -= size[d] * (dp[d] / size[d]).round();
+        dp[d] -= size[d] * round_half_away(dp[d] / size[d]);
     }
     dp
+}
+
+/// `x.round()` (halves away from zero), inline: `f64::round` is a library call on the
+/// baseline x86-64 target, and the minimum image is taken at every collision of a periodic
+/// world.
+#[inline]
+fn round_half_away(x: f64) -> f64 {
+    // Below 2^52 in magnitude the truncation fits an i64 and `x − trunc(x)` is exact; above it
+    // every float is already an integer (and NaN or infinities go to the library).
+    if x.abs() < 4_503_599_627_370_496.0 {
+        let k = x as i64 as f64;
+        let frac = x - k;
+        if frac >= 0.5 {
+            k + 1.0
+        } else if frac <= -0.5 {
+            k - 1.0
+        } else {
+            // Keeps the sign of a zero the way `round` does (−0.3 rounds to −0).
+            k.copysign(x)
+        }
+    } else {
+        x.round()
+    }
 }
 
 /// The point `p` moved into the box `[0, L)` by whole periods.
@@ -165,6 +188,20 @@ pub fn toi_circle_circle_periodic<const D: usize>(
 mod tests {
     use super::*;
 
+    proptest::proptest! {
+        #[test]
+        fn inline_round_is_round(x in proptest::num::f64::ANY) {
+            let (ours, std) = (round_half_away(x), x.round());
+            proptest::prop_assert!(ours.to_bits() == std.to_bits() || (ours.is_nan() && std.is_nan()));
+        }
+
+        #[test]
+        fn inline_round_is_round_near_halves(k in -1_000_000i64..1_000_000, f in -1.0f64..1.0) {
+            let x = k as f64 + f;
+            proptest::prop_assert_eq!(round_half_away(x).to_bits(), x.round().to_bits());
+        }
+    }
+
     fn m2(p: [f64; 2], v: [f64; 2]) -> Motion<2> {
         Motion {
             pos: Vector(p),
@@ -245,5 +282,26 @@ mod tests {
         assert_eq!(toi_box_exit(&m2([1.0, 1.0], [0.0, 0.0]), &size), None);
         assert_eq!(wrap_point(Vector([-0.5, 4.5]), &size).0, [3.5, 0.5]);
         assert_eq!(min_image(Vector([3.5, -1.5]), &size).0, [-0.5, 0.5]);
+        for x in [
+            0.0,
+            -0.0,
+            0.3,
+            -0.3,
+            0.5,
+            -0.5,
+            0.49999999999999994,
+            1.5,
+            -2.5,
+            2.5000001,
+            -7.49999,
+            1e15 + 0.5,
+            -1e15 - 0.5,
+            4.5e15,
+            -9e300,
+            f64::INFINITY,
+        ] {
+            assert_eq!(round_half_away(x).to_bits(), x.round().to_bits(), "{x}");
+        }
+        assert!(round_half_away(f64::NAN).is_nan());
     }
 }

@@ -70,7 +70,7 @@ pub fn run(args: Args) -> Result<ExitCode> {
         colour,
         boxes: args.boxes,
         finder: args.finder.clone(),
-        finder_options: args.finder_options.options(),
+        finder_options: args.finder_options.options()?,
         yaw_deg: args.yaw,
         pitch_deg: args.pitch,
         ..RenderOptions::default()

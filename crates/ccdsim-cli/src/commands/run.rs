@@ -52,12 +52,19 @@ pub struct FinderArgs {
 }
 
 impl FinderArgs {
-    /// The library's options.
-    pub fn options(&self) -> FinderOptions {
-        FinderOptions {
+    /// The library's options, checked; a bad one is named by its flag (`--bvh-grow`).
+    pub fn options(&self) -> Result<FinderOptions> {
+        let options = FinderOptions {
             bvh_grow: self.bvh_grow,
             bvh_shrink: self.bvh_shrink,
             bvh_initial_dt: self.bvh_initial_dt,
+        };
+        match ccdsim::finder::bvh::check_options(&options) {
+            Err(ccdsim::FinderError::Option { option, why }) => {
+                anyhow::bail!("--{}: {why}", option.replace('_', "-"))
+            }
+            Err(e) => Err(e.into()),
+            Ok(()) => Ok(options),
         }
     }
 }
@@ -116,7 +123,7 @@ pub fn run(args: Args) -> Result<ExitCode> {
 }
 
 fn simulate<const D: usize>(scene: &Scene<D>, args: &Args) -> Result<Summary> {
-    let finder = make_finder::<D>(&args.finder, &args.finder_options.options())?;
+    let finder = make_finder::<D>(&args.finder, &args.finder_options.options()?)?;
     let mut sim = Simulation::with_finder(scene, finder)?;
     let momentum_start = sim.world().momentum().0.to_vec();
     // Everything is validated before the run file is created: bad input leaves no file.

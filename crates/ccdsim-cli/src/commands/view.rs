@@ -29,7 +29,7 @@ pub struct Args {
 pub fn run(args: Args) -> Result<ExitCode> {
     let options = ServeOptions {
         finder: args.finder.clone(),
-        finder_options: args.finder_options.options(),
+        finder_options: args.finder_options.options()?,
         ..ServeOptions::default()
     };
     eprintln!("indexing {} …", args.run.display());

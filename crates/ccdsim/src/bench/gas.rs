@@ -102,7 +102,7 @@ pub struct GasBenchReport {
     pub exits: u64,
     /// The finder's internal work during the measurement (see
     /// [`Finder::counters`](crate::Finder::counters)): name and count.
-    pub finder_counters: Vec<(String, u64)>,
+    pub finder_counters: std::collections::BTreeMap<String, u64>,
 }
 
 /// Why the benchmark could not run.
