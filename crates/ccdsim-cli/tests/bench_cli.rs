@@ -1,26 +1,13 @@
 //! `ccdsim gen thesis` and `ccdsim bench` end to end, on sizes small enough for a test.
 
+mod common;
+
+use common::{ccdsim, run_ok};
 use std::path::PathBuf;
-use std::process::{Command, Output};
 
-fn ccdsim() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_ccdsim"))
-}
-
+/// An output directory that does not exist yet: the commands must create it.
 fn tmp_dir(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("ccdsim-bench-cli-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    dir
-}
-
-fn run_ok(cmd: &mut Command) -> Output {
-    let out = cmd.output().unwrap();
-    assert!(
-        out.status.success(),
-        "failed: {}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    out
+    common::scratch_dir("bench-cli", name).join("out")
 }
 
 #[test]

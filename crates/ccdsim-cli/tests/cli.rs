@@ -1,26 +1,13 @@
 //! The `ccdsim` binary end to end: bad input, summaries, run files, interruption.
 
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output, Stdio};
+mod common;
 
-fn ccdsim() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_ccdsim"))
-}
+use common::{ccdsim, run_ok};
+use std::path::{Path, PathBuf};
+use std::process::Stdio;
 
 fn tmp(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("ccdsim-cli-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    dir.join(name)
-}
-
-fn run_ok(cmd: &mut Command) -> Output {
-    let out = cmd.output().unwrap();
-    assert!(
-        out.status.success(),
-        "failed: {}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    out
+    common::scratch_file("cli", name)
 }
 
 const GOOD_BODY: &str = r#"{"pos": [1, 1], "vel": [1, 0], "radius": 0.5}"#;

@@ -1,27 +1,14 @@
 //! `ccdsim bench gas`, `gen gas --periodic --lattice --temperature` and the observables of
 //! `run --json`, end to end.
 
-use std::path::PathBuf;
-use std::process::{Command, Output};
+mod common;
 
-fn ccdsim() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_ccdsim"))
-}
+use common::{ccdsim, run_ok};
+use std::path::PathBuf;
+use std::process::Output;
 
 fn tmp(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("ccdsim-gas-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    dir.join(name)
-}
-
-fn run_ok(cmd: &mut Command) -> Output {
-    let out = cmd.output().unwrap();
-    assert!(
-        out.status.success(),
-        "failed: {}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    out
+    common::scratch_file("gas", name)
 }
 
 fn json(out: &Output) -> serde_json::Value {

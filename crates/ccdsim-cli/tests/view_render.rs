@@ -1,18 +1,14 @@
 //! `ccdsim view` and `ccdsim render` as a user runs them: thin commands over ccdsim-viewer.
 
 use std::io::{BufRead, BufReader, Read, Write};
-use std::path::{Path, PathBuf};
-use std::process::{Command, Stdio};
+mod common;
 
-fn ccdsim() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_ccdsim"))
-}
+use common::ccdsim;
+use std::path::{Path, PathBuf};
+use std::process::Stdio;
 
 fn tmp(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("ccdsim-cli-view-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
+    common::scratch_dir("cli-view", name)
 }
 
 /// Records the built-in billiard break for `until` seconds.

@@ -1,7 +1,7 @@
-//! The `cells` finder against the all-pairs oracle on every event of whole runs: 2D and 3D,
-//! dilute and dense, monodisperse and strongly polydisperse gases, tables of many walls,
-//! tilted planes, open worlds that bodies leave, exact ties, and degenerate scenes. Kept until
-//! the generic finder suite covers the same ground.
+//! The `cells` finder against the all-pairs oracle on every event of whole runs, on what
+//! stresses a grid beyond the generic finder suite (`finder_suite.rs`, which runs every
+//! finder): dense and strongly polydisperse gases, tables of many walls, tilted planes, open
+//! worlds that bodies leave, periodic boxes (small ones too), velocity edits after peeking.
 
 use ccdsim::finder::all_pairs_next_event;
 use ccdsim::generate::{box_walls, gas, rack, GasConfig, RackConfig};
@@ -193,79 +193,6 @@ fn open_world_bodies_fly_away() {
         let n = check_run(&mut sim, 100_000);
         assert!(n > 50 && n < 100_000, "{n} events");
     }
-}
-
-/// Exactly tied events: bodies bouncing in step between walls and against each other, with
-/// binary-fraction positions and speeds.
-fn tie_scene() -> Scene<2> {
-    let mut bodies = Vec::new();
-    for k in 0..5 {
-        let up = if k % 2 == 0 { 1.0 } else { -1.0 };
-        bodies.push(BodySpec::new(
-            Vector([1.0 + 2.0 * k as f64, 5.0]),
-            Vector([0.0, up]),
-            0.5,
-        ));
-    }
-    for row in 0..4 {
-        let y = 1.5 + 2.0 * row as f64;
-        bodies.push(BodySpec::new(Vector([13.0, y]), Vector([1.0, 0.0]), 0.5));
-        bodies.push(BodySpec::new(Vector([17.0, y]), Vector([-1.0, 0.0]), 0.5));
-    }
-    let mut walls = box_walls(Vector([20.0, 10.0]));
-    walls.push(Wall::Segment {
-        a: Vector([10.0, 0.0]),
-        b: Vector([10.0, 10.0]),
-    });
-    Scene {
-        bodies,
-        walls,
-        ..Scene::default()
-    }
-}
-
-#[test]
-fn ties_resolve_in_the_oracle_order() {
-    let mut sim = cells(&tie_scene());
-    let mut ties = 0;
-    let mut last = f64::NAN;
-    for _ in 0..600 {
-        assert_eq!(check_run(&mut sim, 1), 1);
-        if sim.time() == last {
-            ties += 1;
-        }
-        last = sim.time();
-    }
-    assert!(ties > 300, "only {ties} tied events");
-}
-
-#[test]
-fn lattice_of_equal_bodies() {
-    // A square lattice of touching-distance neighbours with axis-aligned velocities: many
-    // collisions at identical times, bodies exactly on cell faces.
-    let mut bodies = Vec::new();
-    for x in 0..8 {
-        for y in 0..8 {
-            let v = match (x + y) % 4 {
-                0 => [1.0, 0.0],
-                1 => [0.0, 1.0],
-                2 => [-1.0, 0.0],
-                _ => [0.0, -1.0],
-            };
-            bodies.push(BodySpec::new(
-                Vector([1.0 + 2.0 * x as f64, 1.0 + 2.0 * y as f64]),
-                Vector(v),
-                0.5,
-            ));
-        }
-    }
-    let scene = Scene {
-        bodies,
-        walls: box_walls(Vector([16.0, 16.0])),
-        ..Scene::default()
-    };
-    let mut sim = cells(&scene);
-    assert_eq!(check_run(&mut sim, 3000), 3000);
 }
 
 #[test]

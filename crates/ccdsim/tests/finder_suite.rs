@@ -7,8 +7,9 @@
 //! Scenes: 2D and 3D gases with n from 1 to 500, monodisperse and polydisperse, dilute and
 //! dense, several seeds; proptest-generated scenes; and degenerate ones (no bodies, one
 //! body, no walls, everything at rest, simultaneous collisions, touching bodies, Newton's
-//! cradle, the billiard break, grazing contacts, far from the origin, inelastic, velocity
-//! kicks, frame-by-frame stepping, non-default finder options).
+//! cradle, the billiard break, exact ties, a lattice of equal bodies, grazing contacts, far
+//! from the origin, inelastic, velocity kicks, frame-by-frame stepping, non-default finder
+//! options).
 
 use ccdsim::finder::{all_pairs_next_event, make_finder, FinderOptions, FINDER_NAMES};
 use ccdsim::generate::{box_walls, gas, rack, GasConfig, GenerateError, RackConfig};
@@ -524,6 +525,107 @@ fn touching_bodies() {
         ..Scene::default()
     };
     check_all("touching 3D", &scene3, 1500);
+}
+
+/// Exactly tied events: in the left half of a 20 × 10 box, five bodies bounce vertically in
+/// step between floor and ceiling; in the right half, behind a dividing wall, four rows of two
+/// bodies bounce off each other and the side walls in step. Positions, radii and speeds are
+/// binary fractions, so tied events are truly equal and only the tie-break (kind, a, b) orders
+/// them.
+fn tie_scene() -> Scene<2> {
+    let mut bodies = Vec::new();
+    for k in 0..5 {
+        let up = if k % 2 == 0 { 1.0 } else { -1.0 };
+        bodies.push(BodySpec::new(
+            Vector([1.0 + 2.0 * k as f64, 5.0]),
+            Vector([0.0, up]),
+            0.5,
+        ));
+    }
+    for row in 0..4 {
+        let y = 1.5 + 2.0 * row as f64;
+        bodies.push(BodySpec::new(Vector([13.0, y]), Vector([1.0, 0.0]), 0.5));
+        bodies.push(BodySpec::new(Vector([17.0, y]), Vector([-1.0, 0.0]), 0.5));
+    }
+    let mut walls = box_walls(Vector([20.0, 10.0]));
+    walls.push(Wall::Segment {
+        a: Vector([10.0, 0.0]),
+        b: Vector([10.0, 10.0]),
+    });
+    Scene {
+        bodies,
+        walls,
+        ..Scene::default()
+    }
+}
+
+/// A square lattice of bodies at twice their radius apart with axis-aligned velocities: many
+/// collisions at identical times, and bodies exactly on grid lines.
+fn lattice_scene() -> Scene<2> {
+    let mut bodies = Vec::new();
+    for x in 0..8 {
+        for y in 0..8 {
+            let v = match (x + y) % 4 {
+                0 => [1.0, 0.0],
+                1 => [0.0, 1.0],
+                2 => [-1.0, 0.0],
+                _ => [0.0, -1.0],
+            };
+            bodies.push(BodySpec::new(
+                Vector([1.0 + 2.0 * x as f64, 1.0 + 2.0 * y as f64]),
+                Vector(v),
+                0.5,
+            ));
+        }
+    }
+    Scene {
+        bodies,
+        walls: box_walls(Vector([16.0, 16.0])),
+        ..Scene::default()
+    }
+}
+
+/// Events of the all-pairs run of `scene` (up to `max_events`) that share their time with the
+/// event before: a tie test is only meaningful if ties really happen.
+fn tied_events(scene: &Scene<2>, max_events: u64) -> u64 {
+    let mut sim = Simulation::new(scene, "all-pairs").expect("valid scene");
+    let (mut ties, mut last) = (0, f64::NAN);
+    sim.run_events_with(max_events, |c| {
+        if c.event.time == last {
+            ties += 1;
+        }
+        last = c.event.time;
+    });
+    ties
+}
+
+#[test]
+fn exact_ties_resolve_in_the_oracle_order() {
+    let ties = tie_scene();
+    assert!(tied_events(&ties, 600) > 300);
+    assert_eq!(check_all("ties", &ties, 600), 600);
+    let lattice = lattice_scene();
+    let lattice_ties = tied_events(&lattice, 3000);
+    // The first waves of collisions tie (73 of the first 3000 events); later ones drift apart.
+    assert!(lattice_ties > 50, "{lattice_ties} ties");
+    assert_eq!(check_all("lattice", &lattice, 3000), 3000);
+}
+
+#[test]
+fn memory_reports_are_consistent() {
+    let scene: Scene<2> = gas_scene(200, 0.3, (0.2, 1.0), 4);
+    for name in finders() {
+        let mut sim = Simulation::new(&scene, name).expect("finder");
+        sim.run_events(1000);
+        let (finder, _) = sim.finder_mut();
+        assert_eq!(finder.name(), name);
+        if let Some(mem) = finder.memory() {
+            assert!(
+                mem.peak_bytes >= mem.bytes && mem.bytes > 0,
+                "{name}: {mem:?}"
+            );
+        }
+    }
 }
 
 /// Newton's cradle: five equal balls in a touching row; ball 0 comes in at speed 1

@@ -44,8 +44,8 @@ fn billiard_break_1e5_events() {
     long_run(&rack(&RackConfig::default()), "all-pairs");
 }
 
-/// 1,000 bodies: the exact priority-queue finder gives the oracle's run (the finder suite and
-/// `sedgewick_vs_oracle` check that event by event) at a fraction of the all-pairs cost.
+/// 1,000 bodies: the exact priority-queue finder gives the oracle's run (the finder suite checks
+/// that event by event) at a fraction of the all-pairs cost.
 const GAS_FINDER: &str = "sedgewick";
 
 fn gas_scene<const D: usize>(seed: u64) -> Scene<D> {
