@@ -16,8 +16,8 @@
 //!   time for that pair (image), bit for bit, as long as neither body's state changed.
 //! * **Crossings**: the time body `i` leaves its cell through a face shared with another cell.
 //!   Crossings are internal: they move the body to the next cell and offer it the pairs of the
-//!   layer of cells that just became neighbours (and the walls of its new cell). They are never
-//!   returned and change no stored state.
+//!   layer of cells that just became neighbours, and the walls its new cell lists but its old
+//!   cell did not. They are never returned and change no stored state.
 //! * **Queue** ([`calendar`], keys in [`key`]): one entry per body keyed by
 //!   `min(best(i), crossing(i))` in a calendar queue (time buckets, a small heap for the
 //!   current bucket). Keys are compared in the full event order; a crossing goes first at
@@ -54,7 +54,8 @@
 //!    body's cell). The pair's term was computed at the later of (a) the last state change of
 //!    either body (full recompute of that body, which scans its whole neighbourhood and its
 //!    cell's walls), (b) the last crossing of either body that made them neighbours (the layer
-//!    scan). Since then the term is covered by that body's records: merges only lower them,
+//!    scan; for a body and a wall, the last crossing of the body from a cell that did not list
+//!    the wall into one that does). Since then the term is covered by that body's records: merges only lower them,
 //!    a promotion keeps the coverage (see 1), and a full recompute covers the pair again.
 //!
 //! Let `E` be the oracle's event: the minimum live term, at time `t`. While a crossing or a
@@ -151,9 +152,6 @@ pub struct Cells<const D: usize> {
     clock: f64,
     /// Image shift of each image code.
     shifts: Vec<Vector<D>>,
-    /// Reused buffers of the bodies (and their image codes) a scan looks at.
-    scratch_bodies: Vec<u32>,
-    scratch_images: Vec<u8>,
     stats: CellsStats,
     peak_bytes: usize,
 }
@@ -181,8 +179,6 @@ impl<const D: usize> Cells<D> {
             log: Vec::new(),
             clock: 0.0,
             shifts: Vec::new(),
-            scratch_bodies: Vec::new(),
-            scratch_images: Vec::new(),
             stats: CellsStats::default(),
             peak_bytes: 0,
         }
@@ -275,14 +271,15 @@ impl<const D: usize> Cells<D> {
         self.clock = self.clock.max(time);
         let code = self.cross[i] & !KEY_IS_CROSSING;
         let (axis, up) = ((code >> 1) as usize, code & 1 == 1);
+        let from = self.grid.cell_of(i);
         self.grid.step(i, axis, up);
         self.log.push((i as u32, code, time));
         let p = Probe::of(world, i);
         let mut best = self.records(i);
         self.scan_entered_layer(world, &p, axis, up, &mut best);
-        self.scan_walls(world, &p, &mut best);
+        self.scan_entered_walls(world, &p, from, &mut best);
         self.store(i, &best);
-        self.schedule(i, &p.m);
+        self.schedule(i, &p.b.motion);
     }
 
     /// Undoes the crossings processed after time `t`, latest first.
@@ -303,9 +300,9 @@ impl<const D: usize> Cells<D> {
 }
 
 /// The largest and second largest radius.
-fn two_largest(radii: &[f64]) -> (f64, f64) {
+fn two_largest(radii: impl Iterator<Item = f64>) -> (f64, f64) {
     let (mut r1, mut r2) = (0.0f64, 0.0f64);
-    for &r in radii {
+    for r in radii {
         if r > r1 {
             r2 = r1;
             r1 = r;
@@ -397,7 +394,7 @@ impl<const D: usize> Finder<D> for Cells<D> {
     fn update(&mut self, world: &World<D>, changed: &[usize]) {
         let Some(t) = changed
             .iter()
-            .map(|&i| world.times()[i])
+            .map(|&i| world.time(i))
             .min_by(f64::total_cmp)
         else {
             return;
@@ -405,7 +402,7 @@ impl<const D: usize> Finder<D> for Cells<D> {
         self.undo_crossings_after(world, t);
         self.clock = t;
         for &i in changed {
-            let k = self.grid.coords_of_point(&world.positions()[i]);
+            let k = self.grid.coords_of_point(&world.position(i));
             self.grid.relocate(i, k);
         }
         for &i in changed {
