@@ -104,7 +104,7 @@ use crate::world::World;
 use calendar::CalendarQueue;
 use grid::{Grid, MARGIN};
 use key::{Key, MAX_INDEX};
-use predict::{tie_of, Probe};
+use predict::{tie_of, Cached, Probe};
 
 /// Crossing code of a body that crosses no face.
 const NO_CROSSING: u8 = 0x7F;
@@ -130,17 +130,8 @@ pub struct CellsStats {
 #[derive(Clone, Debug)]
 pub struct Cells<const D: usize> {
     grid: Grid<D>,
-    /// Cached earliest event of each body.
-    best: Vec<Key>,
-    /// Image code of the partner of `best` (body events).
-    image: Vec<u8>,
-    /// Second earliest cached event of each body (see `predict::Best`).
-    second: Vec<Key>,
-    /// Image code of the partner of `second`, with the flag `SECOND_KNOWN`.
-    second_image: Vec<u8>,
-    /// Code `2·axis + up` of each body's next crossing, or `NO_CROSSING`, with the flag
-    /// `KEY_IS_CROSSING` when the crossing is the body's queue key.
-    cross: Vec<u8>,
+    /// Cached predictions of each body, one record per body.
+    cached: Vec<Cached>,
     queue: CalendarQueue,
     /// The world is periodic.
     periodic: bool,
@@ -168,11 +159,7 @@ impl<const D: usize> Cells<D> {
     pub fn new() -> Self {
         Cells {
             grid: Grid::new(0, 1.0, Vector::ZERO, Vector::ZERO, None),
-            best: Vec::new(),
-            image: Vec::new(),
-            second: Vec::new(),
-            second_image: Vec::new(),
-            cross: Vec::new(),
+            cached: Vec::new(),
             queue: CalendarQueue::default(),
             periodic: false,
             faces_from: 0,
@@ -199,22 +186,19 @@ impl<const D: usize> Cells<D> {
     fn bytes(&self) -> usize {
         self.grid.bytes()
             + self.queue.bytes()
-            + std::mem::size_of::<Key>() * (self.best.capacity() + self.second.capacity())
-            + self.image.capacity()
-            + self.second_image.capacity()
-            + self.cross.capacity()
+            + std::mem::size_of::<Cached>() * self.cached.capacity()
             + std::mem::size_of::<(u32, u8, f64)>() * self.log.capacity()
     }
 
     /// The queue key body `i` should have.
     fn key_of(&self, i: usize) -> Key {
-        if self.cross[i] & KEY_IS_CROSSING != 0 {
+        if self.cached[i].cross & KEY_IS_CROSSING != 0 {
             Key {
                 time: self.queue_time(i),
                 tie: Key::crossing(0.0).tie,
             }
         } else {
-            self.best[i]
+            self.cached[i].best
         }
     }
 
@@ -228,8 +212,7 @@ impl<const D: usize> Cells<D> {
     /// For tests.
     pub fn validate(&self, world: &World<D>) -> Result<(), String> {
         self.grid.validate()?;
-        self.queue
-            .validate(|j| tie_of(&self.best, &self.cross, j))?;
+        self.queue.validate(|j| tie_of(&self.cached, j))?;
         let clock = self.clock;
         for i in 0..world.len() {
             let m = world.motion(i);
@@ -238,15 +221,17 @@ impl<const D: usize> Cells<D> {
                 .grid
                 .next_crossing(&k, &m)
                 .map_or(Key::NEVER, |(t, _)| Key::crossing(t));
-            if self.key_of(i) != crossing.min(self.best[i]) {
+            if self.key_of(i) != crossing.min(self.cached[i].best) {
                 return Err(format!("body {i}: queue key is not min(event, crossing)"));
             }
-            for k in [self.best[i], self.second[i]] {
+            for k in [self.cached[i].best, self.cached[i].second] {
                 if k.time == Key::NEVER.time && !k.is_never() {
                     return Err(format!("body {i}: cached an event that never happens"));
                 }
             }
-            if self.best[i] > self.second[i] && self.second_image[i] & SECOND_KNOWN != 0 {
+            if self.cached[i].best > self.cached[i].second
+                && self.cached[i].second_image & SECOND_KNOWN != 0
+            {
                 return Err(format!("body {i}: second cached event before the first"));
             }
             let p = m.at(clock);
@@ -269,7 +254,7 @@ impl<const D: usize> Cells<D> {
     fn cross(&mut self, world: &World<D>, i: usize, time: f64) {
         self.stats.crossings += 1;
         self.clock = self.clock.max(time);
-        let code = self.cross[i] & !KEY_IS_CROSSING;
+        let code = self.cached[i].cross & !KEY_IS_CROSSING;
         let (axis, up) = ((code >> 1) as usize, code & 1 == 1);
         let from = self.grid.cell_of(i);
         self.grid.step(i, axis, up);
@@ -372,11 +357,7 @@ impl<const D: usize> Finder<D> for Cells<D> {
         self.shifts = (0..3usize.pow(D as u32))
             .map(|code| self.grid.shift_of(code as u8))
             .collect();
-        self.best = vec![Key::NEVER; n];
-        self.image = vec![Grid::<D>::ZERO_IMAGE; n];
-        self.second = vec![Key::NEVER; n];
-        self.second_image = vec![SECOND_KNOWN; n];
-        self.cross = vec![NO_CROSSING; n];
+        self.cached = vec![Cached::NONE; n];
         self.queue = CalendarQueue::new(n, 1.0, now);
         self.log = Vec::new();
         self.clock = now;
@@ -384,8 +365,8 @@ impl<const D: usize> Finder<D> for Cells<D> {
         for i in 0..n {
             self.recompute(world, i);
         }
-        let (best, cross) = (&self.best, &self.cross);
-        self.queue.fit(now, |j| tie_of(best, cross, j));
+        let cached = &self.cached;
+        self.queue.fit(now, |j| tie_of(cached, j));
         self.stats.recomputes = 0;
         self.peak_bytes = self.bytes();
         Ok(())
@@ -412,9 +393,9 @@ impl<const D: usize> Finder<D> for Cells<D> {
 
     fn next_event(&mut self, world: &World<D>) -> Option<Event> {
         loop {
-            let (best, cross) = (&self.best, &self.cross);
-            let i = self.queue.top(|j| tie_of(best, cross, j))?;
-            if self.cross[i] & KEY_IS_CROSSING != 0 {
+            let cached = &self.cached;
+            let i = self.queue.top(|j| tie_of(cached, j))?;
+            if self.cached[i].cross & KEY_IS_CROSSING != 0 {
                 let t = Key {
                     time: self.queue_time(i),
                     tie: 0,
@@ -422,7 +403,7 @@ impl<const D: usize> Finder<D> for Cells<D> {
                 self.cross(world, i, t.seconds());
                 continue;
             }
-            let key = self.best[i];
+            let key = self.cached[i].best;
             if key.is_never() {
                 return None;
             }

@@ -10,6 +10,34 @@ use crate::narrow::{toi_circle_circle, toi_circle_circle_shifted, toi_circle_wal
 use crate::periodic::toi_box_exit;
 use crate::world::{Body, World};
 
+/// What the finder caches about one body, in one record: read and written together whenever
+/// the body is predicted, scheduled or popped (one or two cache lines, not five).
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Cached {
+    /// Cached earliest event.
+    pub best: Key,
+    /// Second earliest cached event (see [`Best`]).
+    pub second: Key,
+    /// Image code of the partner of `best` (body events).
+    pub image: u8,
+    /// Image code of the partner of `second`, with the flag `SECOND_KNOWN`.
+    pub second_image: u8,
+    /// Code `2·axis + up` of the next crossing, or `NO_CROSSING`, with the flag
+    /// `KEY_IS_CROSSING` when the crossing is the body's queue key.
+    pub cross: u8,
+}
+
+impl Cached {
+    /// Nothing cached yet.
+    pub const NONE: Cached = Cached {
+        best: Key::NEVER,
+        second: Key::NEVER,
+        image: 0,
+        second_image: SECOND_KNOWN,
+        cross: NO_CROSSING,
+    };
+}
+
 /// The two earliest of one body's candidate events.
 ///
 /// `second` is a lower bound of every candidate but `key`'s own, as long as `known`; when the
@@ -293,11 +321,11 @@ impl<const D: usize> Cells<D> {
     /// alone (recomputed whenever `i` changes); a body event is evaluated again, for the same
     /// image, on the current stored states and must come out bit for bit the same.
     pub(super) fn is_live(&self, world: &World<D>, i: usize) -> bool {
-        let key = self.best[i];
+        let key = self.cached[i].best;
         let Some(j) = key.partner(i) else {
             return true;
         };
-        let shift = self.shifts[self.image[i] as usize];
+        let shift = self.shifts[self.cached[i].image as usize];
         let t = self.pair_toi(&Probe::of(world, i), j, &world.bodies()[j], &shift);
         t.is_some_and(|t| Key::body(t, i.min(j), i.max(j)) == key)
     }
@@ -319,21 +347,21 @@ impl<const D: usize> Cells<D> {
     #[inline]
     pub(super) fn records(&self, i: usize) -> Best {
         Best {
-            key: self.best[i],
-            image: self.image[i],
-            second: self.second[i],
-            second_image: self.second_image[i] & !SECOND_KNOWN,
-            known: self.second_image[i] & SECOND_KNOWN != 0,
+            key: self.cached[i].best,
+            image: self.cached[i].image,
+            second: self.cached[i].second,
+            second_image: self.cached[i].second_image & !SECOND_KNOWN,
+            known: self.cached[i].second_image & SECOND_KNOWN != 0,
         }
     }
 
     /// Stores body `i`'s records.
     #[inline]
     pub(super) fn store(&mut self, i: usize, best: &Best) {
-        self.best[i] = best.key;
-        self.image[i] = best.image;
-        self.second[i] = best.second;
-        self.second_image[i] = best.second_image | if best.known { SECOND_KNOWN } else { 0 };
+        self.cached[i].best = best.key;
+        self.cached[i].image = best.image;
+        self.cached[i].second = best.second;
+        self.cached[i].second_image = best.second_image | if best.known { SECOND_KNOWN } else { 0 };
     }
 
     /// Replaces body `i`'s stale cached event by its second one, if that is known, and
@@ -357,30 +385,31 @@ impl<const D: usize> Cells<D> {
         let key = match self.grid.next_crossing(&k, mi) {
             Some((t, code)) => {
                 let crossing = Key::crossing(t);
-                if crossing < self.best[i] {
-                    self.cross[i] = code | KEY_IS_CROSSING;
+                if crossing < self.cached[i].best {
+                    self.cached[i].cross = code | KEY_IS_CROSSING;
                     crossing
                 } else {
-                    self.cross[i] = code;
-                    self.best[i]
+                    self.cached[i].cross = code;
+                    self.cached[i].best
                 }
             }
             None => {
-                self.cross[i] = NO_CROSSING;
-                self.best[i]
+                self.cached[i].cross = NO_CROSSING;
+                self.cached[i].best
             }
         };
-        let (best, cross) = (&self.best, &self.cross);
-        self.queue.set(i, key, |j| tie_of(best, cross, j));
+        let cached = &self.cached;
+        self.queue.set(i, key, |j| tie_of(cached, j));
     }
 }
 
 /// The tie word of body `j`'s queue key.
 #[inline]
-pub(super) fn tie_of(best: &[Key], cross: &[u8], j: u32) -> u64 {
-    if cross[j as usize] & KEY_IS_CROSSING != 0 {
+pub(super) fn tie_of(cached: &[Cached], j: u32) -> u64 {
+    let c = &cached[j as usize];
+    if c.cross & KEY_IS_CROSSING != 0 {
         Key::crossing(0.0).tie
     } else {
-        best[j as usize].tie
+        c.best.tie
     }
 }
