@@ -121,7 +121,7 @@ impl<const D: usize> Cells<D> {
         let (i, bi) = (p.i, &p.b);
         let (a, b) = if i < j { (bi, bj) } else { (bj, bi) };
         if self.periodic {
-            let s = if i < j { *shift } else { -*shift };
+            let s = if i < j { *shift } else { Vector::ZERO - *shift };
             toi_circle_circle_shifted(&a.motion, a.radius, &b.motion, b.radius, s)
         } else {
             toi_circle_circle(&a.motion, a.radius, &b.motion, b.radius)
@@ -146,7 +146,9 @@ impl<const D: usize> Cells<D> {
         best: &mut Best,
     ) {
         let i = p.i;
-        let neg = -*shift;
+        // The partner's shift as the oracle writes it, `k·L` with `k ∈ {−1, 0, 1}`: `0 − s`
+        // keeps zero components +0 where `−s` would make them −0.
+        let neg = Vector::ZERO - *shift;
         while j != NONE {
             let ju = j as usize;
             let b = &bodies[ju];
