@@ -77,8 +77,11 @@
 //! events, see [`crate::periodic`]), so the image that makes two bodies neighbours is one of
 //! the `3^D` images the oracle tries, and with at least three cells per axis two cells are
 //! neighbours through one image only: the contact that matters is the one through the
-//! neighbouring image, and the time cached for it is the oracle's. An axis too short for
-//! three cells is a single cell whose three images are all scanned, like the oracle does.
+//! neighbouring image, and the time cached for it is the oracle's: the same function on the
+//! same states, lower index first, with the shift as the oracle writes it (`k·L`, `k ∈ {−1,
+//! 0, 1}` per axis; a partner listed first gets `0 − s`, so zero components stay `+0`). An
+//! axis too short for three cells is a single cell whose three images are all scanned, like
+//! the oracle does.
 //!
 //! The margin covers rounding as long as positions are computed to better than `MARGIN·σ_max`
 //! (that is, `|x| + |v|·|t|` below about 10⁹ σ_max), which is far beyond where the simulation's
