@@ -41,4 +41,4 @@ pub use narrow::Motion;
 pub use observables::Observables;
 pub use scene::{AnyScene, BodySpec, Scene, SceneError, Settings, Wall};
 pub use sim::{Collision, SimError, Simulation, Stats};
-pub use world::World;
+pub use world::{Body, World};

@@ -11,14 +11,14 @@ use crate::world::World;
 /// Returns the overlap depth at contact relative to the sum of radii (0 when not overlapping).
 pub fn resolve_body_body<const D: usize>(world: &mut World<D>, i: usize, j: usize, t: f64) -> f64 {
     let (pi, pj) = (world.position_at(i, t), world.position_at(j, t));
-    let (vi, vj) = (world.velocities()[i], world.velocities()[j]);
+    let (vi, vj) = (world.velocity(i), world.velocity(j));
     let (mi, mj) = (world.masses()[i], world.masses()[j]);
     let d = match world.periodic() {
         Some(size) => min_image(pj - pi, &size),
         None => pj - pi,
     };
     let dist = d.norm();
-    let sigma = world.radii()[i] + world.radii()[j];
+    let sigma = world.radius(i) + world.radius(j);
     let (mut vi2, mut vj2) = (vi, vj);
     if dist > 0.0 {
         let n = d * (1.0 / dist);
@@ -42,9 +42,9 @@ pub fn resolve_body_body<const D: usize>(world: &mut World<D>, i: usize, j: usiz
 /// Returns the overlap depth at contact relative to the radius (0 when not overlapping).
 pub fn resolve_body_wall<const D: usize>(world: &mut World<D>, i: usize, w: usize, t: f64) -> f64 {
     let p = world.position_at(i, t);
-    let v = world.velocities()[i];
+    let v = world.velocity(i);
     let wall = world.walls()[w];
-    let r = world.radii()[i];
+    let r = world.radius(i);
     let mut v2 = v;
     if let Some(n) = wall_normal(&wall, p) {
         let vn = v.dot(n);
@@ -71,6 +71,6 @@ pub fn resolve_exit<const D: usize>(world: &mut World<D>, i: usize, face: usize,
     } else {
         p[axis] += size[axis];
     }
-    let v = world.velocities()[i];
+    let v = world.velocity(i);
     world.set_state(i, p, v, t);
 }

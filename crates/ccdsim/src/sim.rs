@@ -238,22 +238,22 @@ impl<const D: usize> Simulation<D> {
         let overlap;
         let out = match e.kind {
             EventKind::Body => {
-                let before = self.world.velocities()[a];
+                let before = self.world.velocity(a);
                 overlap = resolve_body_body(&mut self.world, a, b, e.time);
                 self.stats.body_collisions += 1;
                 let w = &self.world;
-                let r = w.positions()[a] - w.positions()[b];
+                let r = w.position(a) - w.position(b);
                 let r = match w.periodic() {
                     Some(size) => min_image(r, &size),
                     None => r,
                 };
-                self.stats.virial += r.dot(w.velocities()[a] - before) * w.masses()[a];
+                self.stats.virial += r.dot(w.velocity(a) - before) * w.masses()[a];
                 self.finder.update(&self.world, &[a, b]);
                 let w = &self.world;
                 Collision {
                     event: e,
-                    pos: [w.positions()[a], w.positions()[b]],
-                    vel: [w.velocities()[a], w.velocities()[b]],
+                    pos: [w.position(a), w.position(b)],
+                    vel: [w.velocity(a), w.velocity(b)],
                 }
             }
             EventKind::Wall => {
@@ -263,8 +263,8 @@ impl<const D: usize> Simulation<D> {
                 let w = &self.world;
                 Collision {
                     event: e,
-                    pos: [w.positions()[a], Vector::ZERO],
-                    vel: [w.velocities()[a], Vector::ZERO],
+                    pos: [w.position(a), Vector::ZERO],
+                    vel: [w.velocity(a), Vector::ZERO],
                 }
             }
         };

@@ -1,9 +1,24 @@
-//! Body state as a structure of arrays, kept lazily: body `i` holds a reference position,
-//! its velocity and the time at which the position holds.
+//! Body state, kept lazily: body `i` holds a reference position, its velocity and the time at
+//! which the position holds.
+//!
+//! What every time of impact reads (motion and radius) is one record per body, [`Body`]: 48
+//! bytes in 2D, 64 in 3D, so a finder looking at a candidate partner touches one or two cache
+//! lines instead of one per field. Masses, ids and change counts, read only when a collision
+//! is resolved, live in separate arrays.
 
 use crate::geom::Vector;
 use crate::narrow::Motion;
 use crate::scene::{Scene, SceneError, Wall};
+
+/// The hot part of one body's state: its stored motion and its radius.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Body<const D: usize> {
+    /// Stored motion: reference position (metres), velocity (metres per second) and the
+    /// reference time (seconds) at which the position holds.
+    pub motion: Motion<D>,
+    /// Radius, metres.
+    pub radius: f64,
+}
 
 /// Bodies and walls of a running simulation.
 ///
@@ -11,10 +26,7 @@ use crate::scene::{Scene, SceneError, Wall};
 /// its position at time `t` is `pos + vel · (t − time)`.
 #[derive(Clone, Debug)]
 pub struct World<const D: usize> {
-    pos: Vec<Vector<D>>,
-    vel: Vec<Vector<D>>,
-    time: Vec<f64>,
-    radius: Vec<f64>,
+    bodies: Vec<Body<D>>,
     mass: Vec<f64>,
     id: Vec<u64>,
     changes: Vec<u64>,
@@ -30,10 +42,18 @@ impl<const D: usize> World<D> {
         scene.validate()?;
         let n = scene.bodies.len();
         Ok(World {
-            pos: scene.bodies.iter().map(|b| b.pos).collect(),
-            vel: scene.bodies.iter().map(|b| b.vel).collect(),
-            time: vec![scene.start_time; n],
-            radius: scene.bodies.iter().map(|b| b.radius).collect(),
+            bodies: scene
+                .bodies
+                .iter()
+                .map(|b| Body {
+                    motion: Motion {
+                        pos: b.pos,
+                        vel: b.vel,
+                        time: scene.start_time,
+                    },
+                    radius: b.radius,
+                })
+                .collect(),
             mass: scene.bodies.iter().map(|b| b.effective_mass()).collect(),
             id: (0..n).map(|i| scene.id_of(i)).collect(),
             changes: vec![0; n],
@@ -47,13 +67,13 @@ impl<const D: usize> World<D> {
     /// Number of bodies.
     #[must_use]
     pub fn len(&self) -> usize {
-        self.pos.len()
+        self.bodies.len()
     }
 
     /// True when there are no bodies.
     #[must_use]
     pub fn is_empty(&self) -> bool {
-        self.pos.is_empty()
+        self.bodies.is_empty()
     }
 
     /// Current simulated time, seconds: every event before it has been resolved.
@@ -71,11 +91,7 @@ impl<const D: usize> World<D> {
     #[must_use]
     #[inline]
     pub fn motion(&self, i: usize) -> Motion<D> {
-        Motion {
-            pos: self.pos[i],
-            vel: self.vel[i],
-            time: self.time[i],
-        }
+        self.bodies[i].motion
     }
 
     /// Position of body `i` at time `t`, metres.
@@ -85,28 +101,59 @@ impl<const D: usize> World<D> {
         self.motion(i).at(t)
     }
 
-    /// Reference positions (each valid at its body's [`World::times`] entry).
+    /// Reference position of body `i`, metres (valid at its reference time [`World::time`]).
     #[must_use]
-    pub fn positions(&self) -> &[Vector<D>] {
-        &self.pos
+    #[inline]
+    pub fn position(&self, i: usize) -> Vector<D> {
+        self.bodies[i].motion.pos
     }
 
-    /// Velocities, metres per second.
+    /// Velocity of body `i`, metres per second.
     #[must_use]
-    pub fn velocities(&self) -> &[Vector<D>] {
-        &self.vel
+    #[inline]
+    pub fn velocity(&self, i: usize) -> Vector<D> {
+        self.bodies[i].motion.vel
     }
 
-    /// Reference times, seconds.
+    /// Reference time of body `i`, seconds: when its stored position holds.
     #[must_use]
-    pub fn times(&self) -> &[f64] {
-        &self.time
+    #[inline]
+    pub fn time(&self, i: usize) -> f64 {
+        self.bodies[i].motion.time
     }
 
-    /// Radii, metres.
+    /// Radius of body `i`, metres.
     #[must_use]
-    pub fn radii(&self) -> &[f64] {
-        &self.radius
+    #[inline]
+    pub fn radius(&self, i: usize) -> f64 {
+        self.bodies[i].radius
+    }
+
+    /// Every body's hot record (stored motion and radius), by body index.
+    #[must_use]
+    #[inline]
+    pub fn bodies(&self) -> &[Body<D>] {
+        &self.bodies
+    }
+
+    /// Reference positions, metres, by body index (each valid at its body's reference time).
+    pub fn positions(&self) -> impl ExactSizeIterator<Item = Vector<D>> + '_ {
+        self.bodies.iter().map(|b| b.motion.pos)
+    }
+
+    /// Velocities, metres per second, by body index.
+    pub fn velocities(&self) -> impl ExactSizeIterator<Item = Vector<D>> + '_ {
+        self.bodies.iter().map(|b| b.motion.vel)
+    }
+
+    /// Reference times, seconds, by body index.
+    pub fn times(&self) -> impl ExactSizeIterator<Item = f64> + '_ {
+        self.bodies.iter().map(|b| b.motion.time)
+    }
+
+    /// Radii, metres, by body index.
+    pub fn radii(&self) -> impl ExactSizeIterator<Item = f64> + '_ {
+        self.bodies.iter().map(|b| b.radius)
     }
 
     /// Masses, kilograms.
@@ -149,9 +196,7 @@ impl<const D: usize> World<D> {
 
     /// Replaces body `i`'s state: position `pos` holding at time `t`, velocity `vel`.
     pub(crate) fn set_state(&mut self, i: usize, pos: Vector<D>, vel: Vector<D>, t: f64) {
-        self.pos[i] = pos;
-        self.vel[i] = vel;
-        self.time[i] = t;
+        self.bodies[i].motion = Motion { pos, vel, time: t };
         self.changes[i] += 1;
     }
 
@@ -174,19 +219,19 @@ impl<const D: usize> World<D> {
     /// Total kinetic energy, joules.
     #[must_use]
     pub fn kinetic_energy(&self) -> f64 {
-        self.vel
+        self.bodies
             .iter()
             .zip(&self.mass)
-            .map(|(v, m)| 0.5 * m * v.norm_sq())
+            .map(|(b, m)| 0.5 * m * b.motion.vel.norm_sq())
             .sum()
     }
 
     /// Total momentum, kg·m/s.
     #[must_use]
     pub fn momentum(&self) -> Vector<D> {
-        self.vel
+        self.bodies
             .iter()
             .zip(&self.mass)
-            .fold(Vector::ZERO, |acc, (v, m)| acc + *v * *m)
+            .fold(Vector::ZERO, |acc, (b, m)| acc + b.motion.vel * *m)
     }
 }

@@ -45,8 +45,8 @@ fn a_detected_hit_bounces_like_the_exact_one() {
     // At small dt the stepper's impulse is the exact simulation's: the small body comes back.
     let mut s = DiscreteStepper::new(&bullet_and_target()).unwrap();
     s.run_until(0.5, 0.0001);
-    assert!(s.world().velocities()[0][0] < -90.0);
-    assert!(s.world().velocities()[1][0] > 0.0);
+    assert!(s.world().velocity(0)[0] < -90.0);
+    assert!(s.world().velocity(1)[0] > 0.0);
 }
 
 #[test]
@@ -61,7 +61,7 @@ fn bodies_never_leave_the_table_and_energy_is_kept() {
         assert_eq!(s.time(), 5.0);
         let w = s.world();
         for i in 0..w.len() {
-            let (p, r) = (w.positions()[i], w.radii()[i]);
+            let (p, r) = (w.position(i), w.radius(i));
             for k in 0..2 {
                 assert!(
                     p[k] >= r * (1.0 - 1e-9) && p[k] <= size[k] - r * (1.0 - 1e-9),
@@ -84,8 +84,7 @@ fn misses_grow_with_the_time_step_and_counting_them_changes_nothing() {
         counted.run_until(2.0, dt);
         let mut plain = DiscreteStepper::new(&scene).unwrap();
         plain.run_until(2.0, dt);
-        assert_eq!(counted.world().positions(), plain.world().positions());
-        assert_eq!(counted.world().velocities(), plain.world().velocities());
+        assert_eq!(counted.world().bodies(), plain.world().bodies());
         assert_eq!(plain.stats().misses(), 0);
         misses.push(counted.stats().misses());
     }

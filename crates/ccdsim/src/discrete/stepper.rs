@@ -83,7 +83,7 @@ impl<const D: usize> DiscreteStepper<D> {
         let walls = world.walls().to_vec();
         let home = (0..world.len())
             .flat_map(|i| {
-                let p = world.positions()[i];
+                let p = world.position(i);
                 walls.iter().map(move |w| home_side(w, p))
             })
             .collect();
@@ -158,19 +158,19 @@ impl<const D: usize> DiscreteStepper<D> {
         }
         self.world.set_now(t1);
         // Detect body pairs: boxes, tree, exact overlap.
-        let radii = self.world.radii();
-        let pos = self.world.positions();
+        let bodies = self.world.bodies();
+        let (pos, radius) = (|i: usize| bodies[i].motion.pos, |i: usize| bodies[i].radius);
         self.boxes.clear();
         self.boxes
-            .extend((0..n).map(|i| Aabb::of_ball(pos[i], radii[i])));
+            .extend((0..n).map(|i| Aabb::of_ball(pos(i), radius(i))));
         self.tree.build(&self.boxes);
         self.pairs.clear();
         self.tree.overlapping_pairs(&mut self.pairs);
         self.contacts.clear();
         for &(i, j) in &self.pairs {
             let (i, j) = (i as usize, j as usize);
-            let sigma = radii[i] + radii[j];
-            if (pos[j] - pos[i]).norm_sq() < sigma * sigma {
+            let sigma = radius(i) + radius(j);
+            if (pos(j) - pos(i)).norm_sq() < sigma * sigma {
                 self.contacts.push((i as u32, j as u32));
             }
         }
@@ -180,7 +180,7 @@ impl<const D: usize> DiscreteStepper<D> {
         self.wall_contacts.clear();
         for i in 0..n {
             for (w, wall) in walls.iter().enumerate() {
-                if wall_push_out(wall, self.home[i * nw + w], pos[i], radii[i]).is_some() {
+                if wall_push_out(wall, self.home[i * nw + w], pos(i), radius(i)).is_some() {
                     self.wall_contacts.push((i as u32, w as u32));
                 }
             }
@@ -206,14 +206,14 @@ impl<const D: usize> DiscreteStepper<D> {
 
     /// Pairs the exact swept test says touched in `[start, t1]` that the step did not detect.
     fn count_step_misses(&mut self, t1: f64) -> (u32, u32) {
-        let radii = self.world.radii();
+        let world = &self.world;
         // Candidates: bodies whose boxes swept over the step overlap.
         self.boxes.clear();
         self.boxes.extend(
             self.start
                 .iter()
-                .zip(radii)
-                .map(|(m, &r)| Aabb::of_ball(m.pos, r).union(Aabb::of_ball(m.at(t1), r))),
+                .zip(world.radii())
+                .map(|(m, r)| Aabb::of_ball(m.pos, r).union(Aabb::of_ball(m.at(t1), r))),
         );
         self.tree.build(&self.boxes);
         self.pairs.clear();
@@ -221,8 +221,13 @@ impl<const D: usize> DiscreteStepper<D> {
         let mut body = 0;
         for &(i, j) in &self.pairs {
             let (a, b) = (i as usize, j as usize);
-            let touched = toi_circle_circle(&self.start[a], radii[a], &self.start[b], radii[b])
-                .is_some_and(|t| t <= t1);
+            let touched = toi_circle_circle(
+                &self.start[a],
+                world.radius(a),
+                &self.start[b],
+                world.radius(b),
+            )
+            .is_some_and(|t| t <= t1);
             // Both lists are sorted, so detection is a binary search.
             if touched && self.contacts.binary_search(&(i, j)).is_err() {
                 body += 1;
@@ -231,7 +236,7 @@ impl<const D: usize> DiscreteStepper<D> {
         let mut wall = 0;
         for (i, m) in self.start.iter().enumerate() {
             for (w, wall_w) in self.world.walls().iter().enumerate() {
-                let touched = toi_circle_wall(m, radii[i], wall_w).is_some_and(|t| t <= t1);
+                let touched = toi_circle_wall(m, world.radius(i), wall_w).is_some_and(|t| t <= t1);
                 if touched
                     && self
                         .wall_contacts
@@ -250,8 +255,8 @@ impl<const D: usize> DiscreteStepper<D> {
         for k in 0..self.contacts.len() {
             let (i, j) = self.contacts[k];
             let (i, j) = (i as usize, j as usize);
-            let (pi, pj) = (self.world.positions()[i], self.world.positions()[j]);
-            let sigma = self.world.radii()[i] + self.world.radii()[j];
+            let (pi, pj) = (self.world.position(i), self.world.position(j));
+            let sigma = self.world.radius(i) + self.world.radius(j);
             let d = pj - pi;
             let dist = d.norm();
             // Coincident centres have no line of centres; separate them along x.
@@ -265,7 +270,7 @@ impl<const D: usize> DiscreteStepper<D> {
             let depth = sigma - dist;
             if depth > 0.0 {
                 let (mi, mj) = (self.world.masses()[i], self.world.masses()[j]);
-                let (vi, vj) = (self.world.velocities()[i], self.world.velocities()[j]);
+                let (vi, vj) = (self.world.velocity(i), self.world.velocity(j));
                 let push = normal * depth;
                 self.world
                     .set_state(i, pi - push * (mj / (mi + mj)), vi, t1);
@@ -280,9 +285,9 @@ impl<const D: usize> DiscreteStepper<D> {
             let (i, w) = (i as usize, w as usize);
             let wall = self.world.walls()[w];
             let (p, v, r) = (
-                self.world.positions()[i],
-                self.world.velocities()[i],
-                self.world.radii()[i],
+                self.world.position(i),
+                self.world.velocity(i),
+                self.world.radius(i),
             );
             if let Some(out) = wall_push_out(&wall, self.home[i * nw + w], p, r) {
                 self.world.set_state(i, out, v, t1);

@@ -27,7 +27,6 @@ impl AllPairs {
 #[must_use]
 pub fn all_pairs_next_event<const D: usize>(world: &World<D>) -> Option<Event> {
     let n = world.len();
-    let radii = world.radii();
     let mut best: Option<Event> = None;
     if let Some(size) = world.periodic() {
         let faces_from = world.walls().len();
@@ -35,7 +34,9 @@ pub fn all_pairs_next_event<const D: usize>(world: &World<D>) -> Option<Event> {
             let mi = world.motion(i);
             for j in i + 1..n {
                 let mj = world.motion(j);
-                if let Some(t) = toi_circle_circle_periodic(&mi, radii[i], &mj, radii[j], &size) {
+                if let Some(t) =
+                    toi_circle_circle_periodic(&mi, world.radius(i), &mj, world.radius(j), &size)
+                {
                     best = Event::earliest(best, Some(Event::body(t, i, j)));
                 }
             }
@@ -48,12 +49,14 @@ pub fn all_pairs_next_event<const D: usize>(world: &World<D>) -> Option<Event> {
     for i in 0..n {
         let mi = world.motion(i);
         for j in i + 1..n {
-            if let Some(t) = toi_circle_circle(&mi, radii[i], &world.motion(j), radii[j]) {
+            if let Some(t) =
+                toi_circle_circle(&mi, world.radius(i), &world.motion(j), world.radius(j))
+            {
                 best = Event::earliest(best, Some(Event::body(t, i, j)));
             }
         }
         for (w, wall) in world.walls().iter().enumerate() {
-            if let Some(t) = toi_circle_wall(&mi, radii[i], wall) {
+            if let Some(t) = toi_circle_wall(&mi, world.radius(i), wall) {
                 best = Event::earliest(best, Some(Event::wall(t, i, w)));
             }
         }

@@ -144,7 +144,6 @@ impl Sedgewick {
         i: usize,
         skip: impl Fn(usize) -> bool,
     ) {
-        let radii = world.radii();
         let mi = world.motion(i);
         let ci = world.change_count(i);
         for j in 0..world.len() {
@@ -158,7 +157,7 @@ impl Sedgewick {
             } else {
                 (world.motion(j), mi)
             };
-            if let Some(t) = toi_circle_circle(&ma, radii[a], &mb, radii[b]) {
+            if let Some(t) = toi_circle_circle(&ma, world.radius(a), &mb, world.radius(b)) {
                 self.push(Entry::new(
                     Event::body(t, a, b),
                     world.change_count(a),
@@ -167,7 +166,7 @@ impl Sedgewick {
             }
         }
         for (w, wall) in world.walls().iter().enumerate() {
-            if let Some(t) = toi_circle_wall(&mi, radii[i], wall) {
+            if let Some(t) = toi_circle_wall(&mi, world.radius(i), wall) {
                 self.push(Entry::new(Event::wall(t, i, w), ci, 0));
             }
         }

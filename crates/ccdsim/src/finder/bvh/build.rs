@@ -19,13 +19,12 @@ impl<const D: usize> SweptTree<D> {
         self.now = now;
         self.horizon = horizon;
         self.built_horizon = horizon;
-        let radii = world.radii();
         self.leaf_boxes.clear();
         self.leaf_boxes
-            .extend((0..n).map(|i| swept_box(&world.motion(i), radii[i], now, horizon)));
+            .extend((0..n).map(|i| swept_box(&world.motion(i), world.radius(i), now, horizon)));
         self.finite = self.leaf_boxes.iter().all(is_finite_box);
         self.extent_now = (0..n).fold(Aabb::EMPTY, |acc, i| {
-            acc.union(Aabb::of_ball(world.position_at(i, now), radii[i]))
+            acc.union(Aabb::of_ball(world.position_at(i, now), world.radius(i)))
         });
         if self.order.len() != n {
             // Otherwise keep the last permutation: the bodies have barely moved since, so the

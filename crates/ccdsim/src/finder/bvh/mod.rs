@@ -195,11 +195,7 @@ impl<const D: usize> BvhFinder<D> {
     /// earliest wall event.
     fn search(&mut self, world: &World<D>, wall: Option<Event>) -> Option<Event> {
         self.stats.searches += 1;
-        let v_max = world
-            .velocities()
-            .iter()
-            .map(|v| l1(*v))
-            .fold(0.0, f64::max);
+        let v_max = world.velocities().map(l1).fold(0.0, f64::max);
         if world.len() < 2 || v_max == 0.0 {
             return wall;
         }
@@ -236,12 +232,13 @@ impl<const D: usize> BvhFinder<D> {
     /// The earliest body–body event over every pair, as the oracle computes it.
     fn exhaustive(&mut self, world: &World<D>) -> Option<Event> {
         self.stats.exhaustive += 1;
-        let radii = world.radii();
         let mut best = None;
         for i in 0..world.len() {
             let mi = world.motion(i);
             for j in i + 1..world.len() {
-                if let Some(t) = toi_circle_circle(&mi, radii[i], &world.motion(j), radii[j]) {
+                if let Some(t) =
+                    toi_circle_circle(&mi, world.radius(i), &world.motion(j), world.radius(j))
+                {
                     best = Event::earliest(best, Some(Event::body(t, i, j)));
                 }
             }

@@ -10,13 +10,12 @@ impl<const D: usize> SweptTree<D> {
     /// are in pre-order, so walking them backwards visits children before parents. O(n).
     pub fn refit(&mut self, world: &World<D>, horizon: f64) {
         self.horizon = horizon;
-        let radii = world.radii();
         let mut finite = true;
         for k in (0..self.nodes.len()).rev() {
             let node = self.nodes[k];
             let aabb = if node.is_leaf() {
                 let i = self.order[node.start as usize] as usize;
-                let b = swept_box(&world.motion(i), radii[i], self.now, horizon);
+                let b = swept_box(&world.motion(i), world.radius(i), self.now, horizon);
                 finite &= is_finite_box(&b);
                 b
             } else {

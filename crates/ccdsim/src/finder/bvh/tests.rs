@@ -195,9 +195,9 @@ fn traversal_finds_the_earliest_pair_within_the_horizon() {
             .filter_map(|(i, j)| {
                 crate::narrow::toi_circle_circle(
                     &w.motion(i),
-                    w.radii()[i],
+                    w.radius(i),
                     &w.motion(j),
-                    w.radii()[j],
+                    w.radius(j),
                 )
             })
             .fold(f64::INFINITY, f64::min);
@@ -454,15 +454,14 @@ fn check_build_refit<const D: usize>(
         prop_assert_eq!(t.validate(&world), Ok(()));
     }
     // Traversal agrees with a brute-force scan of the pairs within the horizon.
-    let radii = world.radii();
     let mut best = None;
     for i in 0..world.len() {
         for j in i + 1..world.len() {
             let toi = crate::narrow::toi_circle_circle(
                 &world.motion(i),
-                radii[i],
+                world.radius(i),
                 &world.motion(j),
-                radii[j],
+                world.radius(j),
             );
             if let Some(tt) = toi.filter(|&tt| tt <= t.horizon) {
                 best = Event::earliest(best, Some(Event::body(tt, i, j)));

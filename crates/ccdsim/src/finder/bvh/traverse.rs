@@ -92,12 +92,11 @@ impl<const D: usize> Check<'_, D> {
     fn narrow(&mut self, i: usize, j: usize) {
         let (i, j) = if i < j { (i, j) } else { (j, i) };
         self.out.narrow_calls += 1;
-        let radii = self.world.radii();
         let Some(t) = toi_circle_circle(
             &self.world.motion(i),
-            radii[i],
+            self.world.radius(i),
             &self.world.motion(j),
-            radii[j],
+            self.world.radius(j),
         ) else {
             return;
         };

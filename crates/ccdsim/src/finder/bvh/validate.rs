@@ -55,9 +55,8 @@ impl<const D: usize> SweptTree<D> {
         if self.order.len() != n {
             return fail(0, format!("order holds {} of {n} bodies", self.order.len()));
         }
-        let radii = world.radii();
         let boxes: Vec<Aabb<D>> = (0..n)
-            .map(|i| swept_box(&world.motion(i), radii[i], self.now, self.horizon))
+            .map(|i| swept_box(&world.motion(i), world.radius(i), self.now, self.horizon))
             .collect();
         self.check_node(world, &boxes, 0, 0, n, 0).map(|_| ())
     }
@@ -117,7 +116,7 @@ impl<const D: usize> SweptTree<D> {
         node: &Node<D>,
     ) -> Result<(), InvalidTree> {
         let i = self.body(node);
-        let (m, r) = (world.motion(i), world.radii()[i]);
+        let (m, r) = (world.motion(i), world.radius(i));
         if node.aabb != boxes[i] {
             return fail(k, format!("leaf box of body {i} is stale"));
         }

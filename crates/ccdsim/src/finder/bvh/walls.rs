@@ -35,7 +35,7 @@ impl WallCache {
             self.fresh = vec![false; n];
         }
         let mut recomputed = 0;
-        for (i, &r) in world.radii().iter().enumerate() {
+        for (i, r) in world.radii().enumerate() {
             let count = world.change_count(i);
             if self.fresh[i] && self.seen[i] == count {
                 continue;

@@ -261,6 +261,14 @@ impl<const D: usize> Grid<D> {
     /// Takes body `i` out of its cell.
     pub fn remove(&mut self, i: usize) {
         let c = self.cell_of(i) as usize;
+        self.unlink(i, c);
+        self.next[i] = NONE;
+        self.coords[i] = [u32::MAX; D];
+    }
+
+    /// Unlinks body `i` from the list of cell `c`, where it is filed.
+    #[inline]
+    fn unlink(&mut self, i: usize, c: usize) {
         let mut at = self.head[c];
         if at == i as u32 {
             self.head[c] = self.next[i];
@@ -272,8 +280,6 @@ impl<const D: usize> Grid<D> {
             }
             self.next[at as usize] = self.next[i];
         }
-        self.next[i] = NONE;
-        self.coords[i] = [u32::MAX; D];
     }
 
     /// Moves body `i` to the cell of coordinates `k`.
@@ -286,21 +292,32 @@ impl<const D: usize> Grid<D> {
 
     /// Moves body `i` one cell along `axis` (`up` or down); that cell must exist without
     /// wrapping around a periodic box.
+    #[inline]
     pub fn step(&mut self, i: usize, axis: usize, up: bool) {
-        let mut k = self.coords[i].map(|x| x as usize);
-        if up {
-            k[axis] += 1;
+        let c = self.cell_of(i) as usize;
+        self.unlink(i, c);
+        let kd = &mut self.coords[i][axis];
+        let c = if up {
+            *kd += 1;
+            c + self.stride[axis]
         } else {
-            k[axis] -= 1;
-        }
-        self.remove(i);
-        self.insert(i, k);
+            *kd -= 1;
+            c - self.stride[axis]
+        };
+        self.next[i] = self.head[c];
+        self.head[c] = i as u32;
     }
 
     /// First body of cell `c`, or `NONE`.
     #[inline]
     pub fn first(&self, c: u32) -> u32 {
         self.head[c as usize]
+    }
+
+    /// The body after body `j` in its cell's list, or `NONE`.
+    #[inline(always)]
+    pub fn next_in_cell(&self, j: u32) -> u32 {
+        self.next[j as usize]
     }
 
     /// Walls within reach of cell `c`.
@@ -427,10 +444,41 @@ impl<const D: usize> Grid<D> {
         (0..D).all(|d| k[d] >= 1 && k[d] as usize + 2 <= self.dims[d])
     }
 
+    /// The neighbour cells of a body filed at coordinates `k` when they are the plain 3^D
+    /// block around it (no border, no wrapping, zero image shift), else `None`.
+    #[inline(always)]
+    pub fn interior_neighbours(&self, k: &[u32; D]) -> Option<impl Iterator<Item = u32> + '_> {
+        if !self.is_interior(k) {
+            return None;
+        }
+        let c = self.linear_u32(k) as isize;
+        Some(self.interior.iter().map(move |&off| (c + off) as u32))
+    }
+
+    /// The cells entered by a move into the cell of coordinates `k` along `axis` in direction
+    /// `up` when that cell is interior (zero image shift), else `None`.
+    #[inline(always)]
+    pub fn interior_entered_layer(
+        &self,
+        k: &[u32; D],
+        axis: usize,
+        up: bool,
+    ) -> Option<impl Iterator<Item = u32> + '_> {
+        if !self.is_interior(k) {
+            return None;
+        }
+        let c = self.linear_u32(k) as isize;
+        Some(
+            self.layers[2 * axis + usize::from(up)]
+                .iter()
+                .map(move |&off| (c + off) as u32),
+        )
+    }
+
     /// Calls `f(cell, shift, image)` for every cell whose bodies can touch a body filed at
     /// coordinates `k` before it leaves its cell: the 3^D block around it (fewer at the border
     /// of an open world), with the image shift to add to their displacement and its code.
-    #[cfg(test)]
+    #[inline]
     pub fn visit_neighbours(&self, k: &[u32; D], mut f: impl FnMut(u32, &Vector<D>, u8)) {
         if self.is_interior(k) {
             let c = self.linear_u32(k) as isize;
@@ -444,52 +492,10 @@ impl<const D: usize> Grid<D> {
         self.visit_product(&axes, &mut f);
     }
 
-    /// Appends to `bodies` every body filed in the neighbour cells of coordinates `k` (see
-    /// [`Grid::visit_neighbours`]) and to `images` the image code of its cell.
-    #[inline]
-    pub fn gather_neighbours(&self, k: &[u32; D], bodies: &mut Vec<u32>, images: &mut Vec<u8>) {
-        if self.is_interior(k) {
-            let c = self.linear_u32(k) as isize;
-            for &off in &self.interior {
-                self.gather_cell((c + off) as u32, Self::ZERO_IMAGE, bodies, images);
-            }
-            return;
-        }
-        let axes: [AxisChoices; D] = std::array::from_fn(|d| self.axis_choices(d, k[d] as usize));
-        self.visit_product(&axes, &mut |cell, _, image| {
-            self.gather_cell(cell, image, bodies, images);
-        });
-    }
-
-    /// Appends to `bodies` every body filed in the layer of cells entered by a move into the
-    /// cell of coordinates `k` along `axis` in direction `up` (see
-    /// [`Grid::visit_entered_layer`]), and their image codes to `images`.
-    pub fn gather_entered_layer(
-        &self,
-        k: &[u32; D],
-        axis: usize,
-        up: bool,
-        bodies: &mut Vec<u32>,
-        images: &mut Vec<u8>,
-    ) {
-        self.visit_entered_layer(k, axis, up, |cell, _, image| {
-            self.gather_cell(cell, image, bodies, images);
-        });
-    }
-
-    #[inline(always)]
-    fn gather_cell(&self, cell: u32, image: u8, bodies: &mut Vec<u32>, images: &mut Vec<u8>) {
-        let mut j = self.head[cell as usize];
-        while j != NONE {
-            bodies.push(j);
-            images.push(image);
-            j = self.next[j as usize];
-        }
-    }
-
     /// Calls `f(cell, shift, image)` for the cells that became neighbours of a body that
     /// moved into the cell of coordinates `k` along `axis` in direction `up`: the layer of
     /// the block beyond it.
+    #[inline]
     pub fn visit_entered_layer(
         &self,
         k: &[u32; D],

@@ -16,8 +16,8 @@
 //!   time for that pair (image), bit for bit, as long as neither body's state changed.
 //! * **Crossings**: the time body `i` leaves its cell through a face shared with another cell.
 //!   Crossings are internal: they move the body to the next cell and offer it the pairs of the
-//!   layer of cells that just became neighbours (and the walls of its new cell). They are never
-//!   returned and change no stored state.
+//!   layer of cells that just became neighbours, and the walls its new cell lists but its old
+//!   cell did not. They are never returned and change no stored state.
 //! * **Queue** ([`calendar`], keys in [`key`]): one entry per body keyed by
 //!   `min(best(i), crossing(i))` in a calendar queue (time buckets, a small heap for the
 //!   current bucket). Keys are compared in the full event order; a crossing goes first at
@@ -54,7 +54,8 @@
 //!    body's cell). The pair's term was computed at the later of (a) the last state change of
 //!    either body (full recompute of that body, which scans its whole neighbourhood and its
 //!    cell's walls), (b) the last crossing of either body that made them neighbours (the layer
-//!    scan). Since then the term is covered by that body's records: merges only lower them,
+//!    scan; for a body and a wall, the last crossing of the body from a cell that did not list
+//!    the wall into one that does). Since then the term is covered by that body's records: merges only lower them,
 //!    a promotion keeps the coverage (see 1), and a full recompute covers the pair again.
 //!
 //! Let `E` be the oracle's event: the minimum live term, at time `t`. While a crossing or a
@@ -76,8 +77,11 @@
 //! events, see [`crate::periodic`]), so the image that makes two bodies neighbours is one of
 //! the `3^D` images the oracle tries, and with at least three cells per axis two cells are
 //! neighbours through one image only: the contact that matters is the one through the
-//! neighbouring image, and the time cached for it is the oracle's. An axis too short for
-//! three cells is a single cell whose three images are all scanned, like the oracle does.
+//! neighbouring image, and the time cached for it is the oracle's: the same function on the
+//! same states, lower index first, with the shift as the oracle writes it (`k·L`, `k ∈ {−1,
+//! 0, 1}` per axis; a partner listed first gets `0 − s`, so zero components stay `+0`). An
+//! axis too short for three cells is a single cell whose three images are all scanned, like
+//! the oracle does.
 //!
 //! The margin covers rounding as long as positions are computed to better than `MARGIN·σ_max`
 //! (that is, `|x| + |v|·|t|` below about 10⁹ σ_max), which is far beyond where the simulation's
@@ -103,7 +107,7 @@ use crate::world::World;
 use calendar::CalendarQueue;
 use grid::{Grid, MARGIN};
 use key::{Key, MAX_INDEX};
-use predict::{tie_of, Probe};
+use predict::{tie_of, Cached, Probe};
 
 /// Crossing code of a body that crosses no face.
 const NO_CROSSING: u8 = 0x7F;
@@ -129,17 +133,8 @@ pub struct CellsStats {
 #[derive(Clone, Debug)]
 pub struct Cells<const D: usize> {
     grid: Grid<D>,
-    /// Cached earliest event of each body.
-    best: Vec<Key>,
-    /// Image code of the partner of `best` (body events).
-    image: Vec<u8>,
-    /// Second earliest cached event of each body (see `predict::Best`).
-    second: Vec<Key>,
-    /// Image code of the partner of `second`, with the flag `SECOND_KNOWN`.
-    second_image: Vec<u8>,
-    /// Code `2·axis + up` of each body's next crossing, or `NO_CROSSING`, with the flag
-    /// `KEY_IS_CROSSING` when the crossing is the body's queue key.
-    cross: Vec<u8>,
+    /// Cached predictions of each body, one record per body.
+    cached: Vec<Cached>,
     queue: CalendarQueue,
     /// The world is periodic.
     periodic: bool,
@@ -151,9 +146,6 @@ pub struct Cells<const D: usize> {
     clock: f64,
     /// Image shift of each image code.
     shifts: Vec<Vector<D>>,
-    /// Reused buffers of the bodies (and their image codes) a scan looks at.
-    scratch_bodies: Vec<u32>,
-    scratch_images: Vec<u8>,
     stats: CellsStats,
     peak_bytes: usize,
 }
@@ -170,19 +162,13 @@ impl<const D: usize> Cells<D> {
     pub fn new() -> Self {
         Cells {
             grid: Grid::new(0, 1.0, Vector::ZERO, Vector::ZERO, None),
-            best: Vec::new(),
-            image: Vec::new(),
-            second: Vec::new(),
-            second_image: Vec::new(),
-            cross: Vec::new(),
+            cached: Vec::new(),
             queue: CalendarQueue::default(),
             periodic: false,
             faces_from: 0,
             log: Vec::new(),
             clock: 0.0,
             shifts: Vec::new(),
-            scratch_bodies: Vec::new(),
-            scratch_images: Vec::new(),
             stats: CellsStats::default(),
             peak_bytes: 0,
         }
@@ -203,22 +189,19 @@ impl<const D: usize> Cells<D> {
     fn bytes(&self) -> usize {
         self.grid.bytes()
             + self.queue.bytes()
-            + std::mem::size_of::<Key>() * (self.best.capacity() + self.second.capacity())
-            + self.image.capacity()
-            + self.second_image.capacity()
-            + self.cross.capacity()
+            + std::mem::size_of::<Cached>() * self.cached.capacity()
             + std::mem::size_of::<(u32, u8, f64)>() * self.log.capacity()
     }
 
     /// The queue key body `i` should have.
     fn key_of(&self, i: usize) -> Key {
-        if self.cross[i] & KEY_IS_CROSSING != 0 {
+        if self.cached[i].cross & KEY_IS_CROSSING != 0 {
             Key {
                 time: self.queue_time(i),
                 tie: Key::crossing(0.0).tie,
             }
         } else {
-            self.best[i]
+            self.cached[i].best
         }
     }
 
@@ -232,8 +215,7 @@ impl<const D: usize> Cells<D> {
     /// For tests.
     pub fn validate(&self, world: &World<D>) -> Result<(), String> {
         self.grid.validate()?;
-        self.queue
-            .validate(|j| tie_of(&self.best, &self.cross, j))?;
+        self.queue.validate(|j| tie_of(&self.cached, j))?;
         let clock = self.clock;
         for i in 0..world.len() {
             let m = world.motion(i);
@@ -242,15 +224,17 @@ impl<const D: usize> Cells<D> {
                 .grid
                 .next_crossing(&k, &m)
                 .map_or(Key::NEVER, |(t, _)| Key::crossing(t));
-            if self.key_of(i) != crossing.min(self.best[i]) {
+            if self.key_of(i) != crossing.min(self.cached[i].best) {
                 return Err(format!("body {i}: queue key is not min(event, crossing)"));
             }
-            for k in [self.best[i], self.second[i]] {
+            for k in [self.cached[i].best, self.cached[i].second] {
                 if k.time == Key::NEVER.time && !k.is_never() {
                     return Err(format!("body {i}: cached an event that never happens"));
                 }
             }
-            if self.best[i] > self.second[i] && self.second_image[i] & SECOND_KNOWN != 0 {
+            if self.cached[i].best > self.cached[i].second
+                && self.cached[i].second_image & SECOND_KNOWN != 0
+            {
                 return Err(format!("body {i}: second cached event before the first"));
             }
             let p = m.at(clock);
@@ -273,16 +257,17 @@ impl<const D: usize> Cells<D> {
     fn cross(&mut self, world: &World<D>, i: usize, time: f64) {
         self.stats.crossings += 1;
         self.clock = self.clock.max(time);
-        let code = self.cross[i] & !KEY_IS_CROSSING;
+        let code = self.cached[i].cross & !KEY_IS_CROSSING;
         let (axis, up) = ((code >> 1) as usize, code & 1 == 1);
+        let from = self.grid.cell_of(i);
         self.grid.step(i, axis, up);
         self.log.push((i as u32, code, time));
         let p = Probe::of(world, i);
         let mut best = self.records(i);
         self.scan_entered_layer(world, &p, axis, up, &mut best);
-        self.scan_walls(world, &p, &mut best);
+        self.scan_entered_walls(world, &p, from, &mut best);
         self.store(i, &best);
-        self.schedule(i, &p.m);
+        self.schedule(i, &p.b.motion);
     }
 
     /// Undoes the crossings processed after time `t`, latest first.
@@ -303,9 +288,9 @@ impl<const D: usize> Cells<D> {
 }
 
 /// The largest and second largest radius.
-fn two_largest(radii: &[f64]) -> (f64, f64) {
+fn two_largest(radii: impl Iterator<Item = f64>) -> (f64, f64) {
     let (mut r1, mut r2) = (0.0f64, 0.0f64);
-    for &r in radii {
+    for r in radii {
         if r > r1 {
             r2 = r1;
             r1 = r;
@@ -375,11 +360,7 @@ impl<const D: usize> Finder<D> for Cells<D> {
         self.shifts = (0..3usize.pow(D as u32))
             .map(|code| self.grid.shift_of(code as u8))
             .collect();
-        self.best = vec![Key::NEVER; n];
-        self.image = vec![Grid::<D>::ZERO_IMAGE; n];
-        self.second = vec![Key::NEVER; n];
-        self.second_image = vec![SECOND_KNOWN; n];
-        self.cross = vec![NO_CROSSING; n];
+        self.cached = vec![Cached::NONE; n];
         self.queue = CalendarQueue::new(n, 1.0, now);
         self.log = Vec::new();
         self.clock = now;
@@ -387,8 +368,8 @@ impl<const D: usize> Finder<D> for Cells<D> {
         for i in 0..n {
             self.recompute(world, i);
         }
-        let (best, cross) = (&self.best, &self.cross);
-        self.queue.fit(now, |j| tie_of(best, cross, j));
+        let cached = &self.cached;
+        self.queue.fit(now, |j| tie_of(cached, j));
         self.stats.recomputes = 0;
         self.peak_bytes = self.bytes();
         Ok(())
@@ -397,7 +378,7 @@ impl<const D: usize> Finder<D> for Cells<D> {
     fn update(&mut self, world: &World<D>, changed: &[usize]) {
         let Some(t) = changed
             .iter()
-            .map(|&i| world.times()[i])
+            .map(|&i| world.time(i))
             .min_by(f64::total_cmp)
         else {
             return;
@@ -405,7 +386,7 @@ impl<const D: usize> Finder<D> for Cells<D> {
         self.undo_crossings_after(world, t);
         self.clock = t;
         for &i in changed {
-            let k = self.grid.coords_of_point(&world.positions()[i]);
+            let k = self.grid.coords_of_point(&world.position(i));
             self.grid.relocate(i, k);
         }
         for &i in changed {
@@ -415,9 +396,9 @@ impl<const D: usize> Finder<D> for Cells<D> {
 
     fn next_event(&mut self, world: &World<D>) -> Option<Event> {
         loop {
-            let (best, cross) = (&self.best, &self.cross);
-            let i = self.queue.top(|j| tie_of(best, cross, j))?;
-            if self.cross[i] & KEY_IS_CROSSING != 0 {
+            let cached = &self.cached;
+            let i = self.queue.top(|j| tie_of(cached, j))?;
+            if self.cached[i].cross & KEY_IS_CROSSING != 0 {
                 let t = Key {
                     time: self.queue_time(i),
                     tie: 0,
@@ -425,7 +406,7 @@ impl<const D: usize> Finder<D> for Cells<D> {
                 self.cross(world, i, t.seconds());
                 continue;
             }
-            let key = self.best[i];
+            let key = self.cached[i].best;
             if key.is_never() {
                 return None;
             }

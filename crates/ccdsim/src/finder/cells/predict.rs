@@ -3,12 +3,40 @@
 //! cell crossing.
 
 use super::grid::Grid;
-use super::key::{ordered, Key};
+use super::key::{ordered, Key, NONE};
 use super::{Cells, KEY_IS_CROSSING, NO_CROSSING, SECOND_KNOWN};
 use crate::geom::Vector;
 use crate::narrow::{toi_circle_circle, toi_circle_circle_shifted, toi_circle_wall, Motion};
 use crate::periodic::toi_box_exit;
-use crate::world::World;
+use crate::world::{Body, World};
+
+/// What the finder caches about one body, in one record: read and written together whenever
+/// the body is predicted, scheduled or popped (one or two cache lines, not five).
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Cached {
+    /// Cached earliest event.
+    pub best: Key,
+    /// Second earliest cached event (see [`Best`]).
+    pub second: Key,
+    /// Image code of the partner of `best` (body events).
+    pub image: u8,
+    /// Image code of the partner of `second`, with the flag `SECOND_KNOWN`.
+    pub second_image: u8,
+    /// Code `2·axis + up` of the next crossing, or `NO_CROSSING`, with the flag
+    /// `KEY_IS_CROSSING` when the crossing is the body's queue key.
+    pub cross: u8,
+}
+
+impl Cached {
+    /// Nothing cached yet.
+    pub const NONE: Cached = Cached {
+        best: Key::NEVER,
+        second: Key::NEVER,
+        image: 0,
+        second_image: SECOND_KNOWN,
+        cross: NO_CROSSING,
+    };
+}
 
 /// The two earliest of one body's candidate events.
 ///
@@ -65,15 +93,13 @@ impl Best {
     }
 }
 
-/// A body whose events are being predicted: index, stored motion and radius.
+/// A body whose events are being predicted: its index and a copy of its hot record.
 #[derive(Clone, Copy, Debug)]
 pub(super) struct Probe<const D: usize> {
     /// Body index.
     pub i: usize,
-    /// Its stored motion.
-    pub m: Motion<D>,
-    /// Its radius.
-    pub r: f64,
+    /// Its stored motion and radius.
+    pub b: Body<D>,
 }
 
 impl<const D: usize> Probe<D> {
@@ -82,131 +108,198 @@ impl<const D: usize> Probe<D> {
     pub fn of(world: &World<D>, i: usize) -> Self {
         Probe {
             i,
-            m: world.motion(i),
-            r: world.radii()[i],
+            b: world.bodies()[i],
         }
     }
 }
 
 impl<const D: usize> Cells<D> {
-    /// Time of impact of body `p` with body `j` (motion `mj`, radius `rj`; image displaced by
-    /// `shift`), computed exactly as the oracle does: by the same pure function, lower index
-    /// first.
+    /// Time of impact of body `p` with body `j` (record `bj`; image displaced by `shift`),
+    /// computed exactly as the oracle does: by the same pure function, lower index first.
     #[inline(always)]
-    fn pair_toi(
-        &self,
-        p: &Probe<D>,
-        j: usize,
-        mj: &Motion<D>,
-        rj: f64,
-        shift: &Vector<D>,
-    ) -> Option<f64> {
-        let (i, mi, ri) = (p.i, &p.m, p.r);
+    fn pair_toi(&self, p: &Probe<D>, j: usize, bj: &Body<D>, shift: &Vector<D>) -> Option<f64> {
+        let (i, bi) = (p.i, &p.b);
+        let (a, b) = if i < j { (bi, bj) } else { (bj, bi) };
         if self.periodic {
-            if i < j {
-                toi_circle_circle_shifted(mi, ri, mj, rj, *shift)
-            } else {
-                toi_circle_circle_shifted(mj, rj, mi, ri, -*shift)
-            }
-        } else if i < j {
-            toi_circle_circle(mi, ri, mj, rj)
+            let s = if i < j { *shift } else { Vector::ZERO - *shift };
+            toi_circle_circle_shifted(&a.motion, a.radius, &b.motion, b.radius, s)
         } else {
-            toi_circle_circle(mj, rj, mi, ri)
+            toi_circle_circle(&a.motion, a.radius, &b.motion, b.radius)
         }
     }
 
-    /// Offers body `p` every pair with the bodies `others` (image codes `images`, see
-    /// `Grid::visit_neighbours`). Times come from the oracle's narrow phase, lower index first
-    /// (see [`super::kernel`]).
-    #[inline]
-    fn scan_bodies(
+    /// Offers body `p` every pair with the bodies of one cell's list, starting at body `j`
+    /// (the cell's image shift `shift`, code `image`; see `Grid::visit_neighbours`).
+    ///
+    /// Times come from the oracle's narrow phase with the oracle's arguments, lower index
+    /// first: [`toi_circle_circle`] in open worlds, [`toi_circle_circle_shifted`] in periodic
+    /// ones (`PERIODIC`), the shift negated when the partner comes first. The order is chosen
+    /// by selecting references, not by branching on data.
+    #[inline(always)]
+    fn scan_list<const PERIODIC: bool>(
         &self,
-        world: &World<D>,
+        bodies: &[Body<D>],
         p: &Probe<D>,
-        others: &[u32],
-        images: &[u8],
+        mut j: u32,
+        shift: &Vector<D>,
+        image: u8,
         best: &mut Best,
     ) {
         let i = p.i;
-        let radii = world.radii();
-        let (positions, velocities, times) = (world.positions(), world.velocities(), world.times());
-        for (&j, &image) in others.iter().zip(images) {
+        // The partner's shift as the oracle writes it, `k·L` with `k ∈ {−1, 0, 1}`: `0 − s`
+        // keeps zero components +0 where `−s` would make them −0.
+        let neg = Vector::ZERO - *shift;
+        while j != NONE {
             let ju = j as usize;
-            if ju == i {
-                continue;
-            }
-            let mj = Motion {
-                pos: positions[ju],
-                vel: velocities[ju],
-                time: times[ju],
-            };
-            let rj = radii[ju];
-            let t = if self.periodic {
-                let shift = self.shifts[image as usize];
-                if i < ju {
-                    toi_circle_circle_shifted(&p.m, p.r, &mj, rj, shift)
+            let b = &bodies[ju];
+            if ju != i {
+                // One pointer select, not one per field: the records share a layout.
+                let probe_first = i < ju;
+                let (a, c) = if probe_first { (&p.b, b) } else { (b, &p.b) };
+                let t = if PERIODIC {
+                    let s = if probe_first { *shift } else { neg };
+                    toi_circle_circle_shifted(&a.motion, a.radius, &c.motion, c.radius, s)
                 } else {
-                    toi_circle_circle_shifted(&mj, rj, &p.m, p.r, -shift)
-                }
-            } else if i < ju {
-                toi_circle_circle(&p.m, p.r, &mj, rj)
-            } else {
-                toi_circle_circle(&mj, rj, &p.m, p.r)
-            };
-            if let Some(t) = t {
-                let bits = ordered(t);
-                if bits <= best.threshold() {
-                    best.offer(Key::body_bits(bits, i.min(ju), i.max(ju)), image);
+                    toi_circle_circle(&a.motion, a.radius, &c.motion, c.radius)
+                };
+                if let Some(t) = t {
+                    let bits = ordered(t);
+                    if bits <= best.threshold() {
+                        best.offer(Key::body_bits(bits, i.min(ju), i.max(ju)), image);
+                    }
                 }
             }
+            j = self.grid.next_in_cell(j);
         }
     }
 
     /// Offers body `p` every pair with a body in its neighbour cells.
-    pub(super) fn scan_neighbours(&mut self, world: &World<D>, p: &Probe<D>, best: &mut Best) {
-        let (mut others, mut images) = (
-            std::mem::take(&mut self.scratch_bodies),
-            std::mem::take(&mut self.scratch_images),
-        );
-        others.clear();
-        images.clear();
+    pub(super) fn scan_neighbours(&self, world: &World<D>, p: &Probe<D>, best: &mut Best) {
         let k = self.grid.coords_of(p.i);
-        self.grid.gather_neighbours(&k, &mut others, &mut images);
-        self.scan_bodies(world, p, &others, &images, best);
-        self.scratch_bodies = others;
-        self.scratch_images = images;
+        let bodies = world.bodies();
+        if let Some(cells) = self.grid.interior_neighbours(&k) {
+            self.scan_interior(bodies, p, cells, best);
+        } else {
+            // Border cells: list the cells first, so that the scan below is inlined once.
+            let mut cells = [(0u32, 0u8); 27];
+            let mut n = 0;
+            self.grid.visit_neighbours(&k, |cell, _, image| {
+                cells[n] = (cell, image);
+                n += 1;
+            });
+            self.scan_listed(bodies, p, &cells[..n], best);
+        }
     }
 
     /// Offers body `p`, just moved into its cell along `axis` in direction `up`, every pair
     /// with a body in the layer of cells that became its neighbours.
     pub(super) fn scan_entered_layer(
-        &mut self,
+        &self,
         world: &World<D>,
         p: &Probe<D>,
         axis: usize,
         up: bool,
         best: &mut Best,
     ) {
-        let (mut others, mut images) = (
-            std::mem::take(&mut self.scratch_bodies),
-            std::mem::take(&mut self.scratch_images),
-        );
-        others.clear();
-        images.clear();
         let k = self.grid.coords_of(p.i);
-        self.grid
-            .gather_entered_layer(&k, axis, up, &mut others, &mut images);
-        self.scan_bodies(world, p, &others, &images, best);
-        self.scratch_bodies = others;
-        self.scratch_images = images;
+        let bodies = world.bodies();
+        if let Some(cells) = self.grid.interior_entered_layer(&k, axis, up) {
+            self.scan_interior(bodies, p, cells, best);
+        } else {
+            let mut cells = [(0u32, 0u8); 9];
+            let mut n = 0;
+            self.grid
+                .visit_entered_layer(&k, axis, up, |cell, _, image| {
+                    cells[n] = (cell, image);
+                    n += 1;
+                });
+            self.scan_listed(bodies, p, &cells[..n], best);
+        }
+    }
+
+    /// Offers body `p` every pair with a body of the cells `cells` (cell, image code).
+    #[inline(never)]
+    fn scan_listed(&self, bodies: &[Body<D>], p: &Probe<D>, cells: &[(u32, u8)], best: &mut Best) {
+        if self.periodic {
+            for &(c, image) in cells {
+                let shift = &self.shifts[image as usize];
+                self.scan_list::<true>(bodies, p, self.grid.first(c), shift, image, best);
+            }
+        } else {
+            for &(c, image) in cells {
+                let shift = &self.shifts[image as usize];
+                self.scan_list::<false>(bodies, p, self.grid.first(c), shift, image, best);
+            }
+        }
+    }
+
+    /// Offers body `p` every pair with a body of the interior cells `cells` (zero image
+    /// shift).
+    #[inline(always)]
+    fn scan_interior(
+        &self,
+        bodies: &[Body<D>],
+        p: &Probe<D>,
+        cells: impl Iterator<Item = u32>,
+        best: &mut Best,
+    ) {
+        let zero = Vector::ZERO;
+        let image = Grid::<D>::ZERO_IMAGE;
+        if self.periodic {
+            for c in cells {
+                self.scan_list::<true>(bodies, p, self.grid.first(c), &zero, image, best);
+            }
+        } else {
+            for c in cells {
+                self.scan_list::<false>(bodies, p, self.grid.first(c), &zero, image, best);
+            }
+        }
     }
 
     /// Offers body `p` every wall within reach of its cell.
-    #[inline]
+    #[inline(always)]
     pub(super) fn scan_walls(&self, world: &World<D>, p: &Probe<D>, best: &mut Best) {
         let walls = self.grid.walls_of(self.grid.cell_of(p.i));
+        if !walls.is_empty() {
+            self.offer_walls(world, p, walls, &[], best);
+        }
+    }
+
+    /// Offers body `p`, just moved into its cell from cell `from`, every wall within reach of
+    /// its new cell that the old one did not list (the others are covered since the last
+    /// time its walls were scanned, see the module docs).
+    #[inline(always)]
+    pub(super) fn scan_entered_walls(
+        &self,
+        world: &World<D>,
+        p: &Probe<D>,
+        from: u32,
+        best: &mut Best,
+    ) {
+        let walls = self.grid.walls_of(self.grid.cell_of(p.i));
+        if !walls.is_empty() {
+            self.offer_walls(world, p, walls, self.grid.walls_of(from), best);
+        }
+    }
+
+    /// Offers body `p` the walls of the sorted list `walls` that are not in the sorted list
+    /// `skip`.
+    #[inline(never)]
+    fn offer_walls(
+        &self,
+        world: &World<D>,
+        p: &Probe<D>,
+        walls: &[u32],
+        skip: &[u32],
+        best: &mut Best,
+    ) {
+        let mut skip = skip.iter().peekable();
         for &w in walls {
-            if let Some(t) = toi_circle_wall(&p.m, p.r, &world.walls()[w as usize]) {
+            while skip.next_if(|&&s| s < w).is_some() {}
+            if skip.next_if_eq(&&w).is_some() {
+                continue;
+            }
+            if let Some(t) = toi_circle_wall(&p.b.motion, p.b.radius, &world.walls()[w as usize]) {
                 best.offer(Key::wall(t, p.i, w as usize), Grid::<D>::ZERO_IMAGE);
             }
         }
@@ -218,7 +311,7 @@ impl<const D: usize> Cells<D> {
         let Some(size) = world.periodic() else {
             return;
         };
-        if let Some((t, face)) = toi_box_exit(&p.m, &size) {
+        if let Some((t, face)) = toi_box_exit(&p.b.motion, &size) {
             best.offer(
                 Key::wall(t, p.i, self.faces_from + face),
                 Grid::<D>::ZERO_IMAGE,
@@ -230,18 +323,12 @@ impl<const D: usize> Cells<D> {
     /// alone (recomputed whenever `i` changes); a body event is evaluated again, for the same
     /// image, on the current stored states and must come out bit for bit the same.
     pub(super) fn is_live(&self, world: &World<D>, i: usize) -> bool {
-        let key = self.best[i];
+        let key = self.cached[i].best;
         let Some(j) = key.partner(i) else {
             return true;
         };
-        let shift = self.shifts[self.image[i] as usize];
-        let t = self.pair_toi(
-            &Probe::of(world, i),
-            j,
-            &world.motion(j),
-            world.radii()[j],
-            &shift,
-        );
+        let shift = self.shifts[self.cached[i].image as usize];
+        let t = self.pair_toi(&Probe::of(world, i), j, &world.bodies()[j], &shift);
         t.is_some_and(|t| Key::body(t, i.min(j), i.max(j)) == key)
     }
 
@@ -255,28 +342,28 @@ impl<const D: usize> Cells<D> {
         self.scan_walls(world, &p, &mut best);
         self.scan_exit(world, &p, &mut best);
         self.store(i, &best);
-        self.schedule(i, &p.m);
+        self.schedule(i, &p.b.motion);
     }
 
     /// Body `i`'s records.
     #[inline]
     pub(super) fn records(&self, i: usize) -> Best {
         Best {
-            key: self.best[i],
-            image: self.image[i],
-            second: self.second[i],
-            second_image: self.second_image[i] & !SECOND_KNOWN,
-            known: self.second_image[i] & SECOND_KNOWN != 0,
+            key: self.cached[i].best,
+            image: self.cached[i].image,
+            second: self.cached[i].second,
+            second_image: self.cached[i].second_image & !SECOND_KNOWN,
+            known: self.cached[i].second_image & SECOND_KNOWN != 0,
         }
     }
 
     /// Stores body `i`'s records.
     #[inline]
     pub(super) fn store(&mut self, i: usize, best: &Best) {
-        self.best[i] = best.key;
-        self.image[i] = best.image;
-        self.second[i] = best.second;
-        self.second_image[i] = best.second_image | if best.known { SECOND_KNOWN } else { 0 };
+        self.cached[i].best = best.key;
+        self.cached[i].image = best.image;
+        self.cached[i].second = best.second;
+        self.cached[i].second_image = best.second_image | if best.known { SECOND_KNOWN } else { 0 };
     }
 
     /// Replaces body `i`'s stale cached event by its second one, if that is known, and
@@ -300,30 +387,31 @@ impl<const D: usize> Cells<D> {
         let key = match self.grid.next_crossing(&k, mi) {
             Some((t, code)) => {
                 let crossing = Key::crossing(t);
-                if crossing < self.best[i] {
-                    self.cross[i] = code | KEY_IS_CROSSING;
+                if crossing < self.cached[i].best {
+                    self.cached[i].cross = code | KEY_IS_CROSSING;
                     crossing
                 } else {
-                    self.cross[i] = code;
-                    self.best[i]
+                    self.cached[i].cross = code;
+                    self.cached[i].best
                 }
             }
             None => {
-                self.cross[i] = NO_CROSSING;
-                self.best[i]
+                self.cached[i].cross = NO_CROSSING;
+                self.cached[i].best
             }
         };
-        let (best, cross) = (&self.best, &self.cross);
-        self.queue.set(i, key, |j| tie_of(best, cross, j));
+        let cached = &self.cached;
+        self.queue.set(i, key, |j| tie_of(cached, j));
     }
 }
 
 /// The tie word of body `j`'s queue key.
 #[inline]
-pub(super) fn tie_of(best: &[Key], cross: &[u8], j: u32) -> u64 {
-    if cross[j as usize] & KEY_IS_CROSSING != 0 {
+pub(super) fn tie_of(cached: &[Cached], j: u32) -> u64 {
+    let c = &cached[j as usize];
+    if c.cross & KEY_IS_CROSSING != 0 {
         Key::crossing(0.0).tie
     } else {
-        best[j as usize].tie
+        c.best.tie
     }
 }
