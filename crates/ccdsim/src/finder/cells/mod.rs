@@ -1,5 +1,5 @@
-//! The `cells` finder: a uniform grid, cached predictions per body and a calendar queue; a
-//! bounded number of predictions and O(1) expected queue work per event.
+//! The `cells` finder: a uniform grid, cached predictions per body and an event queue; a
+//! bounded number of predictions and O(log n) queue work per event.
 //!
 //! # How it works
 //!
@@ -18,11 +18,10 @@
 //!   Crossings are internal: they move the body to the next cell and offer it the pairs of the
 //!   layer of cells that just became neighbours (and the walls of its new cell). They are never
 //!   returned and change no stored state.
-//! * **Queue** ([`calendar`], keys in [`key`]): one entry per body keyed by
-//!   `min(best(i), crossing(i))` in a calendar queue (time buckets, a small heap for the
-//!   current bucket). Keys are compared in the full event order; a crossing goes first at
-//!   equal times. Measured against the indexed 4-ary heap it replaced: +6 % collisions per
-//!   second at 10⁴ bodies, +2–4 % at 10⁶.
+//! * **Queue** ([`tournament`], keys in [`key`]): one entry per body keyed by
+//!   `min(best(i), crossing(i))` in a tournament tree (every node holds the smallest key
+//!   below it, inline). Keys are compared in the full event order; a crossing goes first at
+//!   equal times.
 //!
 //! `next_event` looks at the top of the queue: a crossing is processed; a body event is
 //! evaluated again on the current states (one time of impact) and if it no longer comes out
@@ -90,20 +89,20 @@
 //! after the change's time (moving the body back and recomputing it), so cells again match
 //! positions at that time.
 
-mod calendar;
 mod grid;
 mod key;
 mod predict;
+mod tournament;
 
 use super::{DebugBox, Finder, FinderError, FinderMemory};
 use crate::event::Event;
 use crate::geom::{Aabb, Vector};
 use crate::scene::Wall;
 use crate::world::World;
-use calendar::CalendarQueue;
 use grid::{Grid, MARGIN};
 use key::{Key, MAX_INDEX};
-use predict::{tie_of, Probe};
+use predict::Probe;
+use tournament::TournamentQueue;
 
 /// Crossing code of a body that crosses no face.
 const NO_CROSSING: u8 = 0x7F;
@@ -140,7 +139,7 @@ pub struct Cells<const D: usize> {
     /// Code `2·axis + up` of each body's next crossing, or `NO_CROSSING`, with the flag
     /// `KEY_IS_CROSSING` when the crossing is the body's queue key.
     cross: Vec<u8>,
-    queue: CalendarQueue,
+    queue: TournamentQueue,
     /// The world is periodic.
     periodic: bool,
     /// Wall index of the first periodic face (the number of walls).
@@ -175,7 +174,7 @@ impl<const D: usize> Cells<D> {
             second: Vec::new(),
             second_image: Vec::new(),
             cross: Vec::new(),
-            queue: CalendarQueue::default(),
+            queue: TournamentQueue::default(),
             periodic: false,
             faces_from: 0,
             log: Vec::new(),
@@ -210,30 +209,13 @@ impl<const D: usize> Cells<D> {
             + std::mem::size_of::<(u32, u8, f64)>() * self.log.capacity()
     }
 
-    /// The queue key body `i` should have.
-    fn key_of(&self, i: usize) -> Key {
-        if self.cross[i] & KEY_IS_CROSSING != 0 {
-            Key {
-                time: self.queue_time(i),
-                tie: Key::crossing(0.0).tie,
-            }
-        } else {
-            self.best[i]
-        }
-    }
-
-    fn queue_time(&self, i: usize) -> u64 {
-        self.queue.time_of(i)
-    }
-
     /// Checks the structures against `world`: the cell lists, the queue, every key being the
     /// minimum of the body's cached event and next crossing, and every body lying in its cell
     /// (up to rounding) at the finder's clock (the last crossing or event it went through).
     /// For tests.
     pub fn validate(&self, world: &World<D>) -> Result<(), String> {
         self.grid.validate()?;
-        self.queue
-            .validate(|j| tie_of(&self.best, &self.cross, j))?;
+        self.queue.validate()?;
         let clock = self.clock;
         for i in 0..world.len() {
             let m = world.motion(i);
@@ -241,9 +223,15 @@ impl<const D: usize> Cells<D> {
             let crossing = self
                 .grid
                 .next_crossing(&k, &m)
-                .map_or(Key::NEVER, |(t, _)| Key::crossing(t));
-            if self.key_of(i) != crossing.min(self.best[i]) {
+                .map_or(Key::NEVER, |(t, _)| Key::crossing(t, i));
+            let key = self.queue.key(i);
+            if key != crossing.min(self.best[i]) {
                 return Err(format!("body {i}: queue key is not min(event, crossing)"));
+            }
+            if key.is_crossing() != (self.cross[i] & KEY_IS_CROSSING != 0) {
+                return Err(format!(
+                    "body {i}: crossing flag does not match its queue key"
+                ));
             }
             for k in [self.best[i], self.second[i]] {
                 if k.time == Key::NEVER.time && !k.is_never() {
@@ -380,15 +368,13 @@ impl<const D: usize> Finder<D> for Cells<D> {
         self.second = vec![Key::NEVER; n];
         self.second_image = vec![SECOND_KNOWN; n];
         self.cross = vec![NO_CROSSING; n];
-        self.queue = CalendarQueue::new(n, 1.0, now);
+        self.queue = TournamentQueue::new(n);
         self.log = Vec::new();
         self.clock = now;
         self.stats = CellsStats::default();
         for i in 0..n {
             self.recompute(world, i);
         }
-        let (best, cross) = (&self.best, &self.cross);
-        self.queue.fit(now, |j| tie_of(best, cross, j));
         self.stats.recomputes = 0;
         self.peak_bytes = self.bytes();
         Ok(())
@@ -415,17 +401,12 @@ impl<const D: usize> Finder<D> for Cells<D> {
 
     fn next_event(&mut self, world: &World<D>) -> Option<Event> {
         loop {
-            let (best, cross) = (&self.best, &self.cross);
-            let i = self.queue.top(|j| tie_of(best, cross, j))?;
-            if self.cross[i] & KEY_IS_CROSSING != 0 {
-                let t = Key {
-                    time: self.queue_time(i),
-                    tie: 0,
-                };
-                self.cross(world, i, t.seconds());
+            let i = self.queue.top()?;
+            let key = self.queue.key(i);
+            if key.is_crossing() {
+                self.cross(world, i, key.seconds());
                 continue;
             }
-            let key = self.best[i];
             if key.is_never() {
                 return None;
             }

@@ -299,7 +299,7 @@ impl<const D: usize> Cells<D> {
         let k = self.grid.coords_of(i);
         let key = match self.grid.next_crossing(&k, mi) {
             Some((t, code)) => {
-                let crossing = Key::crossing(t);
+                let crossing = Key::crossing(t, i);
                 if crossing < self.best[i] {
                     self.cross[i] = code | KEY_IS_CROSSING;
                     crossing
@@ -313,17 +313,6 @@ impl<const D: usize> Cells<D> {
                 self.best[i]
             }
         };
-        let (best, cross) = (&self.best, &self.cross);
-        self.queue.set(i, key, |j| tie_of(best, cross, j));
-    }
-}
-
-/// The tie word of body `j`'s queue key.
-#[inline]
-pub(super) fn tie_of(best: &[Key], cross: &[u8], j: u32) -> u64 {
-    if cross[j as usize] & KEY_IS_CROSSING != 0 {
-        Key::crossing(0.0).tie
-    } else {
-        best[j as usize].tie
+        self.queue.set(i, key);
     }
 }
