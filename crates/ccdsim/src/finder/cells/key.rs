@@ -2,7 +2,7 @@
 //!
 //! A key packs the total order of [`Event`] into two integers: the time's bits mapped so that
 //! unsigned order is [`f64::total_cmp`] order, then a tie-break word holding the class
-//! (crossing < body event < wall event) and the two indices. Comparing keys is comparing
+//! (crossing < body event < wall event) and the indices (a crossing's: its body). Comparing keys is comparing
 //! events, ties included, and a crossing goes before a real event at the same instant.
 
 use crate::event::{Event, EventKind};
@@ -75,12 +75,31 @@ impl Key {
         }
     }
 
-    /// A cell crossing at `t`.
+    /// A cell crossing of body `i` at `t`.
     #[inline]
-    pub fn crossing(t: f64) -> Key {
+    pub fn crossing(t: f64, i: usize) -> Key {
         Key {
             time: ordered(t),
-            tie: CLASS_CROSSING,
+            tie: (CLASS_CROSSING << 62) | i as u64,
+        }
+    }
+
+    /// True for a crossing key.
+    #[inline]
+    pub fn is_crossing(self) -> bool {
+        self.tie >> 62 == CLASS_CROSSING
+    }
+
+    /// The bodies that may hold this key in the queue: the body of a crossing or wall key
+    /// (twice), the two bodies of a body–body key.
+    #[inline]
+    pub fn holders(self) -> (usize, usize) {
+        let a = ((self.tie >> 31) & INDEX_MASK) as usize;
+        let b = (self.tie & INDEX_MASK) as usize;
+        match self.tie >> 62 {
+            CLASS_CROSSING => (b, b),
+            CLASS_BODY => (a, b),
+            _ => (a, a),
         }
     }
 
@@ -152,7 +171,13 @@ mod tests {
                 assert_eq!(ka.cmp(&kb), ea.cmp(&eb), "{ea:?} vs {eb:?}");
             }
         }
-        assert!(Key::crossing(1.0) < Key::body(1.0, 0, 1));
+        assert!(Key::crossing(1.0, 7) < Key::body(1.0, 0, 1));
+        assert!(Key::crossing(1.0, 2) < Key::crossing(1.0, 3));
+        assert!(Key::crossing(0.5, 3) < Key::crossing(1.0, 2));
+        assert!(Key::crossing(1.0, 2).is_crossing() && !Key::wall(1.0, 2, 0).is_crossing());
+        assert_eq!(Key::crossing(1.0, 9).holders(), (9, 9));
+        assert_eq!(Key::body(1.0, 3, 9).holders(), (3, 9));
+        assert_eq!(Key::wall(1.0, 3, 9).holders(), (3, 3));
         assert!(Key::body(f64::INFINITY, 0, 1) < Key::NEVER);
         assert_eq!(Key::body(2.0, 3, 4).partner(4), Some(3));
         assert_eq!(Key::wall(2.0, 3, 4).partner(3), None);

@@ -1,5 +1,5 @@
-//! The `cells` finder: a uniform grid, cached predictions per body and a calendar queue; a
-//! bounded number of predictions and O(1) expected queue work per event.
+//! The `cells` finder: a uniform grid, cached predictions per body and an event queue; a
+//! bounded number of predictions and O(log n) queue work per event.
 //!
 //! # How it works
 //!
@@ -18,11 +18,10 @@
 //!   Crossings are internal: they move the body to the next cell and offer it the pairs of the
 //!   layer of cells that just became neighbours, and the walls its new cell lists but its old
 //!   cell did not. They are never returned and change no stored state.
-//! * **Queue** ([`calendar`], keys in [`key`]): one entry per body keyed by
-//!   `min(best(i), crossing(i))` in a calendar queue (time buckets, a small heap for the
-//!   current bucket). Keys are compared in the full event order; a crossing goes first at
-//!   equal times. Measured against the indexed 4-ary heap it replaced: +6 % collisions per
-//!   second at 10⁴ bodies, +2–4 % at 10⁶.
+//! * **Queue** ([`tournament`], keys in [`key`]): one entry per body keyed by
+//!   `min(best(i), crossing(i))` in a tournament tree (every node holds the smallest key
+//!   below it, inline). Keys are compared in the full event order; a crossing goes first at
+//!   equal times.
 //!
 //! `next_event` looks at the top of the queue: a crossing is processed; a body event is
 //! evaluated again on the current states (one time of impact) and if it no longer comes out
@@ -94,20 +93,20 @@
 //! after the change's time (moving the body back and recomputing it), so cells again match
 //! positions at that time.
 
-mod calendar;
 mod grid;
 mod key;
 mod predict;
+mod tournament;
 
 use super::{DebugBox, Finder, FinderError, FinderMemory};
 use crate::event::Event;
 use crate::geom::{Aabb, Vector};
 use crate::scene::Wall;
 use crate::world::World;
-use calendar::CalendarQueue;
 use grid::{Grid, MARGIN};
 use key::{Key, MAX_INDEX};
-use predict::{tie_of, Cached, Probe};
+use predict::{Cached, Probe};
+use tournament::TournamentQueue;
 
 /// Crossing code of a body that crosses no face.
 const NO_CROSSING: u8 = 0x7F;
@@ -135,7 +134,7 @@ pub struct Cells<const D: usize> {
     grid: Grid<D>,
     /// Cached predictions of each body, one record per body.
     cached: Vec<Cached>,
-    queue: CalendarQueue,
+    queue: TournamentQueue,
     /// The world is periodic.
     periodic: bool,
     /// Wall index of the first periodic face (the number of walls).
@@ -163,7 +162,7 @@ impl<const D: usize> Cells<D> {
         Cells {
             grid: Grid::new(0, 1.0, Vector::ZERO, Vector::ZERO, None),
             cached: Vec::new(),
-            queue: CalendarQueue::default(),
+            queue: TournamentQueue::default(),
             periodic: false,
             faces_from: 0,
             log: Vec::new(),
@@ -193,29 +192,13 @@ impl<const D: usize> Cells<D> {
             + std::mem::size_of::<(u32, u8, f64)>() * self.log.capacity()
     }
 
-    /// The queue key body `i` should have.
-    fn key_of(&self, i: usize) -> Key {
-        if self.cached[i].cross & KEY_IS_CROSSING != 0 {
-            Key {
-                time: self.queue_time(i),
-                tie: Key::crossing(0.0).tie,
-            }
-        } else {
-            self.cached[i].best
-        }
-    }
-
-    fn queue_time(&self, i: usize) -> u64 {
-        self.queue.time_of(i)
-    }
-
     /// Checks the structures against `world`: the cell lists, the queue, every key being the
     /// minimum of the body's cached event and next crossing, and every body lying in its cell
     /// (up to rounding) at the finder's clock (the last crossing or event it went through).
     /// For tests.
     pub fn validate(&self, world: &World<D>) -> Result<(), String> {
         self.grid.validate()?;
-        self.queue.validate(|j| tie_of(&self.cached, j))?;
+        self.queue.validate()?;
         let clock = self.clock;
         for i in 0..world.len() {
             let m = world.motion(i);
@@ -223,9 +206,15 @@ impl<const D: usize> Cells<D> {
             let crossing = self
                 .grid
                 .next_crossing(&k, &m)
-                .map_or(Key::NEVER, |(t, _)| Key::crossing(t));
-            if self.key_of(i) != crossing.min(self.cached[i].best) {
+                .map_or(Key::NEVER, |(t, _)| Key::crossing(t, i));
+            let key = self.queue.key(i);
+            if key != crossing.min(self.cached[i].best) {
                 return Err(format!("body {i}: queue key is not min(event, crossing)"));
+            }
+            if key.is_crossing() != (self.cached[i].cross & KEY_IS_CROSSING != 0) {
+                return Err(format!(
+                    "body {i}: crossing flag does not match its queue key"
+                ));
             }
             for k in [self.cached[i].best, self.cached[i].second] {
                 if k.time == Key::NEVER.time && !k.is_never() {
@@ -361,15 +350,13 @@ impl<const D: usize> Finder<D> for Cells<D> {
             .map(|code| self.grid.shift_of(code as u8))
             .collect();
         self.cached = vec![Cached::NONE; n];
-        self.queue = CalendarQueue::new(n, 1.0, now);
+        self.queue = TournamentQueue::new(n);
         self.log = Vec::new();
         self.clock = now;
         self.stats = CellsStats::default();
         for i in 0..n {
             self.recompute(world, i);
         }
-        let cached = &self.cached;
-        self.queue.fit(now, |j| tie_of(cached, j));
         self.stats.recomputes = 0;
         self.peak_bytes = self.bytes();
         Ok(())
@@ -396,17 +383,12 @@ impl<const D: usize> Finder<D> for Cells<D> {
 
     fn next_event(&mut self, world: &World<D>) -> Option<Event> {
         loop {
-            let cached = &self.cached;
-            let i = self.queue.top(|j| tie_of(cached, j))?;
-            if self.cached[i].cross & KEY_IS_CROSSING != 0 {
-                let t = Key {
-                    time: self.queue_time(i),
-                    tie: 0,
-                };
-                self.cross(world, i, t.seconds());
+            let i = self.queue.top()?;
+            let key = self.queue.key(i);
+            if key.is_crossing() {
+                self.cross(world, i, key.seconds());
                 continue;
             }
-            let key = self.cached[i].best;
             if key.is_never() {
                 return None;
             }

@@ -386,7 +386,7 @@ impl<const D: usize> Cells<D> {
         let k = self.grid.coords_of(i);
         let key = match self.grid.next_crossing(&k, mi) {
             Some((t, code)) => {
-                let crossing = Key::crossing(t);
+                let crossing = Key::crossing(t, i);
                 if crossing < self.cached[i].best {
                     self.cached[i].cross = code | KEY_IS_CROSSING;
                     crossing
@@ -400,18 +400,6 @@ impl<const D: usize> Cells<D> {
                 self.cached[i].best
             }
         };
-        let cached = &self.cached;
-        self.queue.set(i, key, |j| tie_of(cached, j));
-    }
-}
-
-/// The tie word of body `j`'s queue key.
-#[inline]
-pub(super) fn tie_of(cached: &[Cached], j: u32) -> u64 {
-    let c = &cached[j as usize];
-    if c.cross & KEY_IS_CROSSING != 0 {
-        Key::crossing(0.0).tie
-    } else {
-        c.best.tie
+        self.queue.set(i, key);
     }
 }
