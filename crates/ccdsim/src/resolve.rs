@@ -1,5 +1,6 @@
 //! Collision response: impulses along the contact normal, with masses and restitution.
 
+use crate::geom::Vector;
 use crate::narrow::wall_normal;
 use crate::periodic::min_image;
 use crate::world::World;
@@ -10,6 +11,26 @@ use crate::world::World;
 ///
 /// Returns the overlap depth at contact relative to the sum of radii (0 when not overlapping).
 pub fn resolve_body_body<const D: usize>(world: &mut World<D>, i: usize, j: usize, t: f64) -> f64 {
+    resolve_body_body_contact(world, i, j, t).overlap
+}
+
+/// What [`resolve_body_body_contact`] found at the contact.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Contact<const D: usize> {
+    /// Overlap depth at contact relative to the sum of radii (0 when not overlapping).
+    pub overlap: f64,
+    /// `x_j − x_i` at the contact, metres (nearest images in a periodic world).
+    pub separation: Vector<D>,
+}
+
+/// [`resolve_body_body`], also returning the separation of the centres at the contact, so
+/// that a caller accumulating the collision virial does not take the minimum image again.
+pub fn resolve_body_body_contact<const D: usize>(
+    world: &mut World<D>,
+    i: usize,
+    j: usize,
+    t: f64,
+) -> Contact<D> {
     let (pi, pj) = (world.position_at(i, t), world.position_at(j, t));
     let (vi, vj) = (world.velocity(i), world.velocity(j));
     let (mi, mj) = (world.masses()[i], world.masses()[j]);
@@ -33,7 +54,10 @@ pub fn resolve_body_body<const D: usize>(world: &mut World<D>, i: usize, j: usiz
     }
     world.set_state(i, pi, vi2, t);
     world.set_state(j, pj, vj2, t);
-    ((sigma - dist) / sigma).max(0.0)
+    Contact {
+        overlap: ((sigma - dist) / sigma).max(0.0),
+        separation: d,
+    }
 }
 
 /// Resolves a collision of body `i` with wall `w` at time `t`: the body is moved to `t` and
@@ -73,4 +97,41 @@ pub fn resolve_exit<const D: usize>(world: &mut World<D>, i: usize, face: usize,
     }
     let v = world.velocity(i);
     world.set_state(i, p, v, t);
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::periodic::min_image;
+    use crate::scene::{BodySpec, Scene};
+
+    fn body(x: f64, vx: f64) -> BodySpec<2> {
+        BodySpec {
+            id: None,
+            pos: Vector([x, 5.0]),
+            vel: Vector([vx, 0.0]),
+            radius: 0.5,
+            mass: None,
+        }
+    }
+
+    #[test]
+    fn contact_separation_is_the_nearest_image_and_its_negation_the_virial_lever() {
+        // Two discs touching across the periodic face x = 0 ≡ 10.
+        let mut scene = Scene::<2> {
+            bodies: vec![body(0.5, -1.0), body(9.5, 1.0)],
+            ..Scene::default()
+        };
+        scene.periodic = Some(Vector([10.0, 10.0]));
+        let mut world = World::from_scene(&scene).unwrap();
+        let size = world.periodic().unwrap();
+        let contact = resolve_body_body_contact(&mut world, 0, 1, 0.0);
+        assert_eq!(contact.separation.0, [-1.0, 0.0]);
+        assert_eq!(contact.overlap, 0.0);
+        let r = min_image(world.position(0) - world.position(1), &size);
+        assert_eq!(r, -contact.separation);
+        // Equal masses exchange their normal velocities.
+        assert_eq!(world.velocity(0).0, [1.0, 0.0]);
+        assert_eq!(world.velocity(1).0, [-1.0, 0.0]);
+    }
 }

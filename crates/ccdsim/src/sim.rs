@@ -4,8 +4,8 @@ use crate::event::{Event, EventKind};
 use crate::finder::{make_finder, Finder, FinderError, FinderOptions};
 use crate::geom::Vector;
 use crate::observables::{observables, Observables};
-use crate::periodic::{min_image, wrap_point};
-use crate::resolve::{resolve_body_body, resolve_body_wall, resolve_exit};
+use crate::periodic::wrap_point;
+use crate::resolve::{resolve_body_body_contact, resolve_body_wall, resolve_exit};
 use crate::scene::{Scene, SceneError};
 use crate::world::World;
 
@@ -239,14 +239,14 @@ impl<const D: usize> Simulation<D> {
         let out = match e.kind {
             EventKind::Body => {
                 let before = self.world.velocity(a);
-                overlap = resolve_body_body(&mut self.world, a, b, e.time);
+                let contact = resolve_body_body_contact(&mut self.world, a, b, e.time);
+                overlap = contact.overlap;
                 self.stats.body_collisions += 1;
                 let w = &self.world;
-                let r = w.position(a) - w.position(b);
-                let r = match w.periodic() {
-                    Some(size) => min_image(r, &size),
-                    None => r,
-                };
+                // `x_a − x_b` is exactly `−(x_b − x_a)`, and the minimum image commutes with
+                // negation (it rounds halves away from zero), so this is the virial term
+                // `r_ab · Δv_a · m_a` without taking the image a second time.
+                let r = -contact.separation;
                 self.stats.virial += r.dot(w.velocity(a) - before) * w.masses()[a];
                 self.finder.update(&self.world, &[a, b]);
                 let w = &self.world;
