@@ -28,10 +28,10 @@
 //! [`World::change_count`] then; an event promoted from second place, whose count is not
 //! kept, is evaluated again on the current states instead and must come out bit for bit the
 //! same) is *stale*: the body's second cached event takes its place if it is known, else the
-//! body is recomputed from scratch; anything else is returned. `update` refiles and
-//! recomputes the bodies that changed. Nothing else is touched: a collision costs
-//! two neighbourhood scans, a few queue operations and, now and then, one rescan for a body
-//! whose cached event involved the colliding bodies.
+//! body is recomputed from scratch; anything else is returned. `update` refiles the bodies
+//! that changed if they left their cell, and recomputes them. Nothing else is touched: a
+//! collision costs two neighbourhood scans, a few queue operations and, now and then, one
+//! rescan for a body whose cached event involved the colliding bodies.
 //!
 //! # Why every returned event is the oracle's
 //!
@@ -394,8 +394,14 @@ impl<const D: usize> Finder<D> for Cells<D> {
         self.undo_crossings_after(world, t);
         self.clock = t;
         for &i in changed {
-            let k = self.grid.coords_of_point(&world.position(i));
-            self.grid.relocate(i, k);
+            // A body still in its cell (the two of a collision: every crossing before it has
+            // been processed) stays filed there, even on a face shared with the next cell: it
+            // lies in its cell, as the module docs ask.
+            let p = world.position(i);
+            if !self.grid.holds(i, &p) {
+                let k = self.grid.coords_of_point(&p);
+                self.grid.relocate(i, k);
+            }
         }
         for &i in changed {
             self.recompute(world, i);
