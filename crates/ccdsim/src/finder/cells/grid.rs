@@ -318,7 +318,7 @@ impl<const D: usize> Grid<D> {
 
     /// Moves body `i` one cell along `axis` (`up` or down); that cell must exist without
     /// wrapping around a periodic box.
-    #[inline]
+    #[inline(always)]
     pub fn step(&mut self, i: usize, axis: usize, up: bool) {
         let c = self.cell_of(i) as usize;
         self.unlink(i, c);

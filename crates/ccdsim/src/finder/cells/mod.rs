@@ -411,7 +411,7 @@ impl<const D: usize> Finder<D> for Cells<D> {
     fn next_event(&mut self, world: &World<D>) -> Option<Event> {
         loop {
             let i = self.queue.top()?;
-            let key = self.queue.key(i);
+            let key = self.queue.top_key();
             if key.is_crossing() {
                 self.cross(world, i, key.seconds());
                 continue;

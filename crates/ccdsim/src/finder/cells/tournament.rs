@@ -188,6 +188,12 @@ impl TournamentQueue {
         self.root = v;
     }
 
+    /// The smallest key (the key of [`TournamentQueue::top`]'s body when there is one).
+    #[inline]
+    pub fn top_key(&self) -> Key {
+        unpack(self.root)
+    }
+
     /// The body with the smallest key, or `None` when every key is never.
     #[inline]
     pub fn top(&self) -> Option<usize> {
