@@ -140,7 +140,7 @@ impl TournamentQueue {
     }
 
     /// Sets body `i`'s key to `key` ([`Key::NEVER`] takes it out).
-    #[inline]
+    #[inline(always)]
     pub fn set(&mut self, i: usize, key: Key) {
         debug_assert!(i < self.n);
         let new = pack(key);
