@@ -202,6 +202,10 @@ impl TournamentQueue {
             return None;
         }
         let (a, b) = root.holders();
+        if a == b {
+            // A crossing or wall event: one holder, no need to look at its key.
+            return Some(a);
+        }
         Some(if self.key(a) == root { a } else { b })
     }
 
