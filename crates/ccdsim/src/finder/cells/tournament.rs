@@ -30,6 +30,17 @@
 //! above the keys small (`16·(1/8)·(4/3) ≈ 2.7` bytes per body, 2.7 MB at 10⁶ bodies, where
 //! one key per leaf needs 5.3 MB), so a walk misses the cache less. The whole queue takes
 //! about 18.7 bytes per body.
+//!
+//! Nearly every update is a walk to the root: the body just popped (a crossing, a stale
+//! event, the first body of a collision) held the root's key; its partner's update mostly
+//! stops in its octet. A walk costs about 40 instructions per level (three wide compares,
+//! eight loads, the index arithmetic). Tried again in session 3 and measured worse
+//! (callgrind, thesis n = 2048): a binary tree with one key per leaf and the sibling compare
+//! (about 22 instructions per binary level, twice the levels: 366 instructions per update
+//! against 231), and octet and node updates that skip the minimum of the children when the
+//! old value was not the smallest (+80 instructions per event: the extra compare costs the
+//! walks to the root more than it saves elsewhere). Comparing the time word alone with a
+//! body index in the nodes saves no instruction (the index needs its own select).
 
 use super::key::Key;
 
