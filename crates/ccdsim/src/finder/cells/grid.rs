@@ -282,6 +282,32 @@ impl<const D: usize> Grid<D> {
         }
     }
 
+    /// True when the point `p` lies in the closed box of the cell body `i` is filed in (see
+    /// [`Grid::cell_box`]): a few comparisons, where finding the cell of a point takes a
+    /// division and a conversion per axis.
+    #[inline]
+    pub fn holds(&self, i: usize, p: &Vector<D>) -> bool {
+        let k = &self.coords[i];
+        let open = self.period.is_none();
+        for d in 0..D {
+            let kd = k[d] as usize;
+            let lo = if open && kd == 0 {
+                f64::NEG_INFINITY
+            } else {
+                self.origin[d] + kd as f64 * self.width[d]
+            };
+            let hi = if open && kd + 1 == self.dims[d] {
+                f64::INFINITY
+            } else {
+                self.origin[d] + (kd + 1) as f64 * self.width[d]
+            };
+            if !(p[d] >= lo && p[d] <= hi) {
+                return false;
+            }
+        }
+        true
+    }
+
     /// Moves body `i` to the cell of coordinates `k`.
     pub fn relocate(&mut self, i: usize, k: [usize; D]) {
         if self.coords[i] != k.map(|x| x as u32) {
@@ -292,7 +318,7 @@ impl<const D: usize> Grid<D> {
 
     /// Moves body `i` one cell along `axis` (`up` or down); that cell must exist without
     /// wrapping around a periodic box.
-    #[inline]
+    #[inline(always)]
     pub fn step(&mut self, i: usize, axis: usize, up: bool) {
         let c = self.cell_of(i) as usize;
         self.unlink(i, c);

@@ -23,13 +23,15 @@
 //!   below it, inline). Keys are compared in the full event order; a crossing goes first at
 //!   equal times.
 //!
-//! `next_event` looks at the top of the queue: a crossing is processed; a body event is
-//! evaluated again on the current states (one time of impact) and if it no longer comes out
-//! bit for bit the same it is *stale*: the body's second cached event takes its place if it
-//! is known, else the body is recomputed from scratch; anything else is returned. `update`
-//! refiles and recomputes the bodies that changed. Nothing else is touched: a collision costs
-//! two neighbourhood scans, a few queue operations and, now and then, one rescan for a body
-//! whose cached event involved the colliding bodies.
+//! `next_event` looks at the top of the queue: a crossing is processed; a body event whose
+//! partner changed since it was computed (each cached event records its partner's
+//! [`World::change_count`] then; an event promoted from second place, whose count is not
+//! kept, is evaluated again on the current states instead and must come out bit for bit the
+//! same) is *stale*: the body's second cached event takes its place if it is known, else the
+//! body is recomputed from scratch; anything else is returned. `update` refiles the bodies
+//! that changed if they left their cell, and recomputes them. Nothing else is touched: a
+//! collision costs two neighbourhood scans, a few queue operations and, now and then, one
+//! rescan for a body whose cached event involved the colliding bodies.
 //!
 //! # Why every returned event is the oracle's
 //!
@@ -40,11 +42,17 @@
 //!    were live when computed. A term computed with partner `j` stays live until `j` (or `i`)
 //!    changes; when `i` changes it is recomputed at once, and when `j` changes the entry may
 //!    be stale: still a lower bound of `i`'s other terms, which have not changed. A key that
-//!    passes the re-evaluation at the top is a live term (the re-evaluated pair, same image,
-//!    same function, same states). The second cached event `second(i)` is, while known, a
-//!    lower bound of every term of `i` but `best(i)`'s own: a full scan keeps the two
-//!    smallest terms, and a merge that lowers `best` demotes the old `best` (a lower bound of
-//!    all the rest) to `second`. When `best(i)` is stale its term is gone, the new term of
+//!    passes the check at the top is a live term: its partner's change count is the one
+//!    recorded when it was computed, after `i`'s last change (a full scan records the counts
+//!    afresh; a crossing records them for the events it finds and keeps those of the event it
+//!    carries over), so it is the same function of the same states; a promoted key is
+//!    evaluated again (same pair, same image, same function, current states). A key whose
+//!    partner changed is called stale even if its time would come out the same: the partner
+//!    was recomputed at its change, after the key was computed and after `i`'s last change,
+//!    so its records cover the pair's current term as far as invariant 2 asks, and `i` may
+//!    drop it. The second cached event `second(i)` is, while known, a lower bound of every
+//!    term of `i` but `best(i)`'s own: a full scan keeps the two smallest terms, and a merge
+//!    that lowers `best` demotes the old `best` (a lower bound of all the rest) to `second`. When `best(i)` is stale its term is gone, the new term of
 //!    that pair is covered by the partner (which was recomputed when it changed), and every
 //!    other term of `i` is at least `second(i)`: promoting `second(i)` keeps the invariant.
 //!    After a promotion `second(i)` is unknown until the next full scan.
@@ -105,7 +113,7 @@ use crate::scene::Wall;
 use crate::world::World;
 use grid::{Grid, MARGIN};
 use key::{Key, MAX_INDEX};
-use predict::{Cached, Probe};
+use predict::{Cached, Probe, UNKNOWN_CHANGES};
 use tournament::TournamentQueue;
 
 /// Crossing code of a body that crosses no face.
@@ -226,6 +234,19 @@ impl<const D: usize> Cells<D> {
             {
                 return Err(format!("body {i}: second cached event before the first"));
             }
+            let changes = self.cached[i].partner_changes;
+            if let Some(j) = self.cached[i].best.partner(i) {
+                if changes != UNKNOWN_CHANGES && changes > world.change_count(j) {
+                    return Err(format!("body {i}: partner {j}'s recorded count is ahead"));
+                }
+                if changes == world.change_count(j) && !self.evaluates_the_same(world, i) {
+                    return Err(format!(
+                        "body {i}: cached event with unchanged partner {j} is not live"
+                    ));
+                }
+            } else if changes != UNKNOWN_CHANGES {
+                return Err(format!("body {i}: a partner count without a partner"));
+            }
             let p = m.at(clock);
             let (lo, hi) = self.grid.cell_box(&k.map(|x| x as usize));
             for d in 0..D {
@@ -255,7 +276,7 @@ impl<const D: usize> Cells<D> {
         let mut best = self.records(i);
         self.scan_entered_layer(world, &p, axis, up, &mut best);
         self.scan_entered_walls(world, &p, from, &mut best);
-        self.store(i, &best);
+        self.store(world, i, &best, false);
         self.schedule(i, &p.b.motion);
     }
 
@@ -373,8 +394,14 @@ impl<const D: usize> Finder<D> for Cells<D> {
         self.undo_crossings_after(world, t);
         self.clock = t;
         for &i in changed {
-            let k = self.grid.coords_of_point(&world.position(i));
-            self.grid.relocate(i, k);
+            // A body still in its cell (the two of a collision: every crossing before it has
+            // been processed) stays filed there, even on a face shared with the next cell: it
+            // lies in its cell, as the module docs ask.
+            let p = world.position(i);
+            if !self.grid.holds(i, &p) {
+                let k = self.grid.coords_of_point(&p);
+                self.grid.relocate(i, k);
+            }
         }
         for &i in changed {
             self.recompute(world, i);
@@ -384,7 +411,7 @@ impl<const D: usize> Finder<D> for Cells<D> {
     fn next_event(&mut self, world: &World<D>) -> Option<Event> {
         loop {
             let i = self.queue.top()?;
-            let key = self.queue.key(i);
+            let key = self.queue.top_key();
             if key.is_crossing() {
                 self.cross(world, i, key.seconds());
                 continue;

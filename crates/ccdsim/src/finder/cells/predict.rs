@@ -25,7 +25,14 @@ pub(super) struct Cached {
     /// Code `2·axis + up` of the next crossing, or `NO_CROSSING`, with the flag
     /// `KEY_IS_CROSSING` when the crossing is the body's queue key.
     pub cross: u8,
+    /// For a body–body `best`: its partner's change count (`World::change_count`) when
+    /// `best` was computed, or `UNKNOWN_CHANGES` (after a promotion, or for other keys).
+    /// While the partner's count is unchanged `best` is live (see `is_live`).
+    pub partner_changes: u64,
 }
+
+/// `Cached::partner_changes` of a `best` whose partner's count is not known.
+pub(super) const UNKNOWN_CHANGES: u64 = u64::MAX;
 
 impl Cached {
     /// Nothing cached yet.
@@ -35,6 +42,7 @@ impl Cached {
         image: 0,
         second_image: SECOND_KNOWN,
         cross: NO_CROSSING,
+        partner_changes: UNKNOWN_CHANGES,
     };
 }
 
@@ -320,9 +328,30 @@ impl<const D: usize> Cells<D> {
     }
 
     /// True when body `i`'s cached event is still a live term: a wall event depends on `i`
-    /// alone (recomputed whenever `i` changes); a body event is evaluated again, for the same
+    /// alone (recomputed whenever `i` changes); a body event is live while its partner has
+    /// not changed since it was computed (the same function of the same states: `i` itself
+    /// is recomputed whenever it changes), which its change count tells when it was recorded.
+    /// When it was not (a promoted second event), the event is evaluated again, for the same
     /// image, on the current stored states and must come out bit for bit the same.
+    ///
+    /// A partner that changed makes the event stale even if its time happens to come out the
+    /// same: the pair is then covered by the partner, recomputed when it changed (see the
+    /// module docs), so dropping it from `i`'s records loses nothing.
+    #[inline]
     pub(super) fn is_live(&self, world: &World<D>, i: usize) -> bool {
+        let c = &self.cached[i];
+        let Some(j) = c.best.partner(i) else {
+            return true;
+        };
+        if c.partner_changes != UNKNOWN_CHANGES {
+            return c.partner_changes == world.change_count(j);
+        }
+        self.evaluates_the_same(world, i)
+    }
+
+    /// True when body `i`'s cached body–body event, evaluated again for the same image on
+    /// the current stored states, comes out bit for bit the same.
+    pub(super) fn evaluates_the_same(&self, world: &World<D>, i: usize) -> bool {
         let key = self.cached[i].best;
         let Some(j) = key.partner(i) else {
             return true;
@@ -341,7 +370,7 @@ impl<const D: usize> Cells<D> {
         self.scan_neighbours(world, &p, &mut best);
         self.scan_walls(world, &p, &mut best);
         self.scan_exit(world, &p, &mut best);
-        self.store(i, &best);
+        self.store(world, i, &best, true);
         self.schedule(i, &p.b.motion);
     }
 
@@ -357,9 +386,18 @@ impl<const D: usize> Cells<D> {
         }
     }
 
-    /// Stores body `i`'s records.
+    /// Stores body `i`'s records. `best` was computed on the current states if it comes from
+    /// a full scan (`rescanned`) or is not the cached one, and then records its partner's
+    /// change count; the cached `best` carried over by a crossing keeps the count of when it
+    /// was computed (a count taken now would call it live after a change of its partner).
     #[inline]
-    pub(super) fn store(&mut self, i: usize, best: &Best) {
+    pub(super) fn store(&mut self, world: &World<D>, i: usize, best: &Best, rescanned: bool) {
+        if rescanned || best.key != self.cached[i].best {
+            self.cached[i].partner_changes = best
+                .key
+                .partner(i)
+                .map_or(UNKNOWN_CHANGES, |j| world.change_count(j));
+        }
         self.cached[i].best = best.key;
         self.cached[i].image = best.image;
         self.cached[i].second = best.second;
@@ -376,7 +414,9 @@ impl<const D: usize> Cells<D> {
         best.key = best.second;
         best.image = best.second_image;
         best.known = false;
-        self.store(i, &best);
+        self.store(world, i, &best, false);
+        // The second event was computed earlier: its partner's count then is not known.
+        self.cached[i].partner_changes = UNKNOWN_CHANGES;
         self.schedule(i, &world.motion(i));
         true
     }

@@ -30,6 +30,17 @@
 //! above the keys small (`16·(1/8)·(4/3) ≈ 2.7` bytes per body, 2.7 MB at 10⁶ bodies, where
 //! one key per leaf needs 5.3 MB), so a walk misses the cache less. The whole queue takes
 //! about 18.7 bytes per body.
+//!
+//! Nearly every update is a walk to the root: the body just popped (a crossing, a stale
+//! event, the first body of a collision) held the root's key; its partner's update mostly
+//! stops in its octet. A walk costs about 40 instructions per level (three wide compares,
+//! eight loads, the index arithmetic). Tried again in session 3 and measured worse
+//! (callgrind, thesis n = 2048): a binary tree with one key per leaf and the sibling compare
+//! (about 22 instructions per binary level, twice the levels: 366 instructions per update
+//! against 231), and octet and node updates that skip the minimum of the children when the
+//! old value was not the smallest (+80 instructions per event: the extra compare costs the
+//! walks to the root more than it saves elsewhere). Comparing the time word alone with a
+//! body index in the nodes saves no instruction (the index needs its own select).
 
 use super::key::Key;
 
@@ -140,7 +151,7 @@ impl TournamentQueue {
     }
 
     /// Sets body `i`'s key to `key` ([`Key::NEVER`] takes it out).
-    #[inline]
+    #[inline(always)]
     pub fn set(&mut self, i: usize, key: Key) {
         debug_assert!(i < self.n);
         let new = pack(key);
@@ -188,6 +199,12 @@ impl TournamentQueue {
         self.root = v;
     }
 
+    /// The smallest key (the key of [`TournamentQueue::top`]'s body when there is one).
+    #[inline]
+    pub fn top_key(&self) -> Key {
+        unpack(self.root)
+    }
+
     /// The body with the smallest key, or `None` when every key is never.
     #[inline]
     pub fn top(&self) -> Option<usize> {
@@ -196,6 +213,10 @@ impl TournamentQueue {
             return None;
         }
         let (a, b) = root.holders();
+        if a == b {
+            // A crossing or wall event: one holder, no need to look at its key.
+            return Some(a);
+        }
         Some(if self.key(a) == root { a } else { b })
     }
 
