@@ -4,6 +4,7 @@
 
 use super::grid::Grid;
 use super::key::{ordered, Key, NONE};
+use super::lists::shell_exit_time;
 use super::{Cells, KEY_IS_CROSSING, NO_CROSSING, SECOND_KNOWN};
 use crate::geom::Vector;
 use crate::narrow::{toi_circle_circle, toi_circle_circle_shifted, toi_circle_wall, Motion};
@@ -285,7 +286,7 @@ impl<const D: usize> Cells<D> {
     /// Offers body `p` the walls of the sorted list `walls` that are not in the sorted list
     /// `skip`.
     #[inline(never)]
-    fn offer_walls(
+    pub(super) fn offer_walls(
         &self,
         world: &World<D>,
         p: &Probe<D>,
@@ -338,7 +339,18 @@ impl<const D: usize> Cells<D> {
         self.stats.recomputes += 1;
         let p = Probe::of(world, i);
         let mut best = Best::NONE;
-        self.scan_neighbours(world, &p, &mut best);
+        if let Some(lists) = &self.lists {
+            self.scan_neighbour_list(world, &p, &mut best);
+            let exit = shell_exit_time(
+                &p.b.motion,
+                &lists.centre[i],
+                lists.half,
+                p.b.motion.time.max(self.clock),
+            );
+            self.lists.as_mut().expect("list mode").exit[i] = exit;
+        } else {
+            self.scan_neighbours(world, &p, &mut best);
+        }
         self.scan_walls(world, &p, &mut best);
         self.scan_exit(world, &p, &mut best);
         self.store(i, &best);
@@ -383,6 +395,19 @@ impl<const D: usize> Cells<D> {
 
     /// Sets body `i`'s queue key: its next crossing or its cached event, whichever is first.
     pub(super) fn schedule(&mut self, i: usize, mi: &Motion<D>) {
+        if let Some(lists) = &self.lists {
+            // List mode: the shell exit plays the crossing's part (never for a body at rest).
+            let exit = lists.exit[i];
+            let key = if exit != f64::INFINITY && Key::crossing(exit, i) < self.cached[i].best {
+                self.cached[i].cross = KEY_IS_CROSSING;
+                Key::crossing(exit, i)
+            } else {
+                self.cached[i].cross = 0;
+                self.cached[i].best
+            };
+            self.queue.set(i, key);
+            return;
+        }
         let k = self.grid.coords_of(i);
         let key = match self.grid.next_crossing(&k, mi) {
             Some((t, code)) => {
