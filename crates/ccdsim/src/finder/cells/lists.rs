@@ -3,12 +3,12 @@
 //!
 //! Each body `i` has a *shell centre* `X_i`, its position when its list was last built, and
 //! a shell, the ball of radius `h = s/2` around it (`s` the skin). Its list `N(i)` holds every
-//! body `j` (with the image code of the shift that brings `j` next to `i`) whose shell overlaps
-//! `i`'s: `|X_j − X_i + shift| ≤ r_i + r_j + s + slack`, computed lower index first, so that
-//! the relation is symmetric bit for bit and lists are kept equal to it: when `i`'s list is
-//! rebuilt, `i` is added to the lists of its new neighbours and taken out of those of the
-//! bodies it no longer overlaps. Nothing else moves a shell centre, so the lists always hold
-//! exactly the overlapping pairs of the current centres.
+//! body `j` (with the image code of the shift that brings `j` next to `i`) whose shell may
+//! overlap `i`'s: `|X_j − X_i + shift| ≤ σ_max + s + slack` (a bound of `r_i + r_j + s` the
+//! same for all pairs), a relation symmetric bit for bit, and lists are kept equal to it:
+//! when `i`'s list is rebuilt, `i` is added to the lists of its new neighbours and taken out
+//! of those of the bodies it no longer overlaps. Nothing else moves a shell centre, so the
+//! lists always hold exactly the overlapping pairs of the current centres.
 //!
 //! Lists are one flat array with a per-body stride (the first slot of a block holds the
 //! list's length); when a list outgrows the stride, all lists are laid out again with a
@@ -362,6 +362,7 @@ impl<const D: usize> Cells<D> {
 
     /// Processes body `i`'s shell exit, due at `time`: its list is rebuilt around its
     /// position then, it is offered what became responsible, and its next exit is scheduled.
+    #[inline(never)]
     pub(super) fn exit_shell(&mut self, world: &World<D>, i: usize, time: f64) {
         self.stats.rebuilds += 1;
         let t = time.max(self.clock);
@@ -373,7 +374,7 @@ impl<const D: usize> Cells<D> {
         let lists = self.lists_mut();
         lists.exit[i] = shell_exit_time(&m, &lists.centre[i], lists.half, t);
         lists.log.push((i as u32, t));
-        self.schedule(i, &m);
+        self.schedule_listed(i);
     }
 
     /// True when body `i`'s stored position lies outside its shell (after a state change; a

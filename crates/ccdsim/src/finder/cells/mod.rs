@@ -543,8 +543,8 @@ impl<const D: usize> Finder<D> for Cells<D> {
             return;
         };
         if self.lists.is_some() {
-            self.redo_rebuilds_after(world, t, changed);
             self.clock = t;
+            self.redo_rebuilds_after(world, t, changed);
             for &i in changed {
                 if self.outside_shell(world, i) {
                     self.relist(world, i, world.time(i), None);

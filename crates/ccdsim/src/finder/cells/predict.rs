@@ -338,23 +338,46 @@ impl<const D: usize> Cells<D> {
     pub(super) fn recompute(&mut self, world: &World<D>, i: usize) {
         self.stats.recomputes += 1;
         let p = Probe::of(world, i);
-        let mut best = Best::NONE;
-        if let Some(lists) = &self.lists {
-            self.scan_neighbour_list(world, &p, &mut best);
-            let exit = shell_exit_time(
-                &p.b.motion,
-                &lists.centre[i],
-                lists.half,
-                p.b.motion.time.max(self.clock),
-            );
-            self.lists.as_mut().expect("list mode").exit[i] = exit;
-        } else {
-            self.scan_neighbours(world, &p, &mut best);
+        if self.lists.is_some() {
+            self.recompute_listed(world, &p);
+            return;
         }
+        let mut best = Best::NONE;
+        self.scan_neighbours(world, &p, &mut best);
         self.scan_walls(world, &p, &mut best);
         self.scan_exit(world, &p, &mut best);
         self.store(i, &best);
         self.schedule(i, &p.b.motion);
+    }
+
+    /// `recompute` in list mode: the neighbour list instead of the cells, and the shell exit.
+    #[inline(never)]
+    fn recompute_listed(&mut self, world: &World<D>, p: &Probe<D>) {
+        let i = p.i;
+        let mut best = Best::NONE;
+        self.scan_neighbour_list(world, p, &mut best);
+        self.scan_walls(world, p, &mut best);
+        self.scan_exit(world, p, &mut best);
+        self.store(i, &best);
+        let t_ref = p.b.motion.time.max(self.clock);
+        let lists = self.lists.as_mut().expect("list mode");
+        lists.exit[i] = shell_exit_time(&p.b.motion, &lists.centre[i], lists.half, t_ref);
+        self.schedule_listed(i);
+    }
+
+    /// `schedule` in list mode: the shell exit plays the crossing's part (never for a body
+    /// at rest).
+    #[inline(never)]
+    pub(super) fn schedule_listed(&mut self, i: usize) {
+        let exit = self.lists.as_ref().expect("list mode").exit[i];
+        let key = if exit != f64::INFINITY && Key::crossing(exit, i) < self.cached[i].best {
+            self.cached[i].cross = KEY_IS_CROSSING;
+            Key::crossing(exit, i)
+        } else {
+            self.cached[i].cross = 0;
+            self.cached[i].best
+        };
+        self.queue.set(i, key);
     }
 
     /// Body `i`'s records.
@@ -395,17 +418,8 @@ impl<const D: usize> Cells<D> {
 
     /// Sets body `i`'s queue key: its next crossing or its cached event, whichever is first.
     pub(super) fn schedule(&mut self, i: usize, mi: &Motion<D>) {
-        if let Some(lists) = &self.lists {
-            // List mode: the shell exit plays the crossing's part (never for a body at rest).
-            let exit = lists.exit[i];
-            let key = if exit != f64::INFINITY && Key::crossing(exit, i) < self.cached[i].best {
-                self.cached[i].cross = KEY_IS_CROSSING;
-                Key::crossing(exit, i)
-            } else {
-                self.cached[i].cross = 0;
-                self.cached[i].best
-            };
-            self.queue.set(i, key);
+        if self.lists.is_some() {
+            self.schedule_listed(i);
             return;
         }
         let k = self.grid.coords_of(i);
