@@ -149,17 +149,20 @@ impl<const D: usize> Lists<D> {
         &self.entries[at + 1..at + 1 + len]
     }
 
-    /// Lays all lists out again so that one of `len` entries fits.
+    /// Lays all lists out again so that one of `len` entries fits, in place (the array
+    /// grows, then blocks move up from the last one down: a block's new place is never below
+    /// its old one, so no block is overwritten before it moves), so that the peak memory is
+    /// the new array only (large reallocations extend in place or are remapped).
     fn grow(&mut self, len: usize) {
-        let stride = (len + 1).max(self.stride + self.stride / 4 + 1);
+        let old = self.stride;
+        let stride = (len + 1).max(old + old / 4 + 1);
         let n = self.centre.len();
-        let mut entries = vec![0u32; n * stride];
-        for i in 0..n {
-            let l = self.list(i);
-            entries[i * stride] = l.len() as u32;
-            entries[i * stride + 1..i * stride + 1 + l.len()].copy_from_slice(l);
+        self.entries.resize(n * stride, 0);
+        for i in (1..n).rev() {
+            let used = 1 + self.entries[i * old] as usize;
+            self.entries
+                .copy_within(i * old..i * old + used, i * stride);
         }
-        self.entries = entries;
         self.stride = stride;
     }
 
@@ -544,10 +547,18 @@ mod tests {
         }
         assert_eq!(lists.list(1).len(), 20);
         assert!(lists.capacity() >= 20);
+        for j in 0..30 {
+            lists.push(2, entry(j, 3));
+        }
+        let want: Vec<u32> = (0..30).map(|j| entry(j, 3)).collect();
+        assert_eq!(lists.list(2), &want[..]);
+        assert_eq!(lists.list(1).len(), 20);
+        assert!(lists.list(1).iter().all(|&e| entry_image(e) == 4));
         lists.remove(1, entry(5, 4));
         assert_eq!(lists.list(1).len(), 19);
         assert!(!lists.list(1).contains(&entry(5, 4)));
-        assert!(lists.list(0).is_empty() && lists.list(2).is_empty());
+        assert!(lists.list(0).is_empty());
+        assert_eq!(lists.list(2), &want[..]);
     }
 
     #[test]
