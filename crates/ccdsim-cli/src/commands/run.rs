@@ -51,7 +51,7 @@ pub struct FinderArgs {
     pub bvh_initial_dt: f64,
     /// cells: skin of the neighbour lists (periodic worlds), relative to the largest contact
     /// distance; 0 turns the lists off (cell crossings), else in [0.001, 1]. Default:
-    /// automatic (no lists in 2D, 0.5 in 3D).
+    /// automatic (no lists in 2D, 0.4 in 3D).
     #[arg(long)]
     pub cells_skin: Option<f64>,
 }

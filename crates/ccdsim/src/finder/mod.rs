@@ -151,7 +151,7 @@ impl Default for FinderOptions {
 #[must_use]
 pub fn auto_cells_skin(dim: usize) -> f64 {
     if dim >= 3 {
-        0.5
+        0.4
     } else {
         0.0
     }
