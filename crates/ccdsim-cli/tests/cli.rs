@@ -133,6 +133,7 @@ fn bad_finder_options_are_named_by_their_flag() {
         ("--bvh-grow", "0.5", "greater than 1"),
         ("--bvh-shrink", "2", "outside (0, 1]"),
         ("--bvh-initial-dt", "0", "greater than 0"),
+        ("--cells-skin", "2", "neither 0 nor in [0.001, 1]"),
     ] {
         let rec = tmp(&format!("option{flag}.ccd"));
         let out = ccdsim()

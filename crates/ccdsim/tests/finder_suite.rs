@@ -43,6 +43,28 @@ fn finders() -> Vec<&'static str> {
     names
 }
 
+/// Every finder under test with every mode its options select: each finder with the default
+/// options, and `cells` also without neighbour lists (skin 0), with a small skin (many
+/// rebuilds) and the largest (long lists). Lists are used in periodic worlds only.
+fn variants() -> Vec<(&'static str, FinderOptions)> {
+    let mut out = Vec::new();
+    for name in finders() {
+        out.push((name, FinderOptions::default()));
+        if name == "cells" {
+            for cells_skin in [0.0, 0.02, 1.0] {
+                out.push((
+                    name,
+                    FinderOptions {
+                        cells_skin: Some(cells_skin),
+                        ..FinderOptions::default()
+                    },
+                ));
+            }
+        }
+    }
+    out
+}
+
 /// Panics unless `got` and `want` are the same event bit for bit.
 #[track_caller]
 fn assert_same(got: Option<Event>, want: Option<Event>, context: impl Fn() -> String) {
@@ -281,16 +303,19 @@ fn finder_options_do_not_change_events() {
             bvh_grow: 1.1,
             bvh_shrink: 1.0,
             bvh_initial_dt: 1e-9,
+            cells_skin: Some(0.0),
         },
         FinderOptions {
             bvh_grow: 8.0,
             bvh_shrink: 0.125,
             bvh_initial_dt: 100.0,
+            cells_skin: Some(1.0),
         },
         FinderOptions {
             bvh_grow: 3.0,
             bvh_shrink: 0.9,
             bvh_initial_dt: 0.05,
+            cells_skin: Some(0.01),
         },
     ];
     let s2 = gas_scene::<2>(150, 0.3, (0.2, 1.0), SMALL_SEEDS[0]);
@@ -808,4 +833,147 @@ proptest! {
     fn generated_scenes_3d(scene in arb_scene::<3>()) {
         check_all("proptest 3D", &scene, 300);
     }
+}
+
+/// True when finder `name` with `options` serves periodic worlds (the others refuse them).
+fn serves_periodic(name: &str, options: &FinderOptions) -> bool {
+    let scene = Scene::<2> {
+        periodic: Some(Vector([10.0, 10.0])),
+        ..Scene::default()
+    };
+    Simulation::with_finder(&scene, make_finder::<2>(name, options).expect("finder")).is_ok()
+}
+
+/// Runs the periodic `scene` through every variant that serves periodic worlds, driven by
+/// `drive`; returns the number of events.
+fn check_periodic<const D: usize>(
+    label: &str,
+    scene: &Scene<D>,
+    max_events: u64,
+    drive: Drive,
+) -> u64 {
+    let oracle = reference(label, scene, max_events, drive);
+    let mut served = 0;
+    for (name, options) in variants() {
+        if !serves_periodic(name, &options) {
+            continue;
+        }
+        served += 1;
+        let label = format!("{label} (cells_skin {:?})", options.cells_skin);
+        check_run(&label, scene, name, &options, max_events, drive, &oracle);
+    }
+    assert!(served >= 2, "no finder serves periodic worlds");
+    oracle.events
+}
+
+fn periodic_gas<const D: usize>(n: usize, packing: f64, radii: (f64, f64), seed: u64) -> Scene<D> {
+    let mut packing = packing;
+    loop {
+        match gas(&GasConfig {
+            n,
+            packing,
+            radius_min: radii.0,
+            radius_max: radii.1,
+            speed_min: 0.0,
+            speed_max: 1.0,
+            seed,
+            periodic: true,
+            ..GasConfig::default()
+        }) {
+            Ok(scene) => return scene,
+            Err(GenerateError::Jammed { .. }) => packing *= 0.8,
+            // Few bodies make a small box: a lower packing makes it wider.
+            Err(e) if e.to_string().contains("must be wider") => packing *= 0.5,
+            Err(e) => panic!("{e}"),
+        }
+    }
+}
+
+fn check_periodic_gases<const D: usize>(ns: &[usize], seeds: &[u64]) {
+    for &n in ns {
+        for &seed in seeds {
+            for (pack_name, packing) in packings(D) {
+                for (disp_name, radii) in DISPERSITIES {
+                    let scene = periodic_gas::<D>(n, packing, radii, seed);
+                    let label = format!("periodic gas n={n} {pack_name} {disp_name} seed={seed}");
+                    let events = (EVENTS_PER_BODY * n as u64).min(MAX_EVENTS);
+                    check_periodic(&label, &scene, events, Drive::Events);
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn periodic_gases_2d() {
+    check_periodic_gases::<2>(&[2, 3, 5, 17, 64, 256], &SMALL_SEEDS[..2]);
+}
+
+#[test]
+fn periodic_gases_3d() {
+    check_periodic_gases::<3>(&[2, 5, 17, 64, 200], &SMALL_SEEDS[..2]);
+}
+
+/// Velocity edits after peeking (the finder has gone through internal work beyond the edit)
+/// and frame-by-frame stepping, in periodic boxes.
+#[test]
+fn periodic_kicks_and_frames() {
+    let s2 = periodic_gas::<2>(150, 0.35, (0.2, 1.0), SMALL_SEEDS[2]);
+    let s3 = periodic_gas::<3>(100, 0.2, (0.3, 0.6), SMALL_SEEDS[0]);
+    for (drive2, drive3) in [
+        (Drive::Kicks { every: 3 }, Drive::Kicks { every: 5 }),
+        (Drive::Frames { dt: 1.0 / 60.0 }, Drive::Frames { dt: 0.37 }),
+    ] {
+        check_periodic("periodic 2D", &s2, 1500, drive2);
+        check_periodic("periodic 3D", &s3, 1000, drive3);
+    }
+}
+
+/// Periodic boxes too short for three cells along some axis, and long flights across the
+/// box.
+#[test]
+fn small_periodic_boxes_and_long_flights() {
+    let pair = |size: [f64; 2], bodies: Vec<BodySpec<2>>| Scene::<2> {
+        bodies,
+        periodic: Some(Vector(size)),
+        ..Scene::default()
+    };
+    let b = |p: [f64; 2], v: [f64; 2]| BodySpec::new(Vector(p), Vector(v), 0.5);
+    let scenes = [
+        pair(
+            [2.5, 2.5],
+            vec![b([0.5, 0.5], [1.0, 0.3]), b([1.8, 1.7], [-0.4, 0.9])],
+        ),
+        pair(
+            [2.5, 9.0],
+            vec![
+                b([0.5, 0.5], [1.0, 0.3]),
+                b([1.8, 3.0], [-0.4, 0.9]),
+                b([1.0, 6.0], [0.2, -1.3]),
+            ],
+        ),
+        pair(
+            [50.0, 50.0],
+            vec![b([1.0, 1.0], [3.0, 0.37]), b([25.0, 30.0], [-1.0, 0.05])],
+        ),
+    ];
+    for (k, scene) in scenes.iter().enumerate() {
+        scene.validate().unwrap();
+        check_periodic(
+            &format!("small periodic box {k}"),
+            scene,
+            600,
+            Drive::Events,
+        );
+    }
+    let s3 = Scene::<3> {
+        bodies: vec![
+            BodySpec::new(Vector([0.5, 0.5, 0.5]), Vector([1.0, 0.3, -0.2]), 0.5),
+            BodySpec::new(Vector([1.7, 1.8, 4.0]), Vector([-0.4, 0.9, 1.1]), 0.5),
+            BodySpec::new(Vector([1.2, 0.4, 7.0]), Vector([0.2, -1.1, 0.7]), 0.5),
+        ],
+        periodic: Some(Vector([2.5, 2.6, 9.0])),
+        ..Scene::default()
+    };
+    check_periodic("small periodic box 3D", &s3, 600, Drive::Events);
 }

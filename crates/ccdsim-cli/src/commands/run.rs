@@ -49,6 +49,11 @@ pub struct FinderArgs {
     /// bvh: the first time step, seconds.
     #[arg(long, default_value_t = FinderOptions::default().bvh_initial_dt)]
     pub bvh_initial_dt: f64,
+    /// cells: skin of the neighbour lists (periodic worlds), relative to the largest contact
+    /// distance; 0 turns the lists off (cell crossings), else in [0.001, 1]. Default:
+    /// automatic (no lists in 2D, 0.4 in 3D).
+    #[arg(long)]
+    pub cells_skin: Option<f64>,
 }
 
 impl FinderArgs {
@@ -58,8 +63,11 @@ impl FinderArgs {
             bvh_grow: self.bvh_grow,
             bvh_shrink: self.bvh_shrink,
             bvh_initial_dt: self.bvh_initial_dt,
+            cells_skin: self.cells_skin,
         };
-        match ccdsim::finder::bvh::check_options(&options) {
+        let checked = ccdsim::finder::bvh::check_options(&options)
+            .and_then(|()| ccdsim::finder::check_cells_options(&options));
+        match checked {
             Err(ccdsim::FinderError::Option { option, why }) => {
                 anyhow::bail!("--{}: {why}", option.replace('_', "-"))
             }

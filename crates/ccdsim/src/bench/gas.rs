@@ -35,6 +35,8 @@ pub struct GasBenchConfig {
     pub blocks: usize,
     /// Finder name.
     pub finder: String,
+    /// The finder's options.
+    pub finder_options: FinderOptions,
     /// Random seed of the velocities.
     pub seed: u64,
 }
@@ -48,6 +50,7 @@ impl Default for GasBenchConfig {
             equilibrate: None,
             blocks: 20,
             finder: "cells".into(),
+            finder_options: FinderOptions::default(),
             seed: 1,
         }
     }
@@ -181,8 +184,7 @@ pub fn gas_bench<const D: usize>(
     })?;
     let world = World::from_scene(&scene).map_err(SimError::from)?;
     drop(scene);
-    let finder =
-        make_finder::<D>(&cfg.finder, &FinderOptions::default()).map_err(SimError::from)?;
+    let finder = make_finder::<D>(&cfg.finder, &cfg.finder_options).map_err(SimError::from)?;
     let mut sim = Simulation::from_world(world, finder)?;
     let equilibrate = cfg.equilibrate.unwrap_or(20 * cfg.n as u64);
     let total = equilibrate + cfg.collisions;

@@ -3,6 +3,7 @@
 //! and collision rate against the Henderson (2D) and Carnahan–Starling (3D) equations of state.
 
 use super::write_file;
+use crate::commands::run::FinderArgs;
 use crate::progress::Progress;
 use anyhow::{anyhow, Result};
 use ccdsim::bench::{gas_bench, GasBenchConfig, GasBenchReport};
@@ -46,6 +47,8 @@ pub struct Args {
     /// No progress bar.
     #[arg(long, short)]
     quiet: bool,
+    #[command(flatten)]
+    finder_options: FinderArgs,
 }
 
 /// The report with the process's peak memory.
@@ -84,6 +87,7 @@ pub fn run(args: Args) -> Result<ExitCode> {
         equilibrate: args.equilibrate,
         blocks: args.blocks,
         finder: args.finder.clone(),
+        finder_options: args.finder_options.options()?,
         seed: args.seed,
     };
     let total = cfg.equilibrate.unwrap_or(20 * cfg.n as u64) + cfg.collisions;

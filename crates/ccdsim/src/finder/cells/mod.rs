@@ -94,6 +94,59 @@
 //! (that is, `|x| + |v|·|t|` below about 10⁹ σ_max), which is far beyond where the simulation's
 //! own overlap tolerance of 10⁻⁹ would already fail.
 //!
+//! # List mode (Verlet neighbour lists with a skin)
+//!
+//! With a skin `s > 0` (option `cells_skin`, relative to `σ_max`) and a periodic world of
+//! fewer than 2²⁷ bodies, the finder scans per-body neighbour lists ([`lists`]) instead of
+//! the 3^D block of cells. (In open worlds a body flying off would leave shells forever,
+//! where the crossings of outer cells, which extend to infinity, stop: they keep crossings.)
+//!
+//! * Each body `i` has a *shell centre* `X_i`, its position when its list was last built,
+//!   and a shell, the ball of radius `h = s/2` around it. A *shell exit* is the time its
+//!   stored motion reaches the surface of its shell (the later root of a quadratic, solved
+//!   without cancellation from a time at which the body is inside; recomputed whenever the
+//!   body is predicted). Exits take the crossings' place: keys of the crossing class (first at
+//!   equal times), internal, never returned, changing no stored state.
+//! * The grid files bodies by shell centre, in cells at least `(σ_max + s + slack)(1 +
+//!   MARGIN)` wide (`slack = 4·MARGIN·σ_max`): bodies change cell only when their list is
+//!   rebuilt, and there are no crossings at all. Walls are filed with the reach `r_max + h +
+//!   MARGIN·σ_max + slack`.
+//! * `N(i)` lists, with the image code of the shift, exactly the bodies `j` with
+//!   `|X_j − X_i + shift| ≤ σ_max + s + slack` (≥ `r_i + r_j + s + slack`). The test is
+//!   symmetric bit for bit (the displacement seen from `j` is the exact negation), and at
+//!   every rebuild of `i` the lists of the bodies it gains or loses are updated; since only
+//!   a rebuild moves a centre, the lists always equal the relation on the current centres.
+//! * A full recompute of `i` scans `N(i)` (same pure functions, same argument order and
+//!   shift convention as above), the walls of the cell of `X_i` and the box exit. A rebuild
+//!   at a shell exit moves `X_i` to the body's position then, refiles it, rebuilds `N(i)`
+//!   and offers `i` only the pairs new to `N(i)` and the walls new to its cell, then
+//!   schedules its next exit. A state change that leaves the stored position outside the
+//!   shell (a box exit moves it by a period, `L > 2σ_max ≥ 4h`) rebuilds the list at the
+//!   change time before the recompute.
+//!
+//! Why it is exact: the invariants of the proof above hold with "responsible" read as "listed
+//! in each other's lists" (a body and a wall: the wall is filed for the cell of the body's
+//! shell centre), since a pair's term was computed at the later of the last state change of
+//! either body (full recompute: the whole list) and the rebuild that listed the pair (the
+//! pairs new to the list are offered). A stale entry cannot occur: lists equal the overlap
+//! relation. Let `E` be the oracle's event at time `t`, pair `(i, j)`. Every shell exit before
+//! `t` is processed before `E` (exits go first at equal times; finitely many, since each
+//! moves its body by `h` along its path and in a periodic world each moving body has a box
+//! exit, an event, within a bounded time), so at `t` each body is within `h` of its centre
+//! (up to the rounding of exit times and positions, far below `slack`). The bodies touch at
+//! `t` through one image: `|p_j − p_i + shift| = r_i + r_j`, hence `|X_j − X_i + shift| ≤ r_i
+//! + r_j + 2h + rounding ≤ σ_max + s + slack`: the pair is listed, with that image (the box
+//! is wider than twice the contact distance, so the contact image is the listed one; on an
+//! axis of a single cell all three images are tried, like the oracle does, and each that
+//! overlaps is listed). For a wall, the centre is within `r_i` of it at `t`, so the wall is
+//! within `r_i + h + rounding` of the cell of `X_i` and is filed there. So `E` is covered and
+//! the top of the queue is `E`, as above.
+//!
+//! Edits behind the clock: a list rebuilt at `t_r` after an edit's time `t` leaves its body
+//! possibly outside its shell at `t`; `update` rebuilds those lists again at `t` (a rebuild is
+//! valid at any time: afterwards the body is in its shell from `t` to its next exit) and
+//! recomputes their bodies, so every body is in its shell from the clock on.
+//!
 //! # Edits behind the finder's clock
 //!
 //! `next_event` may process crossings beyond the time of a state change made afterwards (a
@@ -103,16 +156,18 @@
 
 mod grid;
 mod key;
+mod lists;
 mod predict;
 mod tournament;
 
-use super::{DebugBox, Finder, FinderError, FinderMemory};
+use super::{DebugBox, Finder, FinderError, FinderMemory, FinderOptions};
 use crate::event::Event;
 use crate::geom::{Aabb, Vector};
 use crate::scene::Wall;
 use crate::world::World;
 use grid::{Grid, MARGIN};
 use key::{Key, MAX_INDEX};
+use lists::{shell_exit_time, Lists, MAX_LIST_BODIES};
 use predict::{Cached, Probe, UNKNOWN_CHANGES};
 use tournament::TournamentQueue;
 
@@ -132,8 +187,35 @@ pub struct CellsStats {
     pub stale: u64,
     /// Full neighbourhood scans.
     pub recomputes: u64,
-    /// Crossings undone because a state changed behind them.
+    /// Crossings undone (list mode: lists rebuilt again) because a state changed behind
+    /// them.
     pub undone: u64,
+    /// Shell exits processed (list mode; internal, never returned).
+    pub rebuilds: u64,
+}
+
+/// Largest `cells_skin` (relative to the largest contact distance).
+pub const MAX_CELLS_SKIN: f64 = 1.0;
+/// Smallest non-zero `cells_skin`.
+pub const MIN_CELLS_SKIN: f64 = 1e-3;
+
+/// Refuses a `cells_skin` the finder cannot run with: it must be 0 (cell crossings) or in
+/// `[MIN_CELLS_SKIN, MAX_CELLS_SKIN]` (neighbour lists).
+pub fn check_options(o: &FinderOptions) -> Result<(), FinderError> {
+    let Some(s) = o.cells_skin else {
+        return Ok(());
+    };
+    if s == 0.0 || (MIN_CELLS_SKIN..=MAX_CELLS_SKIN).contains(&s) {
+        Ok(())
+    } else {
+        Err(FinderError::Option {
+            option: "cells_skin",
+            why: format!(
+                "{s} is neither 0 nor in [{MIN_CELLS_SKIN}, {MAX_CELLS_SKIN}] (times the \
+                 largest contact distance)"
+            ),
+        })
+    }
 }
 
 /// The grid finder with cached predictions and an event queue; see the module docs.
@@ -155,6 +237,10 @@ pub struct Cells<const D: usize> {
     shifts: Vec<Vector<D>>,
     stats: CellsStats,
     peak_bytes: usize,
+    /// The skin of the list mode relative to the largest contact distance (0: crossings).
+    skin: f64,
+    /// The list mode's structures, when it is on (see `init`).
+    lists: Option<Lists<D>>,
 }
 
 impl<const D: usize> Default for Cells<D> {
@@ -178,7 +264,25 @@ impl<const D: usize> Cells<D> {
             shifts: Vec::new(),
             stats: CellsStats::default(),
             peak_bytes: 0,
+            skin: 0.0,
+            lists: None,
         }
+    }
+
+    /// A finder with the options `options` (`cells_skin`), refused as [`check_options`]
+    /// says.
+    pub fn with_options(options: &FinderOptions) -> Result<Self, FinderError> {
+        check_options(options)?;
+        Ok(Cells {
+            skin: options.cells_skin.unwrap_or(super::auto_cells_skin(D)),
+            ..Self::new()
+        })
+    }
+
+    /// True when the finder runs in list mode (set by `init`).
+    #[must_use]
+    pub fn uses_lists(&self) -> bool {
+        self.lists.is_some()
     }
 
     /// Counters since the last `init`.
@@ -198,6 +302,7 @@ impl<const D: usize> Cells<D> {
             + self.queue.bytes()
             + std::mem::size_of::<Cached>() * self.cached.capacity()
             + std::mem::size_of::<(u32, u8, f64)>() * self.log.capacity()
+            + self.lists.as_ref().map_or(0, Lists::bytes)
     }
 
     /// Checks the structures against `world`: the cell lists, the queue, every key being the
@@ -207,6 +312,9 @@ impl<const D: usize> Cells<D> {
     pub fn validate(&self, world: &World<D>) -> Result<(), String> {
         self.grid.validate()?;
         self.queue.validate()?;
+        if self.lists.is_some() {
+            return self.validate_list_mode(world);
+        }
         let clock = self.clock;
         for i in 0..world.len() {
             let m = world.motion(i);
@@ -260,6 +368,46 @@ impl<const D: usize> Cells<D> {
             }
         }
         Ok(())
+    }
+
+    /// `validate` in list mode: the queue keys (minimum of the cached event and the shell
+    /// exit), the cached events, and the lists (see `validate_lists`).
+    fn validate_list_mode(&self, world: &World<D>) -> Result<(), String> {
+        let lists = self.lists.as_ref().expect("list mode");
+        for i in 0..world.len() {
+            let exit = lists.exit[i];
+            let exit_key = if exit == f64::INFINITY {
+                Key::NEVER
+            } else {
+                Key::crossing(exit, i)
+            };
+            let key = self.queue.key(i);
+            if key != exit_key.min(self.cached[i].best) {
+                return Err(format!("body {i}: queue key is not min(event, shell exit)"));
+            }
+            if key.is_crossing() != (self.cached[i].cross & KEY_IS_CROSSING != 0) {
+                return Err(format!("body {i}: exit flag does not match its queue key"));
+            }
+            for k in [self.cached[i].best, self.cached[i].second] {
+                if k.time == Key::NEVER.time && !k.is_never() {
+                    return Err(format!("body {i}: cached an event that never happens"));
+                }
+            }
+            if self.cached[i].best > self.cached[i].second
+                && self.cached[i].second_image & SECOND_KNOWN != 0
+            {
+                return Err(format!("body {i}: second cached event before the first"));
+            }
+            let m = world.motion(i);
+            let again = shell_exit_time(&m, &lists.centre[i], lists.half, m.time.max(self.clock));
+            let tol = 1e-9 * (1.0 + again.abs());
+            if exit != again && (exit - again).abs() > tol {
+                return Err(format!(
+                    "body {i}: shell exit at {exit}, its motion leaves at {again}"
+                ));
+            }
+        }
+        self.validate_lists(world)
     }
 
     /// Processes body `i`'s crossing, due at `time`: the body moves to the next cell and is
@@ -361,12 +509,33 @@ impl<const D: usize> Finder<D> for Cells<D> {
                 hi = Vector::ZERO;
             }
         }
-        self.grid = Grid::new(n, sigma_max * (1.0 + MARGIN), lo, hi, period);
+        // List mode: periodic worlds only (in an open world a body flying off would leave
+        // shells forever, where the crossings of the outer cells, which extend to infinity,
+        // stop).
+        let list_mode = self.skin > 0.0 && period.is_some() && n < MAX_LIST_BODIES;
+        let skin = if list_mode {
+            self.skin * sigma_max
+        } else {
+            0.0
+        };
+        let slack = 4.0 * MARGIN * sigma_max;
+        let width = if list_mode {
+            (sigma_max + skin + slack) * (1.0 + MARGIN)
+        } else {
+            sigma_max * (1.0 + MARGIN)
+        };
+        self.grid = Grid::new(n, width, lo, hi, period);
+        self.lists = list_mode.then(|| Lists::new(n, skin, sigma_max + skin + slack));
         for i in 0..n {
-            let k = self.grid.coords_of_point(&world.position_at(i, now));
+            let p = world.position_at(i, now);
+            if let Some(lists) = &mut self.lists {
+                lists.centre[i] = p;
+            }
+            let k = self.grid.coords_of_point(&p);
             self.grid.insert(i, k);
         }
-        self.grid.file_walls(world.walls(), r1 + MARGIN * sigma_max);
+        self.grid
+            .file_walls(world.walls(), r1 + 0.5 * skin + MARGIN * sigma_max + slack);
         self.shifts = (0..3usize.pow(D as u32))
             .map(|code| self.grid.shift_of(code as u8))
             .collect();
@@ -375,6 +544,9 @@ impl<const D: usize> Finder<D> for Cells<D> {
         self.log = Vec::new();
         self.clock = now;
         self.stats = CellsStats::default();
+        if self.lists.is_some() {
+            self.build_all_lists(n);
+        }
         for i in 0..n {
             self.recompute(world, i);
         }
@@ -391,6 +563,19 @@ impl<const D: usize> Finder<D> for Cells<D> {
         else {
             return;
         };
+        if self.lists.is_some() {
+            self.clock = t;
+            self.redo_rebuilds_after(world, t, changed);
+            for &i in changed {
+                if self.outside_shell(world, i) {
+                    self.relist(world, i, world.time(i), None);
+                }
+            }
+            for &i in changed {
+                self.recompute(world, i);
+            }
+            return;
+        }
         self.undo_crossings_after(world, t);
         self.clock = t;
         for &i in changed {
@@ -413,7 +598,11 @@ impl<const D: usize> Finder<D> for Cells<D> {
             let i = self.queue.top()?;
             let key = self.queue.top_key();
             if key.is_crossing() {
-                self.cross(world, i, key.seconds());
+                if self.lists.is_some() {
+                    self.exit_shell(world, i, key.seconds());
+                } else {
+                    self.cross(world, i, key.seconds());
+                }
                 continue;
             }
             if key.is_never() {
@@ -455,6 +644,7 @@ impl<const D: usize> Finder<D> for Cells<D> {
             ("stale", s.stale),
             ("recomputes", s.recomputes),
             ("undone", s.undone),
+            ("rebuilds", s.rebuilds),
         ]
     }
 

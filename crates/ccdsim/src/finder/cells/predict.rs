@@ -4,6 +4,7 @@
 
 use super::grid::Grid;
 use super::key::{ordered, Key, NONE};
+use super::lists::shell_exit_time;
 use super::{Cells, KEY_IS_CROSSING, NO_CROSSING, SECOND_KNOWN};
 use crate::geom::Vector;
 use crate::narrow::{toi_circle_circle, toi_circle_circle_shifted, toi_circle_wall, Motion};
@@ -293,7 +294,7 @@ impl<const D: usize> Cells<D> {
     /// Offers body `p` the walls of the sorted list `walls` that are not in the sorted list
     /// `skip`.
     #[inline(never)]
-    fn offer_walls(
+    pub(super) fn offer_walls(
         &self,
         world: &World<D>,
         p: &Probe<D>,
@@ -366,12 +367,46 @@ impl<const D: usize> Cells<D> {
     pub(super) fn recompute(&mut self, world: &World<D>, i: usize) {
         self.stats.recomputes += 1;
         let p = Probe::of(world, i);
+        if self.lists.is_some() {
+            self.recompute_listed(world, &p);
+            return;
+        }
         let mut best = Best::NONE;
         self.scan_neighbours(world, &p, &mut best);
         self.scan_walls(world, &p, &mut best);
         self.scan_exit(world, &p, &mut best);
         self.store(world, i, &best, true);
         self.schedule(i, &p.b.motion);
+    }
+
+    /// `recompute` in list mode: the neighbour list instead of the cells, and the shell exit.
+    #[inline(never)]
+    fn recompute_listed(&mut self, world: &World<D>, p: &Probe<D>) {
+        let i = p.i;
+        let mut best = Best::NONE;
+        self.scan_neighbour_list(world, p, &mut best);
+        self.scan_walls(world, p, &mut best);
+        self.scan_exit(world, p, &mut best);
+        self.store(world, i, &best, true);
+        let t_ref = p.b.motion.time.max(self.clock);
+        let lists = self.lists.as_mut().expect("list mode");
+        lists.exit[i] = shell_exit_time(&p.b.motion, &lists.centre[i], lists.half, t_ref);
+        self.schedule_listed(i);
+    }
+
+    /// `schedule` in list mode: the shell exit plays the crossing's part (never for a body
+    /// at rest).
+    #[inline(never)]
+    pub(super) fn schedule_listed(&mut self, i: usize) {
+        let exit = self.lists.as_ref().expect("list mode").exit[i];
+        let key = if exit != f64::INFINITY && Key::crossing(exit, i) < self.cached[i].best {
+            self.cached[i].cross = KEY_IS_CROSSING;
+            Key::crossing(exit, i)
+        } else {
+            self.cached[i].cross = 0;
+            self.cached[i].best
+        };
+        self.queue.set(i, key);
     }
 
     /// Body `i`'s records.
@@ -423,6 +458,10 @@ impl<const D: usize> Cells<D> {
 
     /// Sets body `i`'s queue key: its next crossing or its cached event, whichever is first.
     pub(super) fn schedule(&mut self, i: usize, mi: &Motion<D>) {
+        if self.lists.is_some() {
+            self.schedule_listed(i);
+            return;
+        }
         let k = self.grid.coords_of(i);
         let key = match self.grid.next_crossing(&k, mi) {
             Some((t, code)) => {

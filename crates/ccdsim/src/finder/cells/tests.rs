@@ -1,18 +1,33 @@
 //! Internal checks: the structures stay consistent (`validate`) on every step of runs that
 //! also compare each event with the oracle.
 
-use super::Cells;
-use crate::finder::{all_pairs_next_event, Finder};
+use super::{Cells, CellsStats};
+use crate::finder::{all_pairs_next_event, Finder, FinderOptions};
 use crate::generate::{gas, GasConfig};
 use crate::resolve::{resolve_body_body, resolve_body_wall, resolve_exit};
 use crate::scene::Scene;
 use crate::world::World;
 use crate::EventKind;
 
+/// A finder with the neighbour-list skin `skin`.
+fn with_skin<const D: usize>(skin: f64) -> Cells<D> {
+    Cells::with_options(&FinderOptions {
+        cells_skin: Some(skin),
+        ..FinderOptions::default()
+    })
+    .unwrap()
+}
+
 /// Runs `events` events resolving them by hand, validating the finder after each.
 fn validated_run<const D: usize>(scene: &Scene<D>, events: usize) {
+    let stats = validated_run_with(scene, events, 0.0);
+    assert_eq!(stats.rebuilds, 0);
+}
+
+/// Like `validated_run`, with the neighbour-list skin `skin` (0: crossings).
+fn validated_run_with<const D: usize>(scene: &Scene<D>, events: usize, skin: f64) -> CellsStats {
     let mut world = World::from_scene(scene).unwrap();
-    let mut finder = Cells::<D>::new();
+    let mut finder = with_skin::<D>(skin);
     finder.init(&world).unwrap();
     finder.validate(&world).unwrap();
     for k in 0..events {
@@ -26,7 +41,9 @@ fn validated_run<const D: usize>(scene: &Scene<D>, events: usize) {
             want.map(|e| (e.time.to_bits(), e.kind, e.a, e.b)),
             "event {k}"
         );
-        let Some(e) = got else { return };
+        let Some(e) = got else {
+            return finder.stats();
+        };
         world.set_now(e.time.max(world.now()));
         let (a, b) = (e.a as usize, e.b as usize);
         match e.kind {
@@ -48,6 +65,7 @@ fn validated_run<const D: usize>(scene: &Scene<D>, events: usize) {
             .validate(&world)
             .unwrap_or_else(|e| panic!("after event {k}: {e}"));
     }
+    finder.stats()
 }
 
 fn cfg(n: usize, packing: f64, rmin: f64, rmax: f64, seed: u64) -> GasConfig {
@@ -112,8 +130,99 @@ fn structures_stay_consistent_3d() {
 #[test]
 fn edits_behind_the_clock_undo_crossings() {
     let scene: Scene<2> = gas(&cfg(120, 0.1, 0.5, 0.5, 9)).unwrap();
-    let mut world = World::from_scene(&scene).unwrap();
-    let mut finder = Cells::<2>::new();
+    edits_behind_the_clock(&scene, 0.0);
+}
+
+#[test]
+fn list_mode_edits_behind_the_clock_redo_rebuilds() {
+    for skin in [0.01, 0.2] {
+        let scene: Scene<2> = gas(&GasConfig {
+            periodic: true,
+            ..cfg(120, 0.3, 0.3, 0.6, 9)
+        })
+        .unwrap();
+        edits_behind_the_clock(&scene, skin);
+    }
+}
+
+#[test]
+fn list_mode_structures_stay_consistent() {
+    for seed in [5, 6] {
+        let periodic = |c: GasConfig| GasConfig {
+            periodic: true,
+            ..c
+        };
+        for skin in [0.001, 0.1, 1.0] {
+            let runs = [
+                validated_run_with::<2>(
+                    &gas(&periodic(cfg(150, 0.4, 0.5, 0.5, seed))).unwrap(),
+                    1500,
+                    skin,
+                ),
+                validated_run_with::<2>(
+                    &gas(&periodic(cfg(80, 0.05, 0.2, 0.9, seed))).unwrap(),
+                    1500,
+                    skin,
+                ),
+                validated_run_with::<3>(
+                    &gas(&periodic(cfg(100, 0.25, 0.3, 0.6, seed))).unwrap(),
+                    1000,
+                    skin,
+                ),
+            ];
+            for stats in runs {
+                assert!(stats.rebuilds > 0 && stats.crossings == 0, "{stats:?}");
+            }
+        }
+    }
+    // Lists are used in periodic worlds only.
+    let mut finder = with_skin::<2>(0.2);
+    let walled = gas(&cfg(50, 0.2, 0.5, 0.5, 1)).unwrap();
+    finder.init(&World::from_scene(&walled).unwrap()).unwrap();
+    assert!(!finder.uses_lists());
+    let periodic = gas(&GasConfig {
+        periodic: true,
+        ..cfg(50, 0.2, 0.5, 0.5, 1)
+    })
+    .unwrap();
+    let world = World::from_scene(&periodic).unwrap();
+    finder.init(&world).unwrap();
+    assert!(finder.uses_lists());
+    finder.validate(&world).unwrap();
+}
+
+#[test]
+fn cells_skin_is_checked() {
+    for bad in [-0.1, 0.0005, 1.5, f64::NAN, f64::INFINITY] {
+        let err = Cells::<2>::with_options(&FinderOptions {
+            cells_skin: Some(bad),
+            ..FinderOptions::default()
+        });
+        assert!(
+            matches!(
+                err,
+                Err(crate::finder::FinderError::Option {
+                    option: "cells_skin",
+                    ..
+                })
+            ),
+            "{bad}"
+        );
+    }
+    for good in [0.0, 0.001, 0.3, 1.0] {
+        assert!(Cells::<2>::with_options(&FinderOptions {
+            cells_skin: Some(good),
+            ..FinderOptions::default()
+        })
+        .is_ok());
+    }
+}
+
+/// Peeks (internal work up to the next event is done), then edits a body at a time before
+/// that, 200 times, comparing with the oracle and validating after each edit.
+fn edits_behind_the_clock(scene: &Scene<2>, skin: f64) {
+    let mut world = World::from_scene(scene).unwrap();
+    let mut finder = with_skin::<2>(skin);
     finder.init(&world).unwrap();
     for k in 0..200usize {
         // Peek (crossings up to the next event are processed), then edit a body at `now`.
@@ -134,6 +243,24 @@ fn edits_behind_the_clock_undo_crossings() {
             (got.time.to_bits(), got.kind, got.a, got.b),
             (want.time.to_bits(), want.kind, want.a, want.b)
         );
+        // Resolve it, so that the run goes on (box exits included).
+        world.set_now(got.time.max(world.now()));
+        let (a, b) = (got.a as usize, got.b as usize);
+        match got.kind {
+            EventKind::Body => {
+                resolve_body_body(&mut world, a, b, got.time);
+                finder.update(&world, &[a, b]);
+            }
+            EventKind::Wall if b >= world.walls().len() => {
+                let face = b - world.walls().len();
+                resolve_exit(&mut world, a, face, got.time);
+                finder.update(&world, &[a]);
+            }
+            EventKind::Wall => {
+                resolve_body_wall(&mut world, a, b, got.time);
+                finder.update(&world, &[a]);
+            }
+        }
     }
     assert!(finder.stats().undone > 0);
 }
