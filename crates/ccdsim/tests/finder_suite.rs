@@ -228,9 +228,15 @@ fn check_all<const D: usize>(label: &str, scene: &Scene<D>, max_events: u64) -> 
     oracle.events
 }
 
-/// A gas; when random placement cannot reach `packing` (small boxes, dense polydisperse
-/// mixtures), the packing is lowered until it can.
-fn gas_scene<const D: usize>(n: usize, packing: f64, radii: (f64, f64), seed: u64) -> Scene<D> {
+/// A gas (open with walls, or `periodic`); when random placement cannot reach `packing`
+/// (small boxes, dense polydisperse mixtures), the packing is lowered until it can.
+fn any_gas<const D: usize>(
+    n: usize,
+    packing: f64,
+    radii: (f64, f64),
+    seed: u64,
+    periodic: bool,
+) -> Scene<D> {
     let mut packing = packing;
     loop {
         match gas(&GasConfig {
@@ -241,13 +247,21 @@ fn gas_scene<const D: usize>(n: usize, packing: f64, radii: (f64, f64), seed: u6
             speed_min: 0.0,
             speed_max: 1.0,
             seed,
+            periodic,
             ..GasConfig::default()
         }) {
             Ok(scene) => return scene,
             Err(GenerateError::Jammed { .. }) => packing *= 0.8,
+            // Few bodies make a small periodic box: a lower packing makes it wider.
+            Err(e) if periodic && e.to_string().contains("must be wider") => packing *= 0.5,
             Err(e) => panic!("{e}"),
         }
     }
+}
+
+/// A gas in a walled box; see [`any_gas`].
+fn gas_scene<const D: usize>(n: usize, packing: f64, radii: (f64, f64), seed: u64) -> Scene<D> {
+    any_gas(n, packing, radii, seed, false)
 }
 
 /// Monodisperse and polydisperse radii.
@@ -866,27 +880,9 @@ fn check_periodic<const D: usize>(
     oracle.events
 }
 
+/// A gas in a periodic box; see [`any_gas`].
 fn periodic_gas<const D: usize>(n: usize, packing: f64, radii: (f64, f64), seed: u64) -> Scene<D> {
-    let mut packing = packing;
-    loop {
-        match gas(&GasConfig {
-            n,
-            packing,
-            radius_min: radii.0,
-            radius_max: radii.1,
-            speed_min: 0.0,
-            speed_max: 1.0,
-            seed,
-            periodic: true,
-            ..GasConfig::default()
-        }) {
-            Ok(scene) => return scene,
-            Err(GenerateError::Jammed { .. }) => packing *= 0.8,
-            // Few bodies make a small box: a lower packing makes it wider.
-            Err(e) if e.to_string().contains("must be wider") => packing *= 0.5,
-            Err(e) => panic!("{e}"),
-        }
-    }
+    any_gas(n, packing, radii, seed, true)
 }
 
 fn check_periodic_gases<const D: usize>(ns: &[usize], seeds: &[u64]) {

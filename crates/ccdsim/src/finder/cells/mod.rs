@@ -332,29 +332,7 @@ impl<const D: usize> Cells<D> {
                     "body {i}: crossing flag does not match its queue key"
                 ));
             }
-            for k in [self.cached[i].best, self.cached[i].second] {
-                if k.time == Key::NEVER.time && !k.is_never() {
-                    return Err(format!("body {i}: cached an event that never happens"));
-                }
-            }
-            if self.cached[i].best > self.cached[i].second
-                && self.cached[i].second_image & SECOND_KNOWN != 0
-            {
-                return Err(format!("body {i}: second cached event before the first"));
-            }
-            let changes = self.cached[i].partner_changes;
-            if let Some(j) = self.cached[i].best.partner(i) {
-                if changes != UNKNOWN_CHANGES && changes > world.change_count(j) {
-                    return Err(format!("body {i}: partner {j}'s recorded count is ahead"));
-                }
-                if changes == world.change_count(j) && !self.evaluates_the_same(world, i) {
-                    return Err(format!(
-                        "body {i}: cached event with unchanged partner {j} is not live"
-                    ));
-                }
-            } else if changes != UNKNOWN_CHANGES {
-                return Err(format!("body {i}: a partner count without a partner"));
-            }
+            self.validate_cached(world, i)?;
             let p = m.at(clock);
             let (lo, hi) = self.grid.cell_box(&k.map(|x| x as usize));
             for d in 0..D {
@@ -366,6 +344,37 @@ impl<const D: usize> Cells<D> {
                     ));
                 }
             }
+        }
+        Ok(())
+    }
+
+    /// Checks body `i`'s cached records, in either mode: no cached event that never happens,
+    /// the runner-up not before the best, and the partner's recorded change count neither
+    /// ahead of the partner nor, when equal, naming an event that no longer re-evaluates bit
+    /// for bit.
+    fn validate_cached(&self, world: &World<D>, i: usize) -> Result<(), String> {
+        for k in [self.cached[i].best, self.cached[i].second] {
+            if k.time == Key::NEVER.time && !k.is_never() {
+                return Err(format!("body {i}: cached an event that never happens"));
+            }
+        }
+        if self.cached[i].best > self.cached[i].second
+            && self.cached[i].second_image & SECOND_KNOWN != 0
+        {
+            return Err(format!("body {i}: second cached event before the first"));
+        }
+        let changes = self.cached[i].partner_changes;
+        if let Some(j) = self.cached[i].best.partner(i) {
+            if changes != UNKNOWN_CHANGES && changes > world.change_count(j) {
+                return Err(format!("body {i}: partner {j}'s recorded count is ahead"));
+            }
+            if changes == world.change_count(j) && !self.evaluates_the_same(world, i) {
+                return Err(format!(
+                    "body {i}: cached event with unchanged partner {j} is not live"
+                ));
+            }
+        } else if changes != UNKNOWN_CHANGES {
+            return Err(format!("body {i}: a partner count without a partner"));
         }
         Ok(())
     }
@@ -388,16 +397,7 @@ impl<const D: usize> Cells<D> {
             if key.is_crossing() != (self.cached[i].cross & KEY_IS_CROSSING != 0) {
                 return Err(format!("body {i}: exit flag does not match its queue key"));
             }
-            for k in [self.cached[i].best, self.cached[i].second] {
-                if k.time == Key::NEVER.time && !k.is_never() {
-                    return Err(format!("body {i}: cached an event that never happens"));
-                }
-            }
-            if self.cached[i].best > self.cached[i].second
-                && self.cached[i].second_image & SECOND_KNOWN != 0
-            {
-                return Err(format!("body {i}: second cached event before the first"));
-            }
+            self.validate_cached(world, i)?;
             let m = world.motion(i);
             let again = shell_exit_time(&m, &lists.centre[i], lists.half, m.time.max(self.clock));
             let tol = 1e-9 * (1.0 + again.abs());
