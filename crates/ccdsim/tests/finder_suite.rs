@@ -276,18 +276,31 @@ fn packings(dim: usize) -> [(&'static str, f64); 2] {
     }
 }
 
-fn check_gases<const D: usize>(ns: &[usize], seeds: &[u64]) {
+/// Calls `check(label, n, packing, radii, seed)` for every size, seed, packing and
+/// dispersity.
+fn for_each_gas<const D: usize>(
+    ns: &[usize],
+    seeds: &[u64],
+    mut check: impl FnMut(&str, usize, f64, (f64, f64), u64),
+) {
     for &n in ns {
         for &seed in seeds {
             for (pack_name, packing) in packings(D) {
                 for (disp_name, radii) in DISPERSITIES {
-                    let scene = gas_scene::<D>(n, packing, radii, seed);
-                    let label = format!("gas n={n} {pack_name} {disp_name} seed={seed}");
-                    check_all(&label, &scene, (EVENTS_PER_BODY * n as u64).min(MAX_EVENTS));
+                    let label = format!("n={n} {pack_name} {disp_name} seed={seed}");
+                    check(&label, n, packing, radii, seed);
                 }
             }
         }
     }
+}
+
+fn check_gases<const D: usize>(ns: &[usize], seeds: &[u64]) {
+    for_each_gas::<D>(ns, seeds, |label, n, packing, radii, seed| {
+        let scene = gas_scene::<D>(n, packing, radii, seed);
+        let events = (EVENTS_PER_BODY * n as u64).min(MAX_EVENTS);
+        check_all(&format!("gas {label}"), &scene, events);
+    });
 }
 
 #[test]
@@ -886,18 +899,16 @@ fn periodic_gas<const D: usize>(n: usize, packing: f64, radii: (f64, f64), seed:
 }
 
 fn check_periodic_gases<const D: usize>(ns: &[usize], seeds: &[u64]) {
-    for &n in ns {
-        for &seed in seeds {
-            for (pack_name, packing) in packings(D) {
-                for (disp_name, radii) in DISPERSITIES {
-                    let scene = periodic_gas::<D>(n, packing, radii, seed);
-                    let label = format!("periodic gas n={n} {pack_name} {disp_name} seed={seed}");
-                    let events = (EVENTS_PER_BODY * n as u64).min(MAX_EVENTS);
-                    check_periodic(&label, &scene, events, Drive::Events);
-                }
-            }
-        }
-    }
+    for_each_gas::<D>(ns, seeds, |label, n, packing, radii, seed| {
+        let scene = periodic_gas::<D>(n, packing, radii, seed);
+        let events = (EVENTS_PER_BODY * n as u64).min(MAX_EVENTS);
+        check_periodic(
+            &format!("periodic gas {label}"),
+            &scene,
+            events,
+            Drive::Events,
+        );
+    });
 }
 
 #[test]

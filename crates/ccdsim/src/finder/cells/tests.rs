@@ -7,7 +7,28 @@ use crate::generate::{gas, GasConfig};
 use crate::resolve::{resolve_body_body, resolve_body_wall, resolve_exit};
 use crate::scene::Scene;
 use crate::world::World;
-use crate::EventKind;
+use crate::{Event, EventKind};
+
+/// Resolves event `e` (a collision or a box exit) on `world` and tells `finder`.
+fn resolve_and_update<const D: usize>(world: &mut World<D>, finder: &mut Cells<D>, e: Event) {
+    world.set_now(e.time.max(world.now()));
+    let (a, b) = (e.a as usize, e.b as usize);
+    match e.kind {
+        EventKind::Body => {
+            resolve_body_body(world, a, b, e.time);
+            finder.update(world, &[a, b]);
+        }
+        EventKind::Wall if b >= world.walls().len() => {
+            let face = b - world.walls().len();
+            resolve_exit(world, a, face, e.time);
+            finder.update(world, &[a]);
+        }
+        EventKind::Wall => {
+            resolve_body_wall(world, a, b, e.time);
+            finder.update(world, &[a]);
+        }
+    }
+}
 
 /// A finder with the neighbour-list skin `skin`.
 fn with_skin<const D: usize>(skin: f64) -> Cells<D> {
@@ -44,23 +65,7 @@ fn validated_run_with<const D: usize>(scene: &Scene<D>, events: usize, skin: f64
         let Some(e) = got else {
             return finder.stats();
         };
-        world.set_now(e.time.max(world.now()));
-        let (a, b) = (e.a as usize, e.b as usize);
-        match e.kind {
-            EventKind::Body => {
-                resolve_body_body(&mut world, a, b, e.time);
-                finder.update(&world, &[a, b]);
-            }
-            EventKind::Wall if b >= world.walls().len() => {
-                let face = b - world.walls().len();
-                resolve_exit(&mut world, a, face, e.time);
-                finder.update(&world, &[a]);
-            }
-            EventKind::Wall => {
-                resolve_body_wall(&mut world, a, b, e.time);
-                finder.update(&world, &[a]);
-            }
-        }
+        resolve_and_update(&mut world, &mut finder, e);
         finder
             .validate(&world)
             .unwrap_or_else(|e| panic!("after event {k}: {e}"));
@@ -244,23 +249,7 @@ fn edits_behind_the_clock(scene: &Scene<2>, skin: f64) {
             (want.time.to_bits(), want.kind, want.a, want.b)
         );
         // Resolve it, so that the run goes on (box exits included).
-        world.set_now(got.time.max(world.now()));
-        let (a, b) = (got.a as usize, got.b as usize);
-        match got.kind {
-            EventKind::Body => {
-                resolve_body_body(&mut world, a, b, got.time);
-                finder.update(&world, &[a, b]);
-            }
-            EventKind::Wall if b >= world.walls().len() => {
-                let face = b - world.walls().len();
-                resolve_exit(&mut world, a, face, got.time);
-                finder.update(&world, &[a]);
-            }
-            EventKind::Wall => {
-                resolve_body_wall(&mut world, a, b, got.time);
-                finder.update(&world, &[a]);
-            }
-        }
+        resolve_and_update(&mut world, &mut finder, got);
     }
     assert!(finder.stats().undone > 0);
 }
