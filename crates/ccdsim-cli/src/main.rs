@@ -1,10 +1,15 @@
 //! The `ccdsim` command: run, generate, verify and export exact collision simulations.
 
 mod commands;
+mod huge_pages;
 mod progress;
 
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
+
+/// Large blocks get transparent huge pages (see [`huge_pages`]).
+#[global_allocator]
+static ALLOCATOR: huge_pages::HugePageAlloc = huge_pages::HugePageAlloc;
 
 /// Exact event-driven collision simulation of circles (2D) and spheres (3D).
 #[derive(Parser)]
