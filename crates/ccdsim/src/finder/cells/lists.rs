@@ -10,11 +10,14 @@
 //! of those of the bodies it no longer overlaps. Nothing else moves a shell centre, so the
 //! lists always hold exactly the overlapping pairs of the current centres.
 //!
-//! Lists are one flat array with a per-body stride (the first slot of a block holds the
-//! list's length); when a list outgrows the stride, all lists are laid out again with a
-//! stride a quarter larger (amortised: the stride grows a logarithmic number of times).
+//! Lists are one flat array with a per-body stride (the first two slots of a block hold the
+//! list's length and the number of its entries whose body index is above the list owner's,
+//! which come first: a scan then knows which body goes first in the oracle's argument order
+//! without asking per entry); when a list outgrows the stride, all lists are laid out again
+//! with a stride a quarter larger (amortised: the stride grows a logarithmic number of
+//! times).
 
-use super::grid::Grid;
+use super::grid::{Grid, MARGIN};
 use super::key::NONE;
 use super::predict::{Best, Probe};
 use super::Cells;
@@ -24,6 +27,8 @@ use crate::world::{Body, World};
 
 /// Low bits of a list entry holding the image code (`3^3 = 27` codes fit in 5 bits).
 const IMAGE_BITS: u32 = 5;
+/// Header slots of a list block: the length and the number of entries of higher body index.
+const HEADER: usize = 2;
 /// Mask of the image code in a list entry.
 const IMAGE_MASK: u32 = (1 << IMAGE_BITS) - 1;
 /// Most bodies the list mode serves: an entry packs the body index above the image code.
@@ -45,6 +50,16 @@ pub(super) fn entry_body(e: u32) -> usize {
 #[inline(always)]
 pub(super) fn entry_image(e: u32) -> u8 {
     (e & IMAGE_MASK) as u8
+}
+
+/// The entries `above` (of higher body index than some body) and `below` (of lower) in
+/// increasing order, into `out`: every entry of `below` sorts below every entry of `above`.
+fn sorted_parts(above: &[u32], below: &[u32], out: &mut Vec<u32>) {
+    out.clear();
+    out.extend_from_slice(below);
+    out.sort_unstable();
+    out.extend_from_slice(above);
+    out[below.len()..].sort_unstable();
 }
 
 /// The image code of the opposite shift (every base-3 digit `k` becomes `2 − k`).
@@ -93,20 +108,34 @@ pub(super) struct Lists<const D: usize> {
     pub half: f64,
     /// Square of the overlap distance `σ_max + s + slack` (slack against rounding).
     cut_sq: f64,
-    /// Slots per body block: the length, then up to `stride − 1` entries.
+    /// Margin taken off the gaps between a shell centre and the cells around its own when
+    /// cells are skipped at a rebuild (rounding of positions and cell faces).
+    prune_margin: f64,
+    /// Slots per body block: the length, the number of entries of higher body index, then
+    /// up to `stride − HEADER` entries, those of higher body index first.
     stride: usize,
     /// The blocks.
     entries: Vec<u32>,
+    /// Image shift of each image code, padded to 32 codes (entries hold 5-bit codes, so a
+    /// lookup needs no bounds check).
+    shifts: [Vector<D>; 1 << IMAGE_BITS],
+    /// The shift of each image code as the oracle writes it for a partner listed first,
+    /// `0 − shift` (zero components stay +0).
+    neg_shifts: [Vector<D>; 1 << IMAGE_BITS],
     /// Shell centre of each body.
     pub centre: Vec<Vector<D>>,
     /// Shell exit time of each body (infinity: never).
     pub exit: Vec<f64>,
     /// Lists rebuilt since the last `update`: body, time.
     pub log: Vec<(u32, f64)>,
-    /// Scratch: a list being built.
+    /// Scratch: a list being built, its entries of higher body index.
     fresh: Vec<u32>,
-    /// Scratch: a list being replaced.
+    /// Scratch: a list being built, its entries of lower body index.
+    fresh_below: Vec<u32>,
+    /// Scratch: a list being replaced, sorted.
     old: Vec<u32>,
+    /// Scratch: a list being built, sorted, then the entries new to it.
+    sorted: Vec<u32>,
 }
 
 impl<const D: usize> Lists<D> {
@@ -117,19 +146,36 @@ impl<const D: usize> Lists<D> {
         Lists {
             half: 0.5 * skin,
             cut_sq: cut * cut,
+            prune_margin: 2.0 * MARGIN * cut,
+            shifts: [Vector::ZERO; 1 << IMAGE_BITS],
+            neg_shifts: [Vector::ZERO; 1 << IMAGE_BITS],
             stride,
             entries: vec![0; n * stride],
             centre: vec![Vector::ZERO; n],
             exit: vec![f64::INFINITY; n],
             log: Vec::new(),
             fresh: Vec::new(),
+            fresh_below: Vec::new(),
             old: Vec::new(),
+            sorted: Vec::new(),
+        }
+    }
+
+    /// Sets the image shift of each image code (`shifts[code]`, at most 32 codes).
+    pub fn set_shifts(&mut self, shifts: &[Vector<D>]) {
+        self.shifts[..shifts.len()].copy_from_slice(shifts);
+        for (neg, s) in self.neg_shifts.iter_mut().zip(shifts) {
+            *neg = Vector::ZERO - *s;
         }
     }
 
     /// Bytes held (payload).
     pub fn bytes(&self) -> usize {
-        4 * (self.entries.capacity() + self.fresh.capacity() + self.old.capacity())
+        4 * (self.entries.capacity()
+            + self.fresh.capacity()
+            + self.fresh_below.capacity()
+            + self.old.capacity()
+            + self.sorted.capacity())
             + std::mem::size_of::<Vector<D>>() * self.centre.capacity()
             + 8 * self.exit.capacity()
             + std::mem::size_of::<(u32, f64)>() * self.log.capacity()
@@ -138,7 +184,7 @@ impl<const D: usize> Lists<D> {
     /// Longest list the layout holds.
     #[cfg(test)]
     pub fn capacity(&self) -> usize {
-        self.stride - 1
+        self.stride - HEADER
     }
 
     /// Body `i`'s list.
@@ -146,7 +192,17 @@ impl<const D: usize> Lists<D> {
     pub fn list(&self, i: usize) -> &[u32] {
         let at = i * self.stride;
         let len = self.entries[at] as usize;
-        &self.entries[at + 1..at + 1 + len]
+        &self.entries[at + HEADER..at + HEADER + len]
+    }
+
+    /// Body `i`'s list in two parts: the entries whose body index is above `i`, then the
+    /// others.
+    #[inline(always)]
+    pub fn parts(&self, i: usize) -> (&[u32], &[u32]) {
+        let at = i * self.stride;
+        let len = self.entries[at] as usize;
+        let above = (self.entries[at + 1] as usize).min(len);
+        self.entries[at + HEADER..at + HEADER + len].split_at(above)
     }
 
     /// Lays all lists out again so that one of `len` entries fits, in place (the array
@@ -155,49 +211,149 @@ impl<const D: usize> Lists<D> {
     /// the new array only (large reallocations extend in place or are remapped).
     fn grow(&mut self, len: usize) {
         let old = self.stride;
-        let stride = (len + 1).max(old + old / 4 + 1);
+        let stride = (len + HEADER).max(old + old / 4 + 1);
         let n = self.centre.len();
         self.entries.resize(n * stride, 0);
         for i in (1..n).rev() {
-            let used = 1 + self.entries[i * old] as usize;
+            let used = HEADER + self.entries[i * old] as usize;
             self.entries
                 .copy_within(i * old..i * old + used, i * stride);
         }
         self.stride = stride;
     }
 
-    /// Appends `e` to body `i`'s list.
+    /// Adds `e` to body `i`'s list (in the part of its body index).
     fn push(&mut self, i: usize, e: u32) {
         let len = self.list(i).len();
-        if len + 1 >= self.stride {
+        if len + HEADER >= self.stride {
             self.grow(len + 1);
         }
         let at = i * self.stride;
-        self.entries[at + 1 + len] = e;
-        self.entries[at] += 1;
+        let block = &mut self.entries[at..at + HEADER + len + 1];
+        if entry_body(e) > i {
+            // The first entry of the lower part moves to the end to make room.
+            let split = HEADER + block[1] as usize;
+            block[HEADER + len] = block[split];
+            block[split] = e;
+            block[1] += 1;
+        } else {
+            block[HEADER + len] = e;
+        }
+        block[0] += 1;
     }
 
     /// Takes `e` out of body `i`'s list, where it is.
     fn remove(&mut self, i: usize, e: u32) {
         let at = i * self.stride;
         let len = self.entries[at] as usize;
-        let block = &mut self.entries[at + 1..at + 1 + len];
+        let above = self.entries[at + 1] as usize;
+        let block = &mut self.entries[at + HEADER..at + HEADER + len];
         let k = block.iter().position(|&x| x == e);
         debug_assert!(k.is_some(), "entry {e} not in the list of body {i}");
         if let Some(k) = k {
-            block[k] = block[len - 1];
+            if k < above {
+                // The last entry of the upper part fills the hole, the last entry of the
+                // list fills its place.
+                block[k] = block[above - 1];
+                block[above - 1] = block[len - 1];
+                self.entries[at + 1] -= 1;
+            } else {
+                block[k] = block[len - 1];
+            }
             self.entries[at] -= 1;
         }
     }
 
-    /// Replaces body `i`'s list by `new`.
-    fn set(&mut self, i: usize, new: &[u32]) {
-        if new.len() >= self.stride {
-            self.grow(new.len());
+    /// Replaces body `i`'s list by the entries `above` (of higher body index) and `below`
+    /// (of lower).
+    fn set(&mut self, i: usize, above: &[u32], below: &[u32]) {
+        let len = above.len() + below.len();
+        if len + HEADER > self.stride {
+            self.grow(len);
         }
         let at = i * self.stride;
-        self.entries[at] = new.len() as u32;
-        self.entries[at + 1..at + 1 + new.len()].copy_from_slice(new);
+        let block = &mut self.entries[at..at + HEADER + len];
+        block[0] = len as u32;
+        block[1] = above.len() as u32;
+        let (first, second) = block[HEADER..].split_at_mut(above.len());
+        first.copy_from_slice(above);
+        second.copy_from_slice(below);
+    }
+
+    /// The entries of body `i`'s list in increasing order, into `out`: the entries of lower
+    /// body index sort below the others, so each part is sorted on its own.
+    fn sorted_list(&self, i: usize, out: &mut Vec<u32>) {
+        let (above, below) = self.parts(i);
+        sorted_parts(above, below, out);
+    }
+
+    /// Fills `out` with the cells (and image codes) of the 3^D block around the cell of
+    /// coordinates `k` (where a body with shell centre `x` is filed) whose box comes within
+    /// the overlap distance of `x`, and returns how many there are: the others hold no body
+    /// whose shell overlaps. A body of a cell lies in the cell's box up to rounding, and
+    /// along each axis the box of the cell before (after) `k`, with its image shift, ends
+    /// where `k`'s own begins (ends), so the per-axis gaps from `x` to those faces, less
+    /// `prune_margin` for rounding, bound the distance from below. An axis of a single cell
+    /// (its three images) is not pruned.
+    #[inline]
+    fn near_cells(
+        &self,
+        grid: &Grid<D>,
+        k: &[u32; D],
+        x: &Vector<D>,
+        out: &mut [(u32, u8); 27],
+    ) -> usize {
+        let dims = grid.dims();
+        let (lo, hi) = grid.nominal_box(&k.map(|c| c as usize));
+        // Per axis and offset (before, same, after): the linear index part, the image code
+        // part and the squared gap.
+        let mut part = [[0u32; 3]; D];
+        let mut code = [[0u8; 3]; D];
+        let mut gap = [[0.0f64; 3]; D];
+        let mut stride = 1u32;
+        let mut pow = 1u8;
+        for d in 0..D {
+            let n = dims[d] as u32;
+            let kd = k[d];
+            if n == 1 {
+                part[d] = [0; 3];
+                code[d] = [0, pow, 2 * pow];
+            } else {
+                let (before, wrap_before) = if kd == 0 { (n - 1, 0) } else { (kd - 1, 1) };
+                let (after, wrap_after) = if kd + 1 == n { (0, 2) } else { (kd + 1, 1) };
+                part[d] = [before * stride, kd * stride, after * stride];
+                code[d] = [wrap_before * pow, pow, wrap_after * pow];
+                let below = (x[d] - lo[d] - self.prune_margin).max(0.0);
+                let above = (hi[d] - x[d] - self.prune_margin).max(0.0);
+                gap[d] = [below * below, 0.0, above * above];
+            }
+            stride *= n;
+            pow *= 3;
+        }
+        // Axes beyond `D` (2D) have the one offset "same", adding nothing.
+        let reach = |d: usize| if d < D { 3 } else { 1 };
+        let at = |t: &[[u32; 3]; D], d: usize, o: usize| if d < D { t[d][o] } else { 0 };
+        let code_at = |d: usize, o: usize| if d < D { code[d][o] } else { 0 };
+        let gap_at = |d: usize, o: usize| if d < D { gap[d][o] } else { 0.0 };
+        let mut count = 0;
+        for o2 in 0..reach(2) {
+            let g2 = gap_at(2, o2);
+            for o1 in 0..reach(1) {
+                let g1 = g2 + gap_at(1, o1);
+                if g1 > self.cut_sq {
+                    continue;
+                }
+                let row = at(&part, 2, o2) + at(&part, 1, o1);
+                let row_code = code_at(2, o2) + code_at(1, o1);
+                for o0 in 0..3 {
+                    if g1 + gap[0][o0] <= self.cut_sq {
+                        out[count] = (row + part[0][o0], row_code + code[0][o0]);
+                        count += 1;
+                    }
+                }
+            }
+        }
+        count
     }
 
     /// True when the shells of two bodies with centres `xa` and `xb` may overlap through the
@@ -226,14 +382,67 @@ impl<const D: usize> Cells<D> {
     }
 
     /// Offers body `p` every pair of its neighbour list, each by the oracle's narrow phase
-    /// with the oracle's arguments (see `scan_list`).
+    /// with the oracle's arguments (see `scan_list`): the part of partners of higher index
+    /// with `p` first, then the rest with the partner first.
     pub(super) fn scan_neighbour_list(&self, world: &World<D>, p: &Probe<D>, best: &mut Best) {
-        let lists = self.lists();
+        let (above, below) = self.lists().parts(p.i);
         let bodies = world.bodies();
         if self.periodic {
-            self.scan_entries::<true>(bodies, p, lists.list(p.i), best);
+            self.scan_side::<true, true>(bodies, p, above, best);
+            self.scan_side::<true, false>(bodies, p, below, best);
         } else {
-            self.scan_entries::<false>(bodies, p, lists.list(p.i), best);
+            self.scan_side::<false, true>(bodies, p, above, best);
+            self.scan_side::<false, false>(bodies, p, below, best);
+        }
+    }
+
+    /// Offers body `p` the pairs of the list entries `entries`, all of higher body index
+    /// (`PROBE_FIRST`) or all of lower: the same calls as `scan_entries`, the order chosen
+    /// once for the whole part.
+    #[inline(always)]
+    fn scan_side<const PERIODIC: bool, const PROBE_FIRST: bool>(
+        &self,
+        bodies: &[Body<D>],
+        p: &Probe<D>,
+        entries: &[u32],
+        best: &mut Best,
+    ) {
+        let i = p.i;
+        let lists = self.lists();
+        for &e in entries {
+            let j = entry_body(e);
+            let image = entry_image(e);
+            let b = &bodies[j];
+            debug_assert_eq!(PROBE_FIRST, i < j);
+            let t = match (PERIODIC, PROBE_FIRST) {
+                (true, true) => toi_circle_circle_shifted(
+                    &p.b.motion,
+                    p.b.radius,
+                    &b.motion,
+                    b.radius,
+                    lists.shifts[usize::from(image)],
+                ),
+                (true, false) => toi_circle_circle_shifted(
+                    &b.motion,
+                    b.radius,
+                    &p.b.motion,
+                    p.b.radius,
+                    lists.neg_shifts[usize::from(image)],
+                ),
+                (false, true) => toi_circle_circle(&p.b.motion, p.b.radius, &b.motion, b.radius),
+                (false, false) => toi_circle_circle(&b.motion, b.radius, &p.b.motion, p.b.radius),
+            };
+            if let Some(t) = t {
+                let bits = super::key::ordered(t);
+                if bits <= best.threshold() {
+                    let key = if PROBE_FIRST {
+                        super::key::Key::body_bits(bits, i, j)
+                    } else {
+                        super::key::Key::body_bits(bits, j, i)
+                    };
+                    best.offer(key, image);
+                }
+            }
         }
     }
 
@@ -247,6 +456,7 @@ impl<const D: usize> Cells<D> {
         best: &mut Best,
     ) {
         let i = p.i;
+        let shifts = &self.lists().shifts;
         for &e in entries {
             let j = entry_body(e);
             let image = entry_image(e);
@@ -254,7 +464,7 @@ impl<const D: usize> Cells<D> {
             let probe_first = i < j;
             let (a, c) = if probe_first { (&p.b, b) } else { (b, &p.b) };
             let t = if PERIODIC {
-                let shift = self.shifts[image as usize];
+                let shift = shifts[usize::from(image)];
                 // The partner's shift as the oracle writes it: `0 − s` keeps zeros +0.
                 let s = if probe_first {
                     shift
@@ -279,39 +489,48 @@ impl<const D: usize> Cells<D> {
         for i in 0..n {
             self.collect_overlapping(i);
             let lists = self.lists_mut();
-            let fresh = std::mem::take(&mut lists.fresh);
-            lists.set(i, &fresh);
-            lists.fresh = fresh;
+            let (above, below) = (
+                std::mem::take(&mut lists.fresh),
+                std::mem::take(&mut lists.fresh_below),
+            );
+            lists.set(i, &above, &below);
+            lists.fresh = above;
+            lists.fresh_below = below;
         }
     }
 
-    /// Fills the scratch list `fresh` with every body whose shell overlaps body `i`'s, from
-    /// the neighbour cells of `i`'s cell.
+    /// Fills the scratch lists `fresh` (bodies of higher index) and `fresh_below` (lower) with
+    /// every body whose shell overlaps body `i`'s, from
+    /// the neighbour cells of `i`'s cell whose box comes within the overlap distance of its
+    /// shell centre (see `Lists::near_cells`).
     fn collect_overlapping(&mut self, i: usize) {
-        let k = self.grid.coords_of(i);
-        let mut fresh = std::mem::take(&mut self.lists_mut().fresh);
-        fresh.clear();
+        let mut above = std::mem::take(&mut self.lists_mut().fresh);
+        let mut below = std::mem::take(&mut self.lists_mut().fresh_below);
+        above.clear();
+        below.clear();
         let lists = self.lists();
         let xi = lists.centre[i];
         let grid = &self.grid;
-        let mut scan = |c: u32, shift: &Vector<D>, image: u8| {
+        let mut cells = [(0u32, 0u8); 27];
+        let count = lists.near_cells(grid, &grid.coords_of(i), &xi, &mut cells);
+        for &(c, image) in &cells[..count] {
+            let shift = &self.shifts[image as usize];
             let mut j = grid.first(c);
             while j != NONE {
                 let ju = j as usize;
                 if lists.overlap(&xi, &lists.centre[ju], shift) && ju != i {
-                    fresh.push(entry(ju, image));
+                    if ju > i {
+                        above.push(entry(ju, image));
+                    } else {
+                        below.push(entry(ju, image));
+                    }
                 }
                 j = grid.next_in_cell(j);
             }
-        };
-        if let Some(cells) = grid.interior_neighbours(&k) {
-            for c in cells {
-                scan(c, &Vector::ZERO, Grid::<D>::ZERO_IMAGE);
-            }
-        } else {
-            grid.visit_neighbours(&k, scan);
         }
-        self.lists_mut().fresh = fresh;
+        let lists = self.lists_mut();
+        lists.fresh = above;
+        lists.fresh_below = below;
     }
 
     /// Moves body `i`'s shell centre to its position at `t`, files it in the cell of that
@@ -327,31 +546,42 @@ impl<const D: usize> Cells<D> {
         self.grid.relocate(i, k);
         self.collect_overlapping(i);
         let lists = self.lists_mut();
-        let fresh = std::mem::take(&mut lists.fresh);
+        let (above, below) = (
+            std::mem::take(&mut lists.fresh),
+            std::mem::take(&mut lists.fresh_below),
+        );
+        // The old and the new list, sorted (copies: the new list keeps its order), are merged:
+        // entries only in the old one leave their partner's list, entries only in the new one
+        // join it and go to `added`.
         let mut old = std::mem::take(&mut lists.old);
-        old.clear();
-        old.extend_from_slice(lists.list(i));
-        for &e in &old {
-            if !fresh.contains(&e) {
+        lists.sorted_list(i, &mut old);
+        let mut added = std::mem::take(&mut lists.sorted);
+        sorted_parts(&above, &below, &mut added);
+        let (mut a, mut b, mut kept) = (0, 0, 0);
+        while a < old.len() || b < added.len() {
+            if b == added.len() || (a < old.len() && old[a] < added[b]) {
+                let e = old[a];
                 lists.remove(entry_body(e), entry(i, opposite::<D>(entry_image(e))));
-            }
-        }
-        // Entries new to the list go to the front of `old`'s tail: reuse `old` for them.
-        let gone = old.len();
-        for &e in &fresh {
-            if !old[..gone].contains(&e) {
+                a += 1;
+            } else if a == old.len() || added[b] < old[a] {
+                let e = added[b];
                 lists.push(entry_body(e), entry(i, opposite::<D>(entry_image(e))));
-                old.push(e);
+                added[kept] = e;
+                kept += 1;
+                b += 1;
+            } else {
+                a += 1;
+                b += 1;
             }
         }
-        lists.set(i, &fresh);
+        added.truncate(kept);
+        lists.set(i, &above, &below);
         if let Some(best) = best {
             let p = Probe::of(world, i);
-            let added = &old[gone..];
             if self.periodic {
-                self.scan_entries::<true>(world.bodies(), &p, added, best);
+                self.scan_entries::<true>(world.bodies(), &p, &added, best);
             } else {
-                self.scan_entries::<false>(world.bodies(), &p, added, best);
+                self.scan_entries::<false>(world.bodies(), &p, &added, best);
             }
             let walls = self.grid.walls_of(self.grid.cell_of(i));
             if !walls.is_empty() {
@@ -359,8 +589,10 @@ impl<const D: usize> Cells<D> {
             }
         }
         let lists = self.lists_mut();
-        lists.fresh = fresh;
+        lists.fresh = above;
+        lists.fresh_below = below;
         lists.old = old;
+        lists.sorted = added;
     }
 
     /// Processes body `i`'s shell exit, due at `time`: its list is rebuilt around its
@@ -436,6 +668,13 @@ impl<const D: usize> Cells<D> {
                     "body {i} is not filed in the cell of its shell centre"
                 ));
             }
+            let (above, below) = lists.parts(i);
+            if above.iter().any(|&e| entry_body(e) <= i) || below.iter().any(|&e| entry_body(e) > i)
+            {
+                return Err(format!(
+                    "body {i}: list entries of higher body index do not come first"
+                ));
+            }
             let list = lists.list(i);
             for (a, &e) in list.iter().enumerate() {
                 if list[..a].contains(&e) {
@@ -494,120 +733,4 @@ impl<const D: usize> Cells<D> {
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-    use proptest::prelude::*;
-
-    fn motion(pos: [f64; 2], vel: [f64; 2], time: f64) -> Motion<2> {
-        Motion {
-            pos: Vector(pos),
-            vel: Vector(vel),
-            time,
-        }
-    }
-
-    #[test]
-    fn shell_exit_times() {
-        // From the centre at unit speed: h later.
-        let m = motion([1.0, 2.0], [0.0, -1.0], 3.0);
-        assert_eq!(shell_exit_time(&m, &Vector([1.0, 2.0]), 0.25, 3.0), 3.25);
-        // Referenced later on the same path: the same exit.
-        let t = shell_exit_time(&m, &Vector([1.0, 2.0]), 0.25, 3.1);
-        assert!((t - 3.25).abs() < 1e-12, "{t}");
-        // Entering from behind the shell's far side: the later root.
-        let m = motion([0.0, 0.0], [2.0, 0.0], 0.0);
-        let t = shell_exit_time(&m, &Vector([1.0, 0.0]), 0.5, 0.5);
-        assert!((t - 0.75).abs() < 1e-12, "{t}");
-        // At rest: never.
-        let m = motion([0.0, 0.0], [0.0, 0.0], 0.0);
-        assert_eq!(
-            shell_exit_time(&m, &Vector([0.1, 0.0]), 0.5, 0.0),
-            f64::INFINITY
-        );
-        // Outside and moving away: at once (or earlier).
-        let m = motion([2.0, 0.0], [1.0, 0.0], 0.0);
-        assert!(shell_exit_time(&m, &Vector([0.0, 0.0]), 0.5, 0.0) <= 0.0);
-        // Far along a long flight (no cancellation): h / |v| after the reference point.
-        let m = motion([0.0, 0.0], [3.0, 4.0], 0.0);
-        let c = m.at(1e6);
-        let t = shell_exit_time(&m, &c, 0.05, 1e6);
-        assert!((t - (1e6 + 0.01)).abs() < 1e-8, "{t}");
-    }
-
-    #[test]
-    fn entries_and_images() {
-        let e = entry(123_456, 26);
-        assert_eq!((entry_body(e), entry_image(e)), (123_456, 26));
-        assert_eq!(opposite::<2>(0), 8);
-        assert_eq!(opposite::<2>(4), 4);
-        assert_eq!(opposite::<3>(13), 13);
-        assert_eq!(opposite::<3>(1), 25);
-        let mut lists = Lists::<2>::new(3, 0.1, 1.1);
-        for j in 0..20 {
-            lists.push(1, entry(j, 4));
-        }
-        assert_eq!(lists.list(1).len(), 20);
-        assert!(lists.capacity() >= 20);
-        for j in 0..30 {
-            lists.push(2, entry(j, 3));
-        }
-        let want: Vec<u32> = (0..30).map(|j| entry(j, 3)).collect();
-        assert_eq!(lists.list(2), &want[..]);
-        assert_eq!(lists.list(1).len(), 20);
-        assert!(lists.list(1).iter().all(|&e| entry_image(e) == 4));
-        lists.remove(1, entry(5, 4));
-        assert_eq!(lists.list(1).len(), 19);
-        assert!(!lists.list(1).contains(&entry(5, 4)));
-        assert!(lists.list(0).is_empty());
-        assert_eq!(lists.list(2), &want[..]);
-    }
-
-    #[test]
-    fn overlap_is_symmetric() {
-        let mut lists = Lists::<2>::new(2, 0.1, 1.1);
-        let shift = Vector([-10.0, 0.0]);
-        let mirrored = Vector::ZERO - shift;
-        for (x0, x1, want) in [
-            ([0.1, 0.3], [9.35, 0.7], true),
-            ([0.1, 0.3], [9.0, 0.7], false),
-            ([0.1 + 1e-17, 0.3], [9.2 + 0.1 * 3.0, 0.3], true),
-        ] {
-            lists.centre[0] = Vector(x0);
-            lists.centre[1] = Vector(x1);
-            let a = lists.overlap(&lists.centre[0], &lists.centre[1], &shift);
-            let b = lists.overlap(&lists.centre[1], &lists.centre[0], &mirrored);
-            assert_eq!((a, b), (want, want), "{x0:?} {x1:?}");
-        }
-    }
-
-    proptest! {
-        /// Up to its exit time, a body stays within the shell (up to rounding), and at the
-        /// exit it is on the shell's surface.
-        #[test]
-        fn bodies_stay_in_their_shell_until_the_exit(
-            px in -50.0f64..50.0, py in -50.0f64..50.0,
-            vx in -5.0f64..5.0, vy in -5.0f64..5.0,
-            h in 0.001f64..1.0, t0 in -10.0f64..100.0, lead in 0.0f64..3.0,
-            frac in 0.0f64..1.0, u in 0.0f64..1.0,
-        ) {
-            let m = motion([px, py], [vx, vy], t0);
-            prop_assume!(vx * vx + vy * vy > 1e-6);
-            // A centre the body passes at t0 + lead, moved off its path by up to h·frac.
-            let tc = t0 + lead;
-            let off = Vector([-vy, vx]) * (h * frac / (vx * vx + vy * vy).sqrt());
-            let centre = m.at(tc) + off;
-            // Reference time: the body is inside the shell then.
-            let t_ref = tc;
-            let exit = shell_exit_time(&m, &centre, h, t_ref);
-            prop_assert!(exit >= t_ref);
-            let tol = 1e-9 * (1.0 + m.at(exit).norm());
-            for k in 0..=16 {
-                let t = t_ref + (exit - t_ref) * f64::from(k) / 16.0;
-                prop_assert!((m.at(t) - centre).norm() <= h + tol);
-            }
-            let t = t_ref + (exit - t_ref) * u;
-            prop_assert!((m.at(t) - centre).norm() <= h + tol);
-            prop_assert!(((m.at(exit) - centre).norm() - h).abs() <= tol);
-        }
-    }
-}
+mod tests;

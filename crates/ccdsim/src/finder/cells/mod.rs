@@ -116,8 +116,14 @@
 //!   symmetric bit for bit (the displacement seen from `j` is the exact negation), and at
 //!   every rebuild of `i` the lists of the bodies it gains or loses are updated; since only
 //!   a rebuild moves a centre, the lists always equal the relation on the current centres.
+//! * A rebuild of `N(i)` applies that test to the bodies of the cells of the 3^D block around
+//!   the cell of `X_i` whose box, moved by the cell's image shift, comes within the overlap
+//!   distance of `X_i`, per-axis gaps taken less `2·MARGIN·(σ_max + s + slack)`: the centres
+//!   of a cell's bodies lie in its box up to rounding (far below that margin), so a skipped
+//!   cell holds no body whose shell overlaps `i`'s, and the lists still equal the relation.
 //! * A full recompute of `i` scans `N(i)` (same pure functions, same argument order and
-//!   shift convention as above), the walls of the cell of `X_i` and the box exit. A rebuild
+//!   shift convention as above: a list keeps its partners of higher index first, so the
+//!   order is chosen once per part, and `0 − s` is computed once per image code), the walls of the cell of `X_i` and the box exit. A rebuild
 //!   at a shell exit moves `X_i` to the body's position then, refiles it, rebuilds `N(i)`
 //!   and offers `i` only the pairs new to `N(i)` and the walls new to its cell, then
 //!   schedules its next exit. A state change that leaves the stored position outside the
@@ -539,6 +545,9 @@ impl<const D: usize> Finder<D> for Cells<D> {
         self.shifts = (0..3usize.pow(D as u32))
             .map(|code| self.grid.shift_of(code as u8))
             .collect();
+        if let Some(lists) = &mut self.lists {
+            lists.set_shifts(&self.shifts);
+        }
         self.cached = vec![Cached::NONE; n];
         self.queue = TournamentQueue::new(n);
         self.log = Vec::new();
