@@ -984,3 +984,47 @@ fn small_periodic_boxes_and_long_flights() {
     };
     check_periodic("small periodic box 3D", &s3, 600, Drive::Events);
 }
+
+/// A proptest case found in CI: a heavy ball bouncing between two walls with restitution 0.11
+/// slows down by a factor of about 9 per bounce, so after 170 events the clock is near 10¹⁶²
+/// and speeds near 10⁻¹⁶¹; a light ball rests in its way.
+#[test]
+fn inelastic_collapse_to_huge_times() {
+    let body = |pos: [f64; 2], vel: [f64; 2], radius: f64| BodySpec {
+        id: None,
+        pos: Vector(pos),
+        vel: Vector(vel),
+        radius,
+        mass: None,
+    };
+    let corner = |x: f64, y: f64| Vector([x, y]);
+    let scene = Scene::<2> {
+        settings: Settings {
+            restitution: 0.11307834162367694,
+        },
+        bodies: vec![
+            body([2.0, 2.0], [0.0, 0.0], 0.05),
+            body([5.0, 2.0], [0.0, -0.8133087383228662], 0.7800648306522086),
+        ],
+        walls: vec![
+            Wall::Segment {
+                a: corner(0.0, 0.0),
+                b: corner(7.0, 0.0),
+            },
+            Wall::Segment {
+                a: corner(7.0, 0.0),
+                b: corner(7.0, 7.0),
+            },
+            Wall::Segment {
+                a: corner(7.0, 7.0),
+                b: corner(0.0, 7.0),
+            },
+            Wall::Segment {
+                a: corner(0.0, 7.0),
+                b: corner(0.0, 0.0),
+            },
+        ],
+        ..Scene::default()
+    };
+    check_all("inelastic collapse", &scene, 300);
+}
