@@ -241,6 +241,14 @@ impl<const D: usize> Grid<D> {
         self.coords[i]
     }
 
+    /// True when the cell of coordinates `k` is first or last along some axis: in a periodic
+    /// world only a body filed in such a cell can reach a face of the box before it leaves its
+    /// cell (every other cell is at least one whole cell away from every face).
+    #[inline]
+    pub fn is_border(&self, k: &[u32; D]) -> bool {
+        (0..D).any(|d| k[d] == 0 || k[d] as usize + 1 == self.dims[d])
+    }
+
     #[inline]
     fn linear_u32(&self, k: &[u32; D]) -> u32 {
         k.iter()

@@ -587,6 +587,12 @@ impl<const D: usize> Cells<D> {
             if !walls.is_empty() {
                 self.offer_walls(world, &p, walls, self.grid.walls_of(from), best);
             }
+            if !self
+                .grid
+                .is_border(&self.grid.coords(from).map(|x| x as u32))
+            {
+                self.scan_exit(world, &p, best);
+            }
         }
         let lists = self.lists_mut();
         lists.fresh = above;

@@ -9,8 +9,8 @@
 //!   that come within `r_max` (times the same margin) of it.
 //! * **Predictions** ([`predict`]): for each body `i` the finder caches `best(i)`, the minimum
 //!   under [`Event`]'s full order (time, kind, a, b) of the times of impact of `i` with every
-//!   body in its neighbourhood, every wall of its cell and (periodic worlds) its box exit,
-//!   together with the image of the partner it was computed for. Each time is computed by the
+//!   body in its neighbourhood, every wall of its cell and (periodic worlds, when its cell is
+//!   a *border cell*, first or last along some axis) its box exit, together with the image of the partner it was computed for. Each time is computed by the
 //!   same pure function on the same stored states, with the same argument order, as
 //!   [`all_pairs_next_event`](super::all_pairs_next_event): a cached time *is* the oracle's
 //!   time for that pair (image), bit for bit, as long as neither body's state changed.
@@ -58,11 +58,13 @@
 //!    After a promotion `second(i)` is unknown until the next full scan.
 //! 2. *Every live term whose pair is responsible is covered by a key.* Call a pair responsible
 //!    when the bodies are in neighbouring cells (a body and a wall: the wall is listed by the
-//!    body's cell). The pair's term was computed at the later of (a) the last state change of
+//!    body's cell; a body and its box exit: the body is in a border cell, as if the box's
+//!    faces were walls listed by the border cells only). The pair's term was computed at the later of (a) the last state change of
 //!    either body (full recompute of that body, which scans its whole neighbourhood and its
 //!    cell's walls), (b) the last crossing of either body that made them neighbours (the layer
 //!    scan; for a body and a wall, the last crossing of the body from a cell that did not list
-//!    the wall into one that does). Since then the term is covered by that body's records: merges only lower them,
+//!    the wall into one that does; for a box exit, the last crossing of the body from a cell
+//!    that is not a border cell into one that is). Since then the term is covered by that body's records: merges only lower them,
 //!    a promotion keeps the coverage (see 1), and a full recompute covers the pair again.
 //!
 //! Let `E` be the oracle's event: the minimum live term, at time `t`. While a crossing or a
@@ -72,7 +74,8 @@
 //! `≤ E`, because `E`'s pair is responsible: every crossing of `E`'s bodies before `t` has been
 //! processed, so at time `t` each body lies in its cell, up to the rounding of crossing times
 //! (far below the margin); at `t` the two bodies are `σ ≤ σ_max` apart (a body is within `r`
-//! of its wall), and cells that are not neighbours are at least one cell, `σ_max (1 + MARGIN)`,
+//! of its wall; a body leaving the box is on a face of it, and only border cells reach the
+//! faces: every other cell is at least one whole cell away from them), and cells that are not neighbours are at least one cell, `σ_max (1 + MARGIN)`,
 //! apart. So the top *is* `E`, ties included, since keys order exactly like events.
 //!
 //! Outer cells of an open world extend to infinity, so bodies that leave the initial bounding
@@ -123,16 +126,18 @@
 //!   cell holds no body whose shell overlaps `i`'s, and the lists still equal the relation.
 //! * A full recompute of `i` scans `N(i)` (same pure functions, same argument order and
 //!   shift convention as above: a list keeps its partners of higher index first, so the
-//!   order is chosen once per part, and `0 − s` is computed once per image code), the walls of the cell of `X_i` and the box exit. A rebuild
-//!   at a shell exit moves `X_i` to the body's position then, refiles it, rebuilds `N(i)`
-//!   and offers `i` only the pairs new to `N(i)` and the walls new to its cell, then
+//!   order is chosen once per part, and `0 − s` is computed once per image code), the walls
+//!   of the cell of `X_i` and, if that cell is a border cell, the box exit. A rebuild at a
+//!   shell exit moves `X_i` to the body's position then, refiles it, rebuilds `N(i)` and
+//!   offers `i` only the pairs new to `N(i)`, the walls new to its cell and, if it moved
+//!   from a cell that is not a border cell into one that is, its box exit, then
 //!   schedules its next exit. A state change that leaves the stored position outside the
 //!   shell (a box exit moves it by a period, `L > 2σ_max ≥ 4h`) rebuilds the list at the
 //!   change time before the recompute.
 //!
 //! Why it is exact: the invariants of the proof above hold with "responsible" read as "listed
 //! in each other's lists" (a body and a wall: the wall is filed for the cell of the body's
-//! shell centre), since a pair's term was computed at the later of the last state change of
+//! shell centre; a body and its box exit: that cell is a border cell), since a pair's term was computed at the later of the last state change of
 //! either body (full recompute: the whole list) and the rebuild that listed the pair (the
 //! pairs new to the list are offered). A stale entry cannot occur: lists equal the overlap
 //! relation. Let `E` be the oracle's event at time `t`, pair `(i, j)`. Every shell exit before
@@ -145,7 +150,9 @@
 //! is wider than twice the contact distance, so the contact image is the listed one; on an
 //! axis of a single cell all three images are tried, like the oracle does, and each that
 //! overlaps is listed). For a wall, the centre is within `r_i` of it at `t`, so the wall is
-//! within `r_i + h + rounding` of the cell of `X_i` and is filed there. So `E` is covered and
+//! within `r_i + h + rounding` of the cell of `X_i` and is filed there. For a box exit, the
+//! body is on a face at `t`, so `X_i` is within `h + rounding` of that face, and cells are
+//! wider than that: the cell of `X_i` is a border cell. So `E` is covered and
 //! the top of the queue is `E`, as above.
 //!
 //! Edits behind the clock: a list rebuilt at `t_r` after an edit's time `t` leaves its body
@@ -355,10 +362,19 @@ impl<const D: usize> Cells<D> {
     }
 
     /// Checks body `i`'s cached records, in either mode: no cached event that never happens,
-    /// the runner-up not before the best, and the partner's recorded change count neither
+    /// the runner-up not before the best, the partner's recorded change count neither
     /// ahead of the partner nor, when equal, naming an event that no longer re-evaluates bit
-    /// for bit.
+    /// for bit, and, for a body filed in a border cell of a periodic world, its box exit
+    /// covered (not before its cached event, which is a lower bound of its covered terms).
     fn validate_cached(&self, world: &World<D>, i: usize) -> Result<(), String> {
+        if self.periodic && self.grid.is_border(&self.grid.coords_of(i)) {
+            let exit = self.box_exit(world, &Probe::of(world, i));
+            if exit.is_some_and(|exit| exit < self.cached[i].best) {
+                return Err(format!(
+                    "body {i}: its box exit is before its cached event in a border cell"
+                ));
+            }
+        }
         for k in [self.cached[i].best, self.cached[i].second] {
             if k.time == Key::NEVER.time && !k.is_never() {
                 return Err(format!("body {i}: cached an event that never happens"));
@@ -430,6 +446,13 @@ impl<const D: usize> Cells<D> {
         let mut best = self.records(i);
         self.scan_entered_layer(world, &p, axis, up, &mut best);
         self.scan_entered_walls(world, &p, from, &mut best);
+        if self.periodic
+            && !self
+                .grid
+                .is_border(&self.grid.coords(from).map(|x| x as u32))
+        {
+            self.scan_exit(world, &p, &mut best);
+        }
         self.store(world, i, &best, false);
         self.schedule(i, &p.b.motion);
     }
