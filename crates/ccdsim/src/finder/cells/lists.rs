@@ -542,6 +542,7 @@ impl<const D: usize> Cells<D> {
         let x = world.motion(i).at(t);
         self.lists_mut().centre[i] = x;
         let from = self.grid.cell_of(i);
+        let from_border = self.grid.is_border(&self.grid.coords_of(i));
         let k = self.grid.coords_of_point(&x);
         self.grid.relocate(i, k);
         self.collect_overlapping(i);
@@ -587,10 +588,7 @@ impl<const D: usize> Cells<D> {
             if !walls.is_empty() {
                 self.offer_walls(world, &p, walls, self.grid.walls_of(from), best);
             }
-            if !self
-                .grid
-                .is_border(&self.grid.coords(from).map(|x| x as u32))
-            {
+            if !from_border {
                 self.scan_exit(world, &p, best);
             }
         }

@@ -440,17 +440,14 @@ impl<const D: usize> Cells<D> {
         let code = self.cached[i].cross & !KEY_IS_CROSSING;
         let (axis, up) = ((code >> 1) as usize, code & 1 == 1);
         let from = self.grid.cell_of(i);
+        let from_border = self.grid.is_border(&self.grid.coords_of(i));
         self.grid.step(i, axis, up);
         self.log.push((i as u32, code, time));
         let p = Probe::of(world, i);
         let mut best = self.records(i);
         self.scan_entered_layer(world, &p, axis, up, &mut best);
         self.scan_entered_walls(world, &p, from, &mut best);
-        if self.periodic
-            && !self
-                .grid
-                .is_border(&self.grid.coords(from).map(|x| x as u32))
-        {
+        if self.periodic && !from_border {
             self.scan_exit(world, &p, &mut best);
         }
         self.store(world, i, &best, false);
