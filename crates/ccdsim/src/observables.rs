@@ -74,7 +74,7 @@ pub fn temperature<const D: usize>(world: &World<D>) -> f64 {
     }
     let mut k = world.kinetic_energy();
     if world.periodic().is_some() {
-        let m: f64 = world.masses().iter().sum();
+        let m: f64 = world.masses().sum();
         k -= 0.5 * world.momentum().norm_sq() / m;
     }
     2.0 * k.max(0.0) / (D as f64 * n as f64)

@@ -33,7 +33,7 @@ pub fn resolve_body_body_contact<const D: usize>(
 ) -> Contact<D> {
     let (pi, pj) = (world.position_at(i, t), world.position_at(j, t));
     let (vi, vj) = (world.velocity(i), world.velocity(j));
-    let (mi, mj) = (world.masses()[i], world.masses()[j]);
+    let (mi, mj) = (world.mass(i), world.mass(j));
     let d = match world.periodic() {
         Some(size) => min_image(pj - pi, &size),
         None => pj - pi,

@@ -247,7 +247,7 @@ impl<const D: usize> Simulation<D> {
                 // negation (it rounds halves away from zero), so this is the virial term
                 // `r_ab · Δv_a · m_a` without taking the image a second time.
                 let r = -contact.separation;
-                self.stats.virial += r.dot(w.velocity(a) - before) * w.masses()[a];
+                self.stats.virial += r.dot(w.velocity(a) - before) * w.mass(a);
                 self.finder.update(&self.world, &[a, b]);
                 let w = &self.world;
                 Collision {

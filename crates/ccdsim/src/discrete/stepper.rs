@@ -269,7 +269,7 @@ impl<const D: usize> DiscreteStepper<D> {
             };
             let depth = sigma - dist;
             if depth > 0.0 {
-                let (mi, mj) = (self.world.masses()[i], self.world.masses()[j]);
+                let (mi, mj) = (self.world.mass(i), self.world.mass(j));
                 let (vi, vj) = (self.world.velocity(i), self.world.velocity(j));
                 let push = normal * depth;
                 self.world
