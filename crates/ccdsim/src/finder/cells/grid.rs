@@ -61,8 +61,6 @@ pub(super) struct Grid<const D: usize> {
     head: Vec<u32>,
     /// Next body in the same cell, or `NONE`.
     next: Vec<u32>,
-    /// Cell coordinates of each body.
-    coords: Vec<[u32; D]>,
     /// Walls within reach of cell `c`: `wall_ids[wall_start[c]..wall_start[c + 1]]` (empty
     /// vectors when the world has no walls).
     wall_start: Vec<u32>,
@@ -185,7 +183,6 @@ impl<const D: usize> Grid<D> {
             interior,
             head: vec![NONE; s],
             next: vec![NONE; n],
-            coords: vec![[u32::MAX; D]; n],
             wall_start: Vec::new(),
             wall_ids: Vec::new(),
         }
@@ -205,7 +202,6 @@ impl<const D: usize> Grid<D> {
     pub fn bytes(&self) -> usize {
         4 * (self.head.capacity()
             + self.next.capacity()
-            + D * self.coords.capacity()
             + self.wall_start.capacity()
             + self.wall_ids.capacity())
             + std::mem::size_of::<isize>() * (self.interior.capacity() + 3usize.pow(D as u32))
@@ -246,16 +242,10 @@ impl<const D: usize> Grid<D> {
         std::array::from_fn(|d| (c / self.stride[d]) % self.dims[d])
     }
 
-    /// Linear index of the cell body `i` is filed in.
+    /// Linear index of the cell of coordinates `k`.
     #[inline]
-    pub fn cell_of(&self, i: usize) -> u32 {
-        self.linear_u32(&self.coords[i])
-    }
-
-    /// Cell coordinates of body `i`.
-    #[inline]
-    pub fn coords_of(&self, i: usize) -> [u32; D] {
-        self.coords[i]
+    pub fn cell_at(&self, k: &[u32; D]) -> u32 {
+        self.linear_u32(k)
     }
 
     /// True when the cell of coordinates `k` is first or last along some axis: in a periodic
@@ -274,21 +264,22 @@ impl<const D: usize> Grid<D> {
             .sum::<usize>() as u32
     }
 
-    /// Files body `i` (not filed anywhere) in the cell of coordinates `k`.
-    pub fn insert(&mut self, i: usize, k: [usize; D]) {
+    /// Files body `i` (not filed anywhere) in the cell of coordinates `k`, and returns the
+    /// coordinates the caller must keep for it (the grid does not store them: the finder
+    /// keeps them beside its prediction, which whoever reads them also reads).
+    pub fn insert(&mut self, i: usize, k: [usize; D]) -> [u32; D] {
         let k = k.map(|x| x as u32);
         let c = self.linear_u32(&k) as usize;
         self.next[i] = self.head[c];
         self.head[c] = i as u32;
-        self.coords[i] = k;
+        k
     }
 
-    /// Takes body `i` out of its cell.
-    pub fn remove(&mut self, i: usize) {
-        let c = self.cell_of(i) as usize;
+    /// Takes body `i` out of its cell, of coordinates `k`.
+    pub fn remove(&mut self, i: usize, k: &[u32; D]) {
+        let c = self.linear_u32(k) as usize;
         self.unlink(i, c);
         self.next[i] = NONE;
-        self.coords[i] = [u32::MAX; D];
     }
 
     /// Unlinks body `i` from the list of cell `c`, where it is filed.
@@ -307,12 +298,11 @@ impl<const D: usize> Grid<D> {
         }
     }
 
-    /// True when the point `p` lies in the closed box of the cell body `i` is filed in (see
+    /// True when the point `p` lies in the closed box of the cell of coordinates `k` (see
     /// [`Grid::cell_box`]): a few comparisons, where finding the cell of a point takes a
     /// division and a conversion per axis.
     #[inline]
-    pub fn holds(&self, i: usize, p: &Vector<D>) -> bool {
-        let k = &self.coords[i];
+    pub fn holds(&self, k: &[u32; D], p: &Vector<D>) -> bool {
         let open = self.period.is_none();
         for d in 0..D {
             let kd = k[d] as usize;
@@ -333,21 +323,22 @@ impl<const D: usize> Grid<D> {
         true
     }
 
-    /// Moves body `i` to the cell of coordinates `k`.
-    pub fn relocate(&mut self, i: usize, k: [usize; D]) {
-        if self.coords[i] != k.map(|x| x as u32) {
-            self.remove(i);
-            self.insert(i, k);
+    /// Moves body `i`, filed at coordinates `coords`, to the cell of coordinates `k`, and
+    /// updates `coords`.
+    pub fn relocate(&mut self, i: usize, coords: &mut [u32; D], k: [usize; D]) {
+        if *coords != k.map(|x| x as u32) {
+            self.remove(i, coords);
+            *coords = self.insert(i, k);
         }
     }
 
-    /// Moves body `i` one cell along `axis` (`up` or down); that cell must exist without
-    /// wrapping around a periodic box.
+    /// Moves body `i`, filed at coordinates `coords`, one cell along `axis` (`up` or down),
+    /// and updates `coords`; that cell must exist without wrapping around a periodic box.
     #[inline(always)]
-    pub fn step(&mut self, i: usize, axis: usize, up: bool) {
-        let c = self.cell_of(i) as usize;
+    pub fn step(&mut self, i: usize, coords: &mut [u32; D], axis: usize, up: bool) {
+        let c = self.linear_u32(coords) as usize;
         self.unlink(i, c);
-        let kd = &mut self.coords[i][axis];
+        let kd = &mut coords[axis];
         let c = if up {
             *kd += 1;
             c + self.stride[axis]
@@ -709,9 +700,10 @@ impl<const D: usize> Grid<D> {
         self.wall_ids = pairs.into_iter().map(|(_, w)| w).collect();
     }
 
-    /// Checks the lists: every body filed once, in the cell recorded for it.
-    pub fn validate(&self) -> Result<(), String> {
-        let mut seen = vec![false; self.coords.len()];
+    /// Checks the lists: every body filed once, in the cell of the coordinates `coords(i)`
+    /// recorded for it.
+    pub fn validate(&self, coords: impl Fn(usize) -> [u32; D]) -> Result<(), String> {
+        let mut seen = vec![false; self.next.len()];
         for c in 0..self.head.len() {
             let mut at = self.head[c];
             while at != NONE {
@@ -720,10 +712,10 @@ impl<const D: usize> Grid<D> {
                     return Err(format!("body {i} filed twice"));
                 }
                 seen[i] = true;
-                if self.cell_of(i) != c as u32 {
+                if self.linear_u32(&coords(i)) != c as u32 {
                     return Err(format!(
                         "body {i} in cell {c} but recorded in {:?}",
-                        self.coords[i]
+                        coords(i)
                     ));
                 }
                 at = self.next[i];

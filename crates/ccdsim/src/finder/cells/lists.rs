@@ -512,7 +512,7 @@ impl<const D: usize> Cells<D> {
         let xi = lists.centre[i];
         let grid = &self.grid;
         let mut cells = [(0u32, 0u8); 27];
-        let count = lists.near_cells(grid, &grid.coords_of(i), &xi, &mut cells);
+        let count = lists.near_cells(grid, &self.cached[i].coords, &xi, &mut cells);
         for &(c, image) in &cells[..count] {
             let shift = &self.shifts[image as usize];
             let mut j = grid.first(c);
@@ -541,10 +541,10 @@ impl<const D: usize> Cells<D> {
     pub(super) fn relist(&mut self, world: &World<D>, i: usize, t: f64, best: Option<&mut Best>) {
         let x = world.motion(i).at(t);
         self.lists_mut().centre[i] = x;
-        let from = self.grid.cell_of(i);
-        let from_border = self.grid.is_border(&self.grid.coords_of(i));
+        let from = self.grid.cell_at(&self.cached[i].coords);
+        let from_border = self.grid.is_border(&self.cached[i].coords);
         let k = self.grid.coords_of_point(&x);
-        self.grid.relocate(i, k);
+        self.grid.relocate(i, &mut self.cached[i].coords, k);
         self.collect_overlapping(i);
         let lists = self.lists_mut();
         let (above, below) = (
@@ -584,7 +584,9 @@ impl<const D: usize> Cells<D> {
             } else {
                 self.scan_entries::<false>(world.bodies(), &p, &added, best);
             }
-            let walls = self.grid.walls_of(self.grid.cell_of(i));
+            let walls = self
+                .grid
+                .walls_of(self.grid.cell_at(&self.cached[i].coords));
             if !walls.is_empty() {
                 self.offer_walls(world, &p, walls, self.grid.walls_of(from), best);
             }
@@ -667,7 +669,7 @@ impl<const D: usize> Cells<D> {
                 .grid
                 .coords_of_point(&lists.centre[i])
                 .map(|x| x as u32);
-            if k != self.grid.coords_of(i) {
+            if k != self.cached[i].coords {
                 return Err(format!(
                     "body {i} is not filed in the cell of its shell centre"
                 ));

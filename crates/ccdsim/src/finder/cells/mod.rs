@@ -236,7 +236,7 @@ pub fn check_options(o: &FinderOptions) -> Result<(), FinderError> {
 pub struct Cells<const D: usize> {
     grid: Grid<D>,
     /// Cached predictions of each body, one record per body.
-    cached: Vec<Cached>,
+    cached: Vec<Cached<D>>,
     queue: TournamentQueue,
     /// The world is periodic.
     periodic: bool,
@@ -313,7 +313,7 @@ impl<const D: usize> Cells<D> {
     fn bytes(&self) -> usize {
         self.grid.bytes()
             + self.queue.bytes()
-            + std::mem::size_of::<Cached>() * self.cached.capacity()
+            + std::mem::size_of::<Cached<D>>() * self.cached.capacity()
             + std::mem::size_of::<(u32, u8, f64)>() * self.log.capacity()
             + self.lists.as_ref().map_or(0, Lists::bytes)
     }
@@ -323,7 +323,7 @@ impl<const D: usize> Cells<D> {
     /// (up to rounding) at the finder's clock (the last crossing or event it went through).
     /// For tests.
     pub fn validate(&self, world: &World<D>) -> Result<(), String> {
-        self.grid.validate()?;
+        self.grid.validate(|i| self.cached[i].coords)?;
         self.queue.validate()?;
         if self.lists.is_some() {
             return self.validate_list_mode(world);
@@ -331,7 +331,7 @@ impl<const D: usize> Cells<D> {
         let clock = self.clock;
         for i in 0..world.len() {
             let m = world.motion(i);
-            let k = self.grid.coords_of(i);
+            let k = self.cached[i].coords;
             let crossing = self
                 .grid
                 .next_crossing(&k, &m)
@@ -367,7 +367,7 @@ impl<const D: usize> Cells<D> {
     /// for bit, and, for a body filed in a border cell of a periodic world, its box exit
     /// covered (not before its cached event, which is a lower bound of its covered terms).
     fn validate_cached(&self, world: &World<D>, i: usize) -> Result<(), String> {
-        if self.periodic && self.grid.is_border(&self.grid.coords_of(i)) {
+        if self.periodic && self.grid.is_border(&self.cached[i].coords) {
             let exit = self.box_exit(world, &Probe::of(world, i));
             if exit.is_some_and(|exit| exit < self.cached[i].best) {
                 return Err(format!(
@@ -439,9 +439,9 @@ impl<const D: usize> Cells<D> {
         self.clock = self.clock.max(time);
         let code = self.cached[i].cross & !KEY_IS_CROSSING;
         let (axis, up) = ((code >> 1) as usize, code & 1 == 1);
-        let from = self.grid.cell_of(i);
-        let from_border = self.grid.is_border(&self.grid.coords_of(i));
-        self.grid.step(i, axis, up);
+        let from = self.grid.cell_at(&self.cached[i].coords);
+        let from_border = self.grid.is_border(&self.cached[i].coords);
+        self.grid.step(i, &mut self.cached[i].coords, axis, up);
         self.log.push((i as u32, code, time));
         let p = Probe::of(world, i);
         let mut best = self.records(i);
@@ -464,7 +464,7 @@ impl<const D: usize> Cells<D> {
             self.stats.undone += 1;
             let i = i as usize;
             let (axis, up) = ((code >> 1) as usize, code & 1 == 1);
-            self.grid.step(i, axis, !up);
+            self.grid.step(i, &mut self.cached[i].coords, axis, !up);
             self.recompute(world, i);
         }
         self.log.clear();
@@ -552,13 +552,14 @@ impl<const D: usize> Finder<D> for Cells<D> {
         };
         self.grid = Grid::new(n, width, lo, hi, period);
         self.lists = list_mode.then(|| Lists::new(n, skin, sigma_max + skin + slack));
+        self.cached = vec![Cached::NONE; n];
         for i in 0..n {
             let p = world.position_at(i, now);
             if let Some(lists) = &mut self.lists {
                 lists.centre[i] = p;
             }
             let k = self.grid.coords_of_point(&p);
-            self.grid.insert(i, k);
+            self.cached[i].coords = self.grid.insert(i, k);
         }
         self.grid
             .file_walls(world.walls(), r1 + 0.5 * skin + MARGIN * sigma_max + slack);
@@ -568,7 +569,6 @@ impl<const D: usize> Finder<D> for Cells<D> {
         if let Some(lists) = &mut self.lists {
             lists.set_shifts(&self.shifts);
         }
-        self.cached = vec![Cached::NONE; n];
         self.queue = TournamentQueue::new(n);
         self.log = Vec::new();
         self.clock = now;
@@ -612,9 +612,9 @@ impl<const D: usize> Finder<D> for Cells<D> {
             // been processed) stays filed there, even on a face shared with the next cell: it
             // lies in its cell, as the module docs ask.
             let p = world.position(i);
-            if !self.grid.holds(i, &p) {
+            if !self.grid.holds(&self.cached[i].coords, &p) {
                 let k = self.grid.coords_of_point(&p);
-                self.grid.relocate(i, k);
+                self.grid.relocate(i, &mut self.cached[i].coords, k);
             }
         }
         for &i in changed {

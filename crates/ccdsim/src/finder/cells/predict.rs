@@ -14,7 +14,7 @@ use crate::world::{Body, World};
 /// What the finder caches about one body, in one record: read and written together whenever
 /// the body is predicted, scheduled or popped (one or two cache lines, not five).
 #[derive(Clone, Copy, Debug)]
-pub(super) struct Cached {
+pub(super) struct Cached<const D: usize> {
     /// Cached earliest event.
     pub best: Key,
     /// Second earliest cached event (see [`Best`]).
@@ -30,20 +30,24 @@ pub(super) struct Cached {
     /// `best` was computed, or `UNKNOWN_CHANGES` (after a promotion, or for other keys).
     /// While the partner's count is unchanged `best` is live (see `is_live`).
     pub partner_changes: u64,
+    /// Coordinates of the cell the body is filed in (see `Grid`): kept here, not in the
+    /// grid, because whoever reads them also reads the prediction, so they share its lines.
+    pub coords: [u32; D],
 }
 
 /// `Cached::partner_changes` of a `best` whose partner's count is not known.
 pub(super) const UNKNOWN_CHANGES: u64 = u64::MAX;
 
-impl Cached {
-    /// Nothing cached yet.
-    pub const NONE: Cached = Cached {
+impl<const D: usize> Cached<D> {
+    /// Nothing cached yet, filed nowhere.
+    pub const NONE: Cached<D> = Cached {
         best: Key::NEVER,
         second: Key::NEVER,
         image: 0,
         second_image: SECOND_KNOWN,
         cross: NO_CROSSING,
         partner_changes: UNKNOWN_CHANGES,
+        coords: [u32::MAX; D],
     };
 }
 
@@ -184,7 +188,7 @@ impl<const D: usize> Cells<D> {
 
     /// Offers body `p` every pair with a body in its neighbour cells.
     pub(super) fn scan_neighbours(&self, world: &World<D>, p: &Probe<D>, best: &mut Best) {
-        let k = self.grid.coords_of(p.i);
+        let k = self.cached[p.i].coords;
         let bodies = world.bodies();
         if let Some(cells) = self.grid.interior_neighbours(&k) {
             self.scan_interior(bodies, p, cells, best);
@@ -210,7 +214,7 @@ impl<const D: usize> Cells<D> {
         up: bool,
         best: &mut Best,
     ) {
-        let k = self.grid.coords_of(p.i);
+        let k = self.cached[p.i].coords;
         let bodies = world.bodies();
         if let Some(cells) = self.grid.interior_entered_layer(&k, axis, up) {
             self.scan_interior(bodies, p, cells, best);
@@ -268,7 +272,9 @@ impl<const D: usize> Cells<D> {
     /// Offers body `p` every wall within reach of its cell.
     #[inline(always)]
     pub(super) fn scan_walls(&self, world: &World<D>, p: &Probe<D>, best: &mut Best) {
-        let walls = self.grid.walls_of(self.grid.cell_of(p.i));
+        let walls = self
+            .grid
+            .walls_of(self.grid.cell_at(&self.cached[p.i].coords));
         if !walls.is_empty() {
             self.offer_walls(world, p, walls, &[], best);
         }
@@ -285,7 +291,9 @@ impl<const D: usize> Cells<D> {
         from: u32,
         best: &mut Best,
     ) {
-        let walls = self.grid.walls_of(self.grid.cell_of(p.i));
+        let walls = self
+            .grid
+            .walls_of(self.grid.cell_at(&self.cached[p.i].coords));
         if !walls.is_empty() {
             self.offer_walls(world, p, walls, self.grid.walls_of(from), best);
         }
@@ -319,7 +327,7 @@ impl<const D: usize> Cells<D> {
     /// only, see the module docs).
     #[inline]
     pub(super) fn scan_exit(&self, world: &World<D>, p: &Probe<D>, best: &mut Best) {
-        if self.periodic && self.grid.is_border(&self.grid.coords_of(p.i)) {
+        if self.periodic && self.grid.is_border(&self.cached[p.i].coords) {
             if let Some(key) = self.box_exit(world, p) {
                 best.offer(key, Grid::<D>::ZERO_IMAGE);
             }
@@ -470,7 +478,7 @@ impl<const D: usize> Cells<D> {
             self.schedule_listed(i);
             return;
         }
-        let k = self.grid.coords_of(i);
+        let k = self.cached[i].coords;
         let key = match self.grid.next_crossing(&k, mi) {
             Some((t, code)) => {
                 let crossing = Key::crossing(t, i);
