@@ -125,30 +125,74 @@ impl Lanes {
     }
 }
 
-/// The times of impact of two pairs, `[p[0].scalar(), p[1].scalar()]` bit for bit, with the
-/// arithmetic of both in the two lanes of one register (see the module docs); a lane on a
-/// rare path is left to the caller ([`Lanes::rare`]).
+/// One side of two pairs (their first balls, or their second balls), one pair per lane.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Side<const D: usize> {
+    /// Reference positions, metres.
+    pos: [f64x2; D],
+    /// Velocities, metres per second.
+    vel: [f64x2; D],
+    /// Reference times, seconds.
+    time: f64x2,
+    /// Radii, metres.
+    radius: f64x2,
+}
+
+/// `[x0, x1]` as lanes 0 and 1.
 #[inline(always)]
-pub(crate) fn toi_pair_lanes<const D: usize, const SHIFTED: bool>(
-    p: &[PairArgs<'_, D>; 2],
+fn lanes(x0: f64, x1: f64) -> f64x2 {
+    f64x2::new([x0, x1])
+}
+
+/// The vectors `v[0]` and `v[1]` as lanes 0 and 1 of each component.
+#[inline(always)]
+pub(crate) fn vector_lanes<const D: usize>(v: [&Vector<D>; 2]) -> [f64x2; D] {
+    std::array::from_fn(|k| lanes(v[0].0[k], v[1].0[k]))
+}
+
+impl<const D: usize> Side<D> {
+    /// The balls of motions `m[0]`, `m[1]` and radii `r[0]`, `r[1]` in lanes 0 and 1.
+    #[inline(always)]
+    pub fn gather(m: [&Motion<D>; 2], r: [f64; 2]) -> Self {
+        Side {
+            pos: vector_lanes([&m[0].pos, &m[1].pos]),
+            vel: vector_lanes([&m[0].vel, &m[1].vel]),
+            time: lanes(m[0].time, m[1].time),
+            radius: lanes(r[0], r[1]),
+        }
+    }
+
+    /// One ball (motion `m`, radius `r`) in both lanes: built once for a scan that pairs a
+    /// body with each of its neighbours.
+    #[inline(always)]
+    pub fn splat(m: &Motion<D>, r: f64) -> Self {
+        Side::gather([m, m], [r, r])
+    }
+}
+
+/// The times of impact of the pair in each lane, its first ball on side `sa` and its second
+/// on side `sb`, displaced by `shift` if `SHIFTED`: in each lane the scalar function's result
+/// bit for bit (see the module docs), a lane on a rare path left to the caller
+/// ([`Lanes::rare`]).
+#[inline(always)]
+pub(crate) fn toi_sides<const D: usize, const SHIFTED: bool>(
+    sa: &Side<D>,
+    sb: &Side<D>,
+    shift: &[f64x2; D],
 ) -> Lanes {
-    let [p0, p1] = p;
-    // Lane 0 holds pair 0, lane 1 pair 1.
-    let lanes = |x0: f64, x1: f64| f64x2::new([x0, x1]);
     let zero = f64x2::ZERO;
-    let t0 = lanes(p0.a.time, p1.a.time).fast_max(lanes(p0.b.time, p1.b.time));
-    let dta = t0 - lanes(p0.a.time, p1.a.time);
-    let dtb = t0 - lanes(p0.b.time, p1.b.time);
+    let t0 = sa.time.fast_max(sb.time);
+    let dta = t0 - sa.time;
+    let dtb = t0 - sb.time;
     // `s = 0.0; s += x·y` per component, as `Vector::dot`.
     let (mut b, mut pp, mut vv) = (zero, zero, zero);
-    for k in 0..D {
-        let va = lanes(p0.a.vel.0[k], p1.a.vel.0[k]);
-        let vb = lanes(p0.b.vel.0[k], p1.b.vel.0[k]);
-        let xa = lanes(p0.a.pos.0[k], p1.a.pos.0[k]) + va * dta;
-        let xb = lanes(p0.b.pos.0[k], p1.b.pos.0[k]) + vb * dtb;
+    for (k, &shift) in shift.iter().enumerate() {
+        let (va, vb) = (sa.vel[k], sb.vel[k]);
+        let xa = sa.pos[k] + va * dta;
+        let xb = sb.pos[k] + vb * dtb;
         let mut dp = xb - xa;
         if SHIFTED {
-            dp += lanes(p0.shift.0[k], p1.shift.0[k]);
+            dp += shift;
         }
         let dv = vb - va;
         b += dp * dv;
@@ -159,7 +203,7 @@ pub(crate) fn toi_pair_lanes<const D: usize, const SHIFTED: bool>(
     if recedes.move_mask() == 0b11 {
         return Lanes::NEVER;
     }
-    let sigma = lanes(p0.ra, p1.ra) + lanes(p0.rb, p1.rb);
+    let sigma = sa.radius + sb.radius;
     let c = pp - sigma * sigma;
     let disc = b * b - vv * c;
     let neg_b = b ^ f64x2::splat(-0.0);
@@ -180,6 +224,14 @@ mod tests {
     use super::*;
     use proptest::prelude::*;
 
+    /// [`toi_sides`] on two pairs' arguments.
+    fn toi_pair_lanes<const D: usize, const SHIFTED: bool>(p: &[PairArgs<'_, D>; 2]) -> Lanes {
+        let [p0, p1] = p;
+        let sa = Side::gather([p0.a, p1.a], [p0.ra, p1.ra]);
+        let sb = Side::gather([p0.b, p1.b], [p0.rb, p1.rb]);
+        toi_sides::<D, SHIFTED>(&sa, &sb, &vector_lanes([p0.shift, p1.shift]))
+    }
+
     fn motion<const D: usize>(pos: [f64; D], vel: [f64; D], time: f64) -> Motion<D> {
         Motion {
             pos: Vector(pos),
@@ -197,7 +249,13 @@ mod tests {
             rb: r[y],
             shift: &shift[s],
         };
-        for (x0, y0, x1, y1) in [(0, 1, 2, 3), (1, 0, 3, 2), (0, 1, 0, 1), (2, 3, 1, 0)] {
+        for (x0, y0, x1, y1) in [
+            (0, 1, 2, 3),
+            (1, 0, 3, 2),
+            (0, 1, 0, 1),
+            (2, 3, 1, 0),
+            (0, 1, 0, 3),
+        ] {
             let p = [args(x0, y0, 0), args(x1, y1, 1)];
             let bits = |t: Option<f64>| t.map(f64::to_bits);
             let plain = toi_pair_lanes::<D, false>(&p).times(|k| p[k].scalar::<false>());
@@ -205,6 +263,17 @@ mod tests {
             for k in 0..2 {
                 assert_eq!(bits(plain[k]), bits(p[k].scalar::<false>()), "{p:?}");
                 assert_eq!(bits(shifted[k]), bits(p[k].scalar::<true>()), "{p:?}");
+            }
+            // One ball on one side of both lanes, as the neighbour scans pass it.
+            if x0 == x1 {
+                let sa = Side::splat(&m[x0], r[x0]);
+                let sb = Side::gather([&m[y0], &m[y1]], [r[y0], r[y1]]);
+                let s = vector_lanes([&shift[0], &shift[1]]);
+                let lanes = toi_sides::<D, true>(&sa, &sb, &s);
+                let times = lanes.times(|k| p[k].scalar::<true>());
+                for k in 0..2 {
+                    assert_eq!(bits(times[k]), bits(p[k].scalar::<true>()), "{p:?}");
+                }
             }
         }
     }

@@ -23,8 +23,9 @@ use super::predict::{Best, Probe};
 use super::Cells;
 use crate::geom::Vector;
 use crate::narrow::{toi_circle_circle, toi_circle_circle_shifted, Motion};
-use crate::narrow_lanes::{rare, toi_pair_lanes, PairArgs};
+use crate::narrow_lanes::{rare, toi_sides, vector_lanes, PairArgs, Side};
 use crate::world::{Body, World};
+use wide::f64x2;
 
 /// Low bits of a list entry holding the image code (`3^3 = 27` codes fit in 5 bits).
 const IMAGE_BITS: u32 = 5;
@@ -400,7 +401,7 @@ impl<const D: usize> Cells<D> {
     /// Offers body `p` the pairs of the list entries `entries`, all of higher body index
     /// (`PROBE_FIRST`) or all of lower: the same calls as `scan_entries`, the order chosen
     /// once for the whole part. Entries go two at a time through the lane kernel
-    /// ([`toi_pair_lanes`], the same times bit for bit) and are offered in list order.
+    /// ([`toi_sides`], the same times bit for bit; `p` is put in both lanes once per part) and are offered in list order.
     #[inline(always)]
     fn scan_side<const PERIODIC: bool, const PROBE_FIRST: bool>(
         &self,
@@ -449,10 +450,29 @@ impl<const D: usize> Cells<D> {
                 }
             }
         };
+        // `p` in both lanes, once for the whole part.
+        let probe = Side::splat(&p.b.motion, p.b.radius);
+        let side_shifts = if PROBE_FIRST {
+            &lists.shifts
+        } else {
+            &lists.neg_shifts
+        };
         let mut pairs = entries.chunks_exact(2);
         for two in &mut pairs {
-            let (e0, e1) = (two[0], two[1]);
-            toi_pair_lanes::<D, PERIODIC>(&[args(e0), args(e1)]).each_time(
+            let (b0, b1) = (&bodies[entry_body(two[0])], &bodies[entry_body(two[1])]);
+            let other = Side::gather([&b0.motion, &b1.motion], [b0.radius, b1.radius]);
+            let shift = if PERIODIC {
+                let s = |k: usize| &side_shifts[usize::from(entry_image(two[k]))];
+                vector_lanes([s(0), s(1)])
+            } else {
+                [f64x2::ZERO; D]
+            };
+            let lanes = if PROBE_FIRST {
+                toi_sides::<D, PERIODIC>(&probe, &other, &shift)
+            } else {
+                toi_sides::<D, PERIODIC>(&other, &probe, &shift)
+            };
+            lanes.each_time(
                 |k, t| offer(best, two[k], Some(t)),
                 |k| rare::<D, PERIODIC>(args(two[k])),
             );
