@@ -83,13 +83,6 @@ pub(crate) struct Lanes {
 }
 
 impl Lanes {
-    /// Neither pair meets.
-    const NEVER: Lanes = Lanes {
-        times: [0.0; 2],
-        hits: 0,
-        rare: 0,
-    };
-
     /// Calls `f(k, t)` for each lane `k` (in order) whose pair meets, at time `t`; the time of
     /// a rare lane comes from `scalar(k)`.
     #[inline(always)]
@@ -199,10 +192,10 @@ pub(crate) fn toi_sides<const D: usize, const SHIFTED: bool>(
         pp += dp * dp;
         vv += dv * dv;
     }
+    // No early exit when both pairs recede: a branch taken about one time in four costs
+    // more in mispredictions than the rest of the kernel (3D list mode, N = 10,976: +2 %
+    // instructions, about 7 % more collisions per CPU second).
     let recedes = b.cmp_ge(zero);
-    if recedes.move_mask() == 0b11 {
-        return Lanes::NEVER;
-    }
     let sigma = sa.radius + sb.radius;
     let c = pp - sigma * sigma;
     let disc = b * b - vv * c;
