@@ -25,6 +25,7 @@ pub mod finder;
 pub mod generate;
 pub mod geom;
 pub mod narrow;
+pub(crate) mod narrow_lanes;
 pub mod observables;
 pub mod periodic;
 pub mod record;

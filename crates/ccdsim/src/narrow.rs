@@ -74,7 +74,7 @@ pub fn first_contact<const D: usize>(dp: Vector<D>, dv: Vector<D>, sigma: f64) -
 }
 
 /// Below this `|dv|²` [`first_contact`] scales the relative velocity first.
-const MIN_UNSCALED_A: f64 = 2.409_919_865_102_884e-181; // 2⁻⁶⁰⁰
+pub(crate) const MIN_UNSCALED_A: f64 = 2.409_919_865_102_884e-181; // 2⁻⁶⁰⁰
 
 /// The power of two by which [`first_contact`] scales a tiny relative velocity.
 const SPEED_SCALE: f64 = 4.149_515_568_880_993e180; // 2⁶⁰⁰

@@ -23,7 +23,9 @@ use super::predict::{Best, Probe};
 use super::Cells;
 use crate::geom::Vector;
 use crate::narrow::{toi_circle_circle, toi_circle_circle_shifted, Motion};
+use crate::narrow_lanes::{rare, toi_sides, vector_lanes, PairArgs, Side};
 use crate::world::{Body, World};
+use wide::f64x2;
 
 /// Low bits of a list entry holding the image code (`3^3 = 27` codes fit in 5 bits).
 const IMAGE_BITS: u32 = 5;
@@ -398,7 +400,8 @@ impl<const D: usize> Cells<D> {
 
     /// Offers body `p` the pairs of the list entries `entries`, all of higher body index
     /// (`PROBE_FIRST`) or all of lower: the same calls as `scan_entries`, the order chosen
-    /// once for the whole part.
+    /// once for the whole part. Entries go two at a time through the lane kernel
+    /// ([`toi_sides`], the same times bit for bit; `p` is put in both lanes once per part) and are offered in list order.
     #[inline(always)]
     fn scan_side<const PERIODIC: bool, const PROBE_FIRST: bool>(
         &self,
@@ -409,40 +412,73 @@ impl<const D: usize> Cells<D> {
     ) {
         let i = p.i;
         let lists = self.lists();
-        for &e in entries {
+        // The pair of entry `e` in the oracle's argument order.
+        let args = |e: u32| {
             let j = entry_body(e);
-            let image = entry_image(e);
+            let image = usize::from(entry_image(e));
             let b = &bodies[j];
             debug_assert_eq!(PROBE_FIRST, i < j);
-            let t = match (PERIODIC, PROBE_FIRST) {
-                (true, true) => toi_circle_circle_shifted(
-                    &p.b.motion,
-                    p.b.radius,
-                    &b.motion,
-                    b.radius,
-                    lists.shifts[usize::from(image)],
-                ),
-                (true, false) => toi_circle_circle_shifted(
-                    &b.motion,
-                    b.radius,
-                    &p.b.motion,
-                    p.b.radius,
-                    lists.neg_shifts[usize::from(image)],
-                ),
-                (false, true) => toi_circle_circle(&p.b.motion, p.b.radius, &b.motion, b.radius),
-                (false, false) => toi_circle_circle(&b.motion, b.radius, &p.b.motion, p.b.radius),
-            };
+            if PROBE_FIRST {
+                PairArgs {
+                    a: &p.b.motion,
+                    ra: p.b.radius,
+                    b: &b.motion,
+                    rb: b.radius,
+                    shift: &lists.shifts[image],
+                }
+            } else {
+                PairArgs {
+                    a: &b.motion,
+                    ra: b.radius,
+                    b: &p.b.motion,
+                    rb: p.b.radius,
+                    shift: &lists.neg_shifts[image],
+                }
+            }
+        };
+        let offer = |best: &mut Best, e: u32, t: Option<f64>| {
             if let Some(t) = t {
                 let bits = super::key::ordered(t);
                 if bits <= best.threshold() {
+                    let j = entry_body(e);
                     let key = if PROBE_FIRST {
                         super::key::Key::body_bits(bits, i, j)
                     } else {
                         super::key::Key::body_bits(bits, j, i)
                     };
-                    best.offer(key, image);
+                    best.offer(key, entry_image(e));
                 }
             }
+        };
+        // `p` in both lanes, once for the whole part.
+        let probe = Side::splat(&p.b.motion, p.b.radius);
+        let side_shifts = if PROBE_FIRST {
+            &lists.shifts
+        } else {
+            &lists.neg_shifts
+        };
+        let mut pairs = entries.chunks_exact(2);
+        for two in &mut pairs {
+            let (b0, b1) = (&bodies[entry_body(two[0])], &bodies[entry_body(two[1])]);
+            let other = Side::gather([&b0.motion, &b1.motion], [b0.radius, b1.radius]);
+            let shift = if PERIODIC {
+                let s = |k: usize| &side_shifts[usize::from(entry_image(two[k]))];
+                vector_lanes([s(0), s(1)])
+            } else {
+                [f64x2::ZERO; D]
+            };
+            let lanes = if PROBE_FIRST {
+                toi_sides::<D, PERIODIC>(&probe, &other, &shift)
+            } else {
+                toi_sides::<D, PERIODIC>(&other, &probe, &shift)
+            };
+            lanes.each_time(
+                |k, t| offer(best, two[k], Some(t)),
+                |k| rare::<D, PERIODIC>(args(two[k])),
+            );
+        }
+        for &e in pairs.remainder() {
+            offer(best, e, args(e).scalar::<PERIODIC>());
         }
     }
 
