@@ -830,6 +830,39 @@ pub(super) fn plane_box_min_distance<const D: usize>(
 mod tests {
     use super::*;
 
+    /// Cells of a grid over `n` bodies in the open box `[0, side]^D`, at least `min` wide.
+    fn cells_of<const D: usize>(n: usize, min: f64, side: f64) -> (usize, [usize; D]) {
+        let g = Grid::<D>::new(n, min, Vector::ZERO, Vector([side; D]), None);
+        for d in 0..D {
+            assert!(
+                g.width[d] >= min,
+                "cells narrower than asked: {:?}",
+                g.width
+            );
+        }
+        (g.cell_count(), g.dims())
+    }
+
+    #[test]
+    fn dilute_grids_get_a_bounded_number_of_cells_per_body() {
+        // 1,000 bodies in a 1000-wide square: unit cells would be 1,000 per body.
+        let (cells, _) = cells_of::<2>(1000, 1.0, 1000.0);
+        assert!(cells as f64 <= 2.5 * 1000.0 + 64.0, "{cells} cells");
+        assert!(
+            cells as f64 > 0.5 * 2.5 * 1000.0,
+            "{cells} cells: cells grew too far"
+        );
+        let (cells, _) = cells_of::<3>(1000, 1.0, 1000.0);
+        assert!(cells as f64 <= 4.0 * 1000.0 + 64.0, "{cells} cells");
+        assert!(
+            cells as f64 > 0.3 * 4.0 * 1000.0,
+            "{cells} cells: cells grew too far"
+        );
+        // Dense: the smallest width already gives fewer cells than the bound.
+        assert_eq!(cells_of::<2>(10_000, 1.0, 100.0), (10_000, [100, 100]));
+        assert_eq!(cells_of::<3>(10_000, 1.0, 20.0), (8_000, [20, 20, 20]));
+    }
+
     #[test]
     fn segment_box_distances() {
         let lo = Vector([0.0, 0.0]);
