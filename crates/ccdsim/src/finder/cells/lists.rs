@@ -564,9 +564,9 @@ impl<const D: usize> Cells<D> {
     /// the neighbour cells of `i`'s cell whose box comes within the overlap distance of its
     /// shell centre (see `Lists::near_cells`).
     ///
-    /// Branch-free filter: each candidate is written to the next free slot of both scratch
-    /// lists, and each length advances by the overlap test's 0 or 1 (and the side of `i` the
-    /// candidate's index lies on), so the outcome of the test never steers a branch. The
+    /// Branch-free filter: each candidate is written to the next free slot of a scratch list,
+    /// whose length advances by the overlap test's 0 or 1, and the kept ones are split by
+    /// body index the same way, so the outcome of a test never steers a branch. The
     /// scratch lists keep their length (slots past the counts are junk); returns the numbers
     /// of entries of higher and of lower body index, their leading slots.
     fn collect_overlapping(&mut self, i: usize) -> (usize, usize) {
@@ -577,29 +577,36 @@ impl<const D: usize> Cells<D> {
         let grid = &self.grid;
         let mut cells = [(0u32, 0u8); 27];
         let count = lists.near_cells(grid, &self.cached[i].coords, &xi, &mut cells);
-        // Both scratch lists are used as buffers of their full length; `na` and `nb` count
-        // the entries kept.
-        let (mut na, mut nb) = (0usize, 0usize);
-        let mut room = above.len().min(below.len());
+        // The scratch lists are used as buffers of their full length (never shorter than
+        // what they hold). First every overlapping candidate goes to `below`...
+        let mut n = 0usize;
         for &(c, image) in &cells[..count] {
             let shift = &self.shifts[image as usize];
             let mut j = grid.first(c);
             while j != NONE {
-                if na.max(nb) >= room {
-                    room = 2 * room + 16;
-                    above.resize(room, 0);
-                    below.resize(room, 0);
-                }
                 let ju = j as usize;
                 let e = entry(ju, image);
-                let keep = lists.overlap(&xi, &lists.centre[ju], shift) & (ju != i);
-                let up = ju > i;
-                above[na] = e;
-                below[nb] = e;
-                na += usize::from(keep & up);
-                nb += usize::from(keep & !up);
+                match below.get_mut(n) {
+                    Some(slot) => *slot = e,
+                    None => below.push(e),
+                }
+                n += usize::from(lists.overlap(&xi, &lists.centre[ju], shift) & (ju != i));
                 j = grid.next_in_cell(j);
             }
+        }
+        // ... then they are split by body index, in place for the lower part (its slot is
+        // never after the one read).
+        if above.len() < n {
+            above.resize(n, 0);
+        }
+        let (mut na, mut nb) = (0usize, 0usize);
+        for k in 0..n {
+            let e = below[k];
+            let up = entry_body(e) > i;
+            above[na] = e;
+            below[nb] = e;
+            na += usize::from(up);
+            nb += usize::from(!up);
         }
         let lists = self.lists_mut();
         lists.fresh = above;
