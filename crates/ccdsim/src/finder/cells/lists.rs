@@ -54,8 +54,34 @@ pub(super) fn entry_image(e: u32) -> u8 {
     (e & IMAGE_MASK) as u8
 }
 
+/// True when `list` holds `e`: a sweep of the whole list without an early exit, so the
+/// outcome steers no branch inside the sweep (lists are a dozen entries or so).
+#[inline(always)]
+fn holds(list: &[u32], e: u32) -> bool {
+    list.iter().fold(false, |found, &x| found | (x == e))
+}
+
+/// Calls `change(e, false)` for each entry `e` of `was` not in `now`, then `change(e, true)`
+/// for each entry of `now` not in `was`, each in its list's order (entries of a list are
+/// distinct). Lists are short, so membership is a branch-free sweep of the other list rather
+/// than a sorted merge: only the rare change takes a branch.
+#[inline(always)]
+fn list_changes(was: &[u32], now: &[u32], mut change: impl FnMut(u32, bool)) {
+    for &e in was {
+        if !holds(now, e) {
+            change(e, false);
+        }
+    }
+    for &e in now {
+        if !holds(was, e) {
+            change(e, true);
+        }
+    }
+}
+
 /// The entries `above` (of higher body index than some body) and `below` (of lower) in
 /// increasing order, into `out`: every entry of `below` sorts below every entry of `above`.
+#[cfg(test)]
 fn sorted_parts(above: &[u32], below: &[u32], out: &mut Vec<u32>) {
     out.clear();
     out.extend_from_slice(below);
@@ -284,6 +310,7 @@ impl<const D: usize> Lists<D> {
 
     /// The entries of body `i`'s list in increasing order, into `out`: the entries of lower
     /// body index sort below the others, so each part is sorted on its own.
+    #[cfg(test)]
     fn sorted_list(&self, i: usize, out: &mut Vec<u32>) {
         let (above, below) = self.parts(i);
         sorted_parts(above, below, out);
@@ -342,16 +369,13 @@ impl<const D: usize> Lists<D> {
             let g2 = gap_at(2, o2);
             for o1 in 0..reach(1) {
                 let g1 = g2 + gap_at(1, o1);
-                if g1 > self.cut_sq {
-                    continue;
-                }
                 let row = at(&part, 2, o2) + at(&part, 1, o1);
                 let row_code = code_at(2, o2) + code_at(1, o1);
+                // Branch-free: every cell is written to the next slot, which is kept when the
+                // cell is near (gaps are never negative, so a far row keeps none).
                 for o0 in 0..3 {
-                    if g1 + gap[0][o0] <= self.cut_sq {
-                        out[count] = (row + part[0][o0], row_code + code[0][o0]);
-                        count += 1;
-                    }
+                    out[count] = (row + part[0][o0], row_code + code[0][o0]);
+                    count += usize::from(g1 + gap[0][o0] <= self.cut_sq);
                 }
             }
         }
@@ -523,13 +547,13 @@ impl<const D: usize> Cells<D> {
     /// Builds every body's list from scratch (at `init`, shell centres set).
     pub(super) fn build_all_lists(&mut self, n: usize) {
         for i in 0..n {
-            self.collect_overlapping(i);
+            let (na, nb) = self.collect_overlapping(i);
             let lists = self.lists_mut();
             let (above, below) = (
                 std::mem::take(&mut lists.fresh),
                 std::mem::take(&mut lists.fresh_below),
             );
-            lists.set(i, &above, &below);
+            lists.set(i, &above[..na], &below[..nb]);
             lists.fresh = above;
             lists.fresh_below = below;
         }
@@ -539,34 +563,55 @@ impl<const D: usize> Cells<D> {
     /// every body whose shell overlaps body `i`'s, from
     /// the neighbour cells of `i`'s cell whose box comes within the overlap distance of its
     /// shell centre (see `Lists::near_cells`).
-    fn collect_overlapping(&mut self, i: usize) {
+    ///
+    /// Branch-free filter: each candidate is written to the next free slot of a scratch list,
+    /// whose length advances by the overlap test's 0 or 1, and the kept ones are split by
+    /// body index the same way, so the outcome of a test never steers a branch. The
+    /// scratch lists keep their length (slots past the counts are junk); returns the numbers
+    /// of entries of higher and of lower body index, their leading slots.
+    fn collect_overlapping(&mut self, i: usize) -> (usize, usize) {
         let mut above = std::mem::take(&mut self.lists_mut().fresh);
         let mut below = std::mem::take(&mut self.lists_mut().fresh_below);
-        above.clear();
-        below.clear();
         let lists = self.lists();
         let xi = lists.centre[i];
         let grid = &self.grid;
         let mut cells = [(0u32, 0u8); 27];
         let count = lists.near_cells(grid, &self.cached[i].coords, &xi, &mut cells);
+        // The scratch lists are used as buffers of their full length (never shorter than
+        // what they hold). First every overlapping candidate goes to `below`...
+        let mut n = 0usize;
         for &(c, image) in &cells[..count] {
             let shift = &self.shifts[image as usize];
             let mut j = grid.first(c);
             while j != NONE {
                 let ju = j as usize;
-                if lists.overlap(&xi, &lists.centre[ju], shift) && ju != i {
-                    if ju > i {
-                        above.push(entry(ju, image));
-                    } else {
-                        below.push(entry(ju, image));
-                    }
+                let e = entry(ju, image);
+                match below.get_mut(n) {
+                    Some(slot) => *slot = e,
+                    None => below.push(e),
                 }
+                n += usize::from(lists.overlap(&xi, &lists.centre[ju], shift) & (ju != i));
                 j = grid.next_in_cell(j);
             }
+        }
+        // ... then they are split by body index, in place for the lower part (its slot is
+        // never after the one read).
+        if above.len() < n {
+            above.resize(n, 0);
+        }
+        let (mut na, mut nb) = (0usize, 0usize);
+        for k in 0..n {
+            let e = below[k];
+            let up = entry_body(e) > i;
+            above[na] = e;
+            below[nb] = e;
+            na += usize::from(up);
+            nb += usize::from(!up);
         }
         let lists = self.lists_mut();
         lists.fresh = above;
         lists.fresh_below = below;
+        (na, nb)
     }
 
     /// Moves body `i`'s shell centre to its position at `t`, files it in the cell of that
@@ -581,38 +626,38 @@ impl<const D: usize> Cells<D> {
         let from_border = self.grid.is_border(&self.cached[i].coords);
         let k = self.grid.coords_of_point(&x);
         self.grid.relocate(i, &mut self.cached[i].coords, k);
-        self.collect_overlapping(i);
+        let (na, nb) = self.collect_overlapping(i);
         let lists = self.lists_mut();
         let (above, below) = (
             std::mem::take(&mut lists.fresh),
             std::mem::take(&mut lists.fresh_below),
         );
-        // The old and the new list, sorted (copies: the new list keeps its order), are merged:
-        // entries only in the old one leave their partner's list, entries only in the new one
-        // join it and go to `added`.
+        // The old list (a copy: partners' lists change below) and the new one are compared
+        // part by part (an entry's part is fixed by its body index): entries only in the old
+        // one leave their partner's list, entries only in the new one join it and go to
+        // `added`. Lists are short, so membership is a branch-free sweep of the other part.
         let mut old = std::mem::take(&mut lists.old);
-        lists.sorted_list(i, &mut old);
+        let (old_above, old_below) = lists.parts(i);
+        let split = old_above.len();
+        old.clear();
+        old.extend_from_slice(old_above);
+        old.extend_from_slice(old_below);
         let mut added = std::mem::take(&mut lists.sorted);
-        sorted_parts(&above, &below, &mut added);
-        let (mut a, mut b, mut kept) = (0, 0, 0);
-        while a < old.len() || b < added.len() {
-            if b == added.len() || (a < old.len() && old[a] < added[b]) {
-                let e = old[a];
-                lists.remove(entry_body(e), entry(i, opposite::<D>(entry_image(e))));
-                a += 1;
-            } else if a == old.len() || added[b] < old[a] {
-                let e = added[b];
-                lists.push(entry_body(e), entry(i, opposite::<D>(entry_image(e))));
-                added[kept] = e;
-                kept += 1;
-                b += 1;
-            } else {
-                a += 1;
-                b += 1;
-            }
+        added.clear();
+        let parts = [(&old[..split], &above[..na]), (&old[split..], &below[..nb])];
+        for (was, now) in parts {
+            list_changes(was, now, |e, gained| {
+                let mirror = entry(i, opposite::<D>(entry_image(e)));
+                if gained {
+                    lists.push(entry_body(e), mirror);
+                    added.push(e);
+                } else {
+                    lists.remove(entry_body(e), mirror);
+                }
+            });
         }
-        added.truncate(kept);
-        lists.set(i, &above, &below);
+        let (above_new, below_new) = (&above[..na], &below[..nb]);
+        lists.set(i, above_new, below_new);
         if let Some(best) = best {
             let p = Probe::of(world, i);
             if self.periodic {
