@@ -160,10 +160,10 @@ pub(super) struct Lists<const D: usize> {
     fresh: Vec<u32>,
     /// Scratch: a list being built, its entries of lower body index.
     fresh_below: Vec<u32>,
-    /// Scratch: a list being replaced, sorted.
+    /// Scratch: a copy of the list being replaced, above part first.
     old: Vec<u32>,
-    /// Scratch: a list being built, sorted, then the entries new to it.
-    sorted: Vec<u32>,
+    /// Scratch: the entries new to the list being replaced.
+    added: Vec<u32>,
 }
 
 impl<const D: usize> Lists<D> {
@@ -185,7 +185,7 @@ impl<const D: usize> Lists<D> {
             fresh: Vec::new(),
             fresh_below: Vec::new(),
             old: Vec::new(),
-            sorted: Vec::new(),
+            added: Vec::new(),
         }
     }
 
@@ -203,7 +203,7 @@ impl<const D: usize> Lists<D> {
             + self.fresh.capacity()
             + self.fresh_below.capacity()
             + self.old.capacity()
-            + self.sorted.capacity())
+            + self.added.capacity())
             + std::mem::size_of::<Vector<D>>() * self.centre.capacity()
             + 8 * self.exit.capacity()
             + std::mem::size_of::<(u32, f64)>() * self.log.capacity()
@@ -642,7 +642,7 @@ impl<const D: usize> Cells<D> {
         old.clear();
         old.extend_from_slice(old_above);
         old.extend_from_slice(old_below);
-        let mut added = std::mem::take(&mut lists.sorted);
+        let mut added = std::mem::take(&mut lists.added);
         added.clear();
         let parts = [(&old[..split], &above[..na]), (&old[split..], &below[..nb])];
         for (was, now) in parts {
@@ -679,7 +679,7 @@ impl<const D: usize> Cells<D> {
         lists.fresh = above;
         lists.fresh_below = below;
         lists.old = old;
-        lists.sorted = added;
+        lists.added = added;
     }
 
     /// Processes body `i`'s shell exit, due at `time`: its list is rebuilt around its
