@@ -28,6 +28,7 @@ pub mod narrow;
 pub(crate) mod narrow_lanes;
 pub mod observables;
 pub mod periodic;
+pub(crate) mod prefetch;
 pub mod record;
 pub mod resolve;
 pub mod scene;

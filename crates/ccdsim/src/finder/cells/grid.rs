@@ -11,6 +11,7 @@
 use super::key::NONE;
 use crate::geom::Vector;
 use crate::narrow::Motion;
+use crate::prefetch::prefetch;
 use crate::scene::Wall;
 
 /// Relative margin by which cells are wider than the largest contact distance, and by which
@@ -360,6 +361,24 @@ impl<const D: usize> Grid<D> {
     #[inline(always)]
     pub fn next_in_cell(&self, j: u32) -> u32 {
         self.next[j as usize]
+    }
+
+    /// Hints that body `j`'s link (see [`Grid::next_in_cell`]) will be read soon.
+    #[inline(always)]
+    pub fn prefetch_link(&self, j: usize) {
+        prefetch(&self.next[j]);
+    }
+
+    /// Hints that the heads of the 3^D block around the cell of coordinates `k` will be
+    /// read soon (interior cells only: the others are rare).
+    #[inline(always)]
+    pub fn prefetch_block(&self, k: &[u32; D]) {
+        if self.is_interior(k) {
+            let c = self.linear_u32(k) as isize;
+            for &off in &self.interior {
+                prefetch(&self.head[(c + off) as usize]);
+            }
+        }
     }
 
     /// Walls within reach of cell `c`.

@@ -24,6 +24,7 @@ use super::Cells;
 use crate::geom::Vector;
 use crate::narrow::{toi_circle_circle, toi_circle_circle_shifted, Motion};
 use crate::narrow_lanes::{rare, toi_sides, vector_lanes, PairArgs, Side};
+use crate::prefetch::prefetch;
 use crate::world::{Body, World};
 use wide::f64x2;
 
@@ -223,6 +224,14 @@ impl<const D: usize> Lists<D> {
         &self.entries[at + HEADER..at + HEADER + len]
     }
 
+    /// Hints that body `i`'s list block will be read soon (its first two cache lines).
+    #[inline(always)]
+    pub fn prefetch_list(&self, i: usize) {
+        let at = i * self.stride;
+        prefetch(&self.entries[at]);
+        prefetch(&self.entries[(at + 16).min(self.entries.len() - 1)]);
+    }
+
     /// Body `i`'s list in two parts: the entries whose body index is above `i`, then the
     /// others.
     #[inline(always)]
@@ -407,12 +416,23 @@ impl<const D: usize> Cells<D> {
         self.lists.as_mut().expect("list mode")
     }
 
+    /// Hints that the records of body `i`'s listed partners will be read soon: asked for
+    /// together, their misses overlap.
+    #[inline(always)]
+    pub(super) fn prefetch_partners(&self, world: &World<D>, i: usize) {
+        let bodies = world.bodies();
+        for &e in self.lists().list(i) {
+            prefetch(&bodies[entry_body(e)]);
+        }
+    }
+
     /// Offers body `p` every pair of its neighbour list, each by the oracle's narrow phase
     /// with the oracle's arguments (see `scan_list`): the part of partners of higher index
     /// with `p` first, then the rest with the partner first.
     pub(super) fn scan_neighbour_list(&self, world: &World<D>, p: &Probe<D>, best: &mut Best) {
         let (above, below) = self.lists().parts(p.i);
         let bodies = world.bodies();
+        self.prefetch_partners(world, p.i);
         if self.periodic {
             self.scan_side::<true, true>(bodies, p, above, best);
             self.scan_side::<true, false>(bodies, p, below, best);
@@ -579,10 +599,19 @@ impl<const D: usize> Cells<D> {
         let count = lists.near_cells(grid, &self.cached[i].coords, &xi, &mut cells);
         // The scratch lists are used as buffers of their full length (never shorter than
         // what they hold). First every overlapping candidate goes to `below`...
+        // Every head first, with hints for their centres and links (see `scan_interior`).
+        let mut heads = [NONE; 27];
+        let last = lists.centre.len() - 1;
+        for (h, &(c, _)) in heads.iter_mut().zip(&cells[..count]) {
+            *h = grid.first(c);
+            let k = (*h as usize).min(last);
+            prefetch(&lists.centre[k]);
+            grid.prefetch_link(k);
+        }
         let mut n = 0usize;
-        for &(c, image) in &cells[..count] {
+        for (&(_, image), &head) in cells[..count].iter().zip(&heads) {
             let shift = &self.shifts[image as usize];
-            let mut j = grid.first(c);
+            let mut j = head;
             while j != NONE {
                 let ju = j as usize;
                 let e = entry(ju, image);

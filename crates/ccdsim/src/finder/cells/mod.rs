@@ -603,6 +603,11 @@ impl<const D: usize> Finder<D> for Cells<D> {
                     self.relist(world, i, world.time(i), None);
                 }
             }
+            // Every changed body's partners first (their lists were asked for when the
+            // event was returned), so the second scan's misses overlap the first's work.
+            for &i in changed {
+                self.prefetch_partners(world, i);
+            }
             for &i in changed {
                 self.recompute(world, i);
             }
@@ -649,6 +654,21 @@ impl<const D: usize> Finder<D> for Cells<D> {
             }
             let e = key.event();
             self.clock = self.clock.max(e.time);
+            // The caller changes the event's bodies and then asks for their neighbourhoods:
+            // start fetching their cell heads or lists now.
+            let a = e.a as usize;
+            let partner = key.partner(a);
+            if let Some(lists) = &self.lists {
+                lists.prefetch_list(a);
+                if let Some(j) = partner {
+                    lists.prefetch_list(j);
+                }
+            } else {
+                self.grid.prefetch_block(&self.cached[a].coords);
+                if let Some(j) = partner {
+                    self.grid.prefetch_block(&self.cached[j].coords);
+                }
+            }
             return Some(e);
         }
     }

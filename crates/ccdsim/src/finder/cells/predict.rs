@@ -9,6 +9,7 @@ use super::{Cells, KEY_IS_CROSSING, NO_CROSSING, SECOND_KNOWN};
 use crate::geom::Vector;
 use crate::narrow::{toi_circle_circle, toi_circle_circle_shifted, toi_circle_wall, Motion};
 use crate::periodic::toi_box_exit;
+use crate::prefetch::prefetch;
 use crate::world::{Body, World};
 
 /// What the finder caches about one body, in one record: read and written together whenever
@@ -258,13 +259,28 @@ impl<const D: usize> Cells<D> {
     ) {
         let zero = Vector::ZERO;
         let image = Grid::<D>::ZERO_IMAGE;
+        // Every head first, then a hint for each head's record and link: the loads are
+        // independent, so their misses overlap instead of waiting, cell after cell, behind
+        // the branches of the walk (an empty cell's head points at the last body, harmlessly).
+        let mut heads = [NONE; 27];
+        let mut n = 0;
+        for c in cells {
+            heads[n] = self.grid.first(c);
+            n += 1;
+        }
+        let last = bodies.len() - 1;
+        for &h in &heads[..n] {
+            let h = (h as usize).min(last);
+            prefetch(&bodies[h]);
+            self.grid.prefetch_link(h);
+        }
         if self.periodic {
-            for c in cells {
-                self.scan_list::<true>(bodies, p, self.grid.first(c), &zero, image, best);
+            for &h in &heads[..n] {
+                self.scan_list::<true>(bodies, p, h, &zero, image, best);
             }
         } else {
-            for c in cells {
-                self.scan_list::<false>(bodies, p, self.grid.first(c), &zero, image, best);
+            for &h in &heads[..n] {
+                self.scan_list::<false>(bodies, p, h, &zero, image, best);
             }
         }
     }
