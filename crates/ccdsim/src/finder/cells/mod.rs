@@ -163,6 +163,17 @@
 //! valid at any time: afterwards the body is in its shell from `t` to its next exit) and
 //! recomputes their bodies, so every body is in its shell from the clock on.
 //!
+//! # Prefetch hints
+//!
+//! Beyond a few hundred thousand bodies the records no longer fit in the caches and a
+//! collision waits on memory more than it computes. When `next_event` returns an event it
+//! hints the lines its caller is about to need: the cell heads of both bodies' 3^D blocks
+//! (or both bodies' list blocks) and both bodies' paths in the queue, so those misses run
+//! while the caller resolves the event and scans the first body. A scan loads all its heads
+//! (or reads its list) before walking and hints every head's record and link, so the misses
+//! of one scan overlap instead of waiting one after another behind the walk's branches.
+//! Hints are not loads: they change no result and cannot fault ([`crate::prefetch`]).
+//!
 //! # Edits behind the finder's clock
 //!
 //! `next_event` may process crossings beyond the time of a state change made afterwards (a
@@ -603,11 +614,6 @@ impl<const D: usize> Finder<D> for Cells<D> {
                     self.relist(world, i, world.time(i), None);
                 }
             }
-            // Every changed body's partners first (their lists were asked for when the
-            // event was returned), so the second scan's misses overlap the first's work.
-            for &i in changed {
-                self.prefetch_partners(world, i);
-            }
             for &i in changed {
                 self.recompute(world, i);
             }
@@ -658,6 +664,10 @@ impl<const D: usize> Finder<D> for Cells<D> {
             // start fetching their cell heads or lists now.
             let a = e.a as usize;
             let partner = key.partner(a);
+            self.queue.prefetch_path(a);
+            if let Some(j) = partner {
+                self.queue.prefetch_path(j);
+            }
             if let Some(lists) = &self.lists {
                 lists.prefetch_list(a);
                 if let Some(j) = partner {

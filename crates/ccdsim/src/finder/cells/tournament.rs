@@ -162,6 +162,18 @@ impl TournamentQueue {
         unpack(self.octets[i >> 3].0[i & 7])
     }
 
+    /// Hints that body `i`'s key will be set soon: its octet and the nodes on its path to
+    /// the root (their addresses depend on `i` alone).
+    #[inline(always)]
+    pub fn prefetch_path(&self, i: usize) {
+        crate::prefetch::prefetch(&self.octets[i >> 3]);
+        let mut g = (self.m + (i >> 3) - 1) >> 2;
+        while g > 0 {
+            crate::prefetch::prefetch(&self.groups[g]);
+            g = (g - 1) >> 2;
+        }
+    }
+
     /// Sets body `i`'s key to `key` ([`Key::NEVER`] takes it out).
     #[inline(always)]
     pub fn set(&mut self, i: usize, key: Key) {
