@@ -508,7 +508,10 @@ impl<const D: usize> Grid<D> {
     /// The neighbour cells of a body filed at coordinates `k` when they are the plain 3^D
     /// block around it (no border, no wrapping, zero image shift), else `None`.
     #[inline(always)]
-    pub fn interior_neighbours(&self, k: &[u32; D]) -> Option<impl Iterator<Item = u32> + '_> {
+    pub fn interior_neighbours(
+        &self,
+        k: &[u32; D],
+    ) -> Option<impl Iterator<Item = u32> + Clone + '_> {
         if !self.is_interior(k) {
             return None;
         }
@@ -524,7 +527,7 @@ impl<const D: usize> Grid<D> {
         k: &[u32; D],
         axis: usize,
         up: bool,
-    ) -> Option<impl Iterator<Item = u32> + '_> {
+    ) -> Option<impl Iterator<Item = u32> + Clone + '_> {
         if !self.is_interior(k) {
             return None;
         }

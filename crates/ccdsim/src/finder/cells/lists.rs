@@ -432,7 +432,9 @@ impl<const D: usize> Cells<D> {
     pub(super) fn scan_neighbour_list(&self, world: &World<D>, p: &Probe<D>, best: &mut Best) {
         let (above, below) = self.lists().parts(p.i);
         let bodies = world.bodies();
-        self.prefetch_partners(world, p.i);
+        if self.hints {
+            self.prefetch_partners(world, p.i);
+        }
         if self.periodic {
             self.scan_side::<true, true>(bodies, p, above, best);
             self.scan_side::<true, false>(bodies, p, below, best);
@@ -599,19 +601,19 @@ impl<const D: usize> Cells<D> {
         let count = lists.near_cells(grid, &self.cached[i].coords, &xi, &mut cells);
         // The scratch lists are used as buffers of their full length (never shorter than
         // what they hold). First every overlapping candidate goes to `below`...
-        // Every head first, with hints for their centres and links (see `scan_interior`).
-        let mut heads = [NONE; 27];
-        let last = lists.centre.len() - 1;
-        for (h, &(c, _)) in heads.iter_mut().zip(&cells[..count]) {
-            *h = grid.first(c);
-            let k = (*h as usize).min(last);
-            prefetch(&lists.centre[k]);
-            grid.prefetch_link(k);
+        if self.hints {
+            // Hints for the heads' centres and links (see `scan_interior`).
+            let last = lists.centre.len() - 1;
+            for &(c, _) in &cells[..count] {
+                let k = (grid.first(c) as usize).min(last);
+                prefetch(&lists.centre[k]);
+                grid.prefetch_link(k);
+            }
         }
         let mut n = 0usize;
-        for (&(_, image), &head) in cells[..count].iter().zip(&heads) {
+        for &(c, image) in &cells[..count] {
             let shift = &self.shifts[image as usize];
-            let mut j = head;
+            let mut j = grid.first(c);
             while j != NONE {
                 let ju = j as usize;
                 let e = entry(ju, image);

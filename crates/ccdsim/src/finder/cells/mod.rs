@@ -204,6 +204,11 @@ const NO_CROSSING: u8 = 0x7F;
 const KEY_IS_CROSSING: u8 = 0x80;
 /// Flag on a second image code: the second cached event is known.
 const SECOND_KNOWN: u8 = 0x80;
+/// Working set (the finder's structures and the body records), bytes, from which prefetch
+/// hints are given: below it the data stays in a core's level-2 cache (1 MiB and more on
+/// current x86-64 cores), where a hint only costs instructions (callgrind, 2D N = 10⁴:
+/// +20 % instructions with hints, no wall-clock gain).
+const HINTS_FROM_BYTES: usize = 2 << 20;
 
 /// Counters of a [`Cells`] finder since its last `init`.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -268,6 +273,8 @@ pub struct Cells<const D: usize> {
     skin: f64,
     /// The list mode's structures, when it is on (see `init`).
     lists: Option<Lists<D>>,
+    /// Prefetch hints are on: the working set is larger than a core's cache (see `init`).
+    hints: bool,
 }
 
 impl<const D: usize> Default for Cells<D> {
@@ -293,6 +300,7 @@ impl<const D: usize> Cells<D> {
             peak_bytes: 0,
             skin: 0.0,
             lists: None,
+            hints: false,
         }
     }
 
@@ -468,6 +476,22 @@ impl<const D: usize> Cells<D> {
         self.schedule(i, &p.b.motion);
     }
 
+    /// Hints the lines the caller of `next_event` needs next, for the event of `key`: it
+    /// changes the event's bodies, then asks for their neighbourhoods and sets their keys
+    /// (see the module docs).
+    #[inline(never)]
+    fn hint_event(&self, key: Key) {
+        let a = key.event().a as usize;
+        let partner = key.partner(a);
+        for i in std::iter::once(a).chain(partner) {
+            self.queue.prefetch_path(i);
+            match &self.lists {
+                Some(lists) => lists.prefetch_list(i),
+                None => self.grid.prefetch_block(&self.cached[i].coords),
+            }
+        }
+    }
+
     /// Undoes the crossings processed after time `t`, latest first.
     fn undo_crossings_after(&mut self, world: &World<D>, t: f64) {
         while let Some(&(i, code, time)) = self.log.last() {
@@ -595,6 +619,8 @@ impl<const D: usize> Finder<D> for Cells<D> {
         }
         self.stats.recomputes = 0;
         self.peak_bytes = self.bytes();
+        self.hints =
+            self.peak_bytes + n * std::mem::size_of::<crate::world::Body<D>>() >= HINTS_FROM_BYTES;
         Ok(())
     }
 
@@ -660,24 +686,8 @@ impl<const D: usize> Finder<D> for Cells<D> {
             }
             let e = key.event();
             self.clock = self.clock.max(e.time);
-            // The caller changes the event's bodies and then asks for their neighbourhoods:
-            // start fetching their cell heads or lists now.
-            let a = e.a as usize;
-            let partner = key.partner(a);
-            self.queue.prefetch_path(a);
-            if let Some(j) = partner {
-                self.queue.prefetch_path(j);
-            }
-            if let Some(lists) = &self.lists {
-                lists.prefetch_list(a);
-                if let Some(j) = partner {
-                    lists.prefetch_list(j);
-                }
-            } else {
-                self.grid.prefetch_block(&self.cached[a].coords);
-                if let Some(j) = partner {
-                    self.grid.prefetch_block(&self.cached[j].coords);
-                }
+            if self.hints {
+                self.hint_event(key);
             }
             return Some(e);
         }

@@ -254,33 +254,27 @@ impl<const D: usize> Cells<D> {
         &self,
         bodies: &[Body<D>],
         p: &Probe<D>,
-        cells: impl Iterator<Item = u32>,
+        cells: impl Iterator<Item = u32> + Clone,
         best: &mut Best,
     ) {
         let zero = Vector::ZERO;
         let image = Grid::<D>::ZERO_IMAGE;
-        // Every head first, then a hint for each head's record and link: the loads are
-        // independent, so their misses overlap instead of waiting, cell after cell, behind
-        // the branches of the walk (an empty cell's head points at the last body, harmlessly).
-        let mut heads = [NONE; 27];
-        let mut n = 0;
-        for c in cells {
-            heads[n] = self.grid.first(c);
-            n += 1;
-        }
-        let last = bodies.len() - 1;
-        for &h in &heads[..n] {
-            let h = (h as usize).min(last);
-            prefetch(&bodies[h]);
-            self.grid.prefetch_link(h);
+        if self.hints {
+            // A hint for each head's record before the walk: the loads are independent, so
+            // their misses overlap instead of waiting, cell after cell, behind the walk's
+            // branches (an empty cell's head points at the last body, harmlessly).
+            let last = bodies.len() - 1;
+            for c in cells.clone() {
+                prefetch(&bodies[(self.grid.first(c) as usize).min(last)]);
+            }
         }
         if self.periodic {
-            for &h in &heads[..n] {
-                self.scan_list::<true>(bodies, p, h, &zero, image, best);
+            for c in cells {
+                self.scan_list::<true>(bodies, p, self.grid.first(c), &zero, image, best);
             }
         } else {
-            for &h in &heads[..n] {
-                self.scan_list::<false>(bodies, p, h, &zero, image, best);
+            for c in cells {
+                self.scan_list::<false>(bodies, p, self.grid.first(c), &zero, image, best);
             }
         }
     }

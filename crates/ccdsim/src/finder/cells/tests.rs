@@ -47,9 +47,23 @@ fn validated_run<const D: usize>(scene: &Scene<D>, events: usize) {
 
 /// Like `validated_run`, with the neighbour-list skin `skin` (0: crossings).
 fn validated_run_with<const D: usize>(scene: &Scene<D>, events: usize, skin: f64) -> CellsStats {
+    validated_run_hinted(scene, events, skin, None)
+}
+
+/// Like `validated_run_with`, with the prefetch hints forced on or off (`hints`) instead of
+/// chosen by the working set's size.
+fn validated_run_hinted<const D: usize>(
+    scene: &Scene<D>,
+    events: usize,
+    skin: f64,
+    hints: Option<bool>,
+) -> CellsStats {
     let mut world = World::from_scene(scene).unwrap();
     let mut finder = with_skin::<D>(skin);
     finder.init(&world).unwrap();
+    if let Some(hints) = hints {
+        finder.hints = hints;
+    }
     finder.validate(&world).unwrap();
     for k in 0..events {
         let got = finder.next_event(&world);
@@ -114,6 +128,44 @@ fn periodic_structures_and_every_exit() {
             1500,
         );
     }
+}
+
+/// Small worlds get no hints; the hinted paths (large worlds) must find the same events.
+#[test]
+fn prefetch_hints_change_no_event() {
+    let periodic = |c: GasConfig| GasConfig {
+        periodic: true,
+        ..c
+    };
+    let small = gas(&periodic(cfg(150, 0.35, 0.5, 0.5, 7))).unwrap();
+    let mut finder = with_skin::<2>(0.0);
+    finder.init(&World::from_scene(&small).unwrap()).unwrap();
+    assert!(!finder.hints, "150 bodies fit in any cache");
+    for skin in [0.0, 0.2] {
+        validated_run_hinted::<2>(&small, 1500, skin, Some(true));
+        validated_run_hinted::<3>(
+            &gas(&periodic(cfg(100, 0.25, 0.3, 0.6, 7))).unwrap(),
+            1000,
+            skin,
+            Some(true),
+        );
+    }
+    validated_run_hinted::<2>(
+        &gas(&cfg(100, 0.2, 0.1, 1.0, 7)).unwrap(),
+        1500,
+        0.0,
+        Some(true),
+    );
+    validated_run_hinted::<3>(
+        &gas(&cfg(120, 0.25, 0.5, 0.5, 7)).unwrap(),
+        1000,
+        0.0,
+        Some(true),
+    );
+    // A large world gets them.
+    let large = gas(&periodic(cfg(40_000, 0.5, 0.5, 0.5, 7))).unwrap();
+    finder.init(&World::from_scene(&large).unwrap()).unwrap();
+    assert!(finder.hints, "40,000 bodies take more than 2 MiB");
 }
 
 #[test]
