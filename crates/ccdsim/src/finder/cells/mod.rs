@@ -190,6 +190,7 @@ mod tournament;
 use super::{DebugBox, Finder, FinderError, FinderMemory, FinderOptions};
 use crate::event::Event;
 use crate::geom::{Aabb, Vector};
+use crate::prefetch::prefetch;
 use crate::scene::Wall;
 use crate::world::World;
 use grid::{Grid, MARGIN};
@@ -480,7 +481,7 @@ impl<const D: usize> Cells<D> {
     /// changes the event's bodies, then asks for their neighbourhoods and sets their keys
     /// (see the module docs).
     #[inline(never)]
-    fn hint_event(&self, key: Key) {
+    fn hint_event(&self, world: &World<D>, key: Key) {
         let a = key.event().a as usize;
         let partner = key.partner(a);
         for i in std::iter::once(a).chain(partner) {
@@ -488,6 +489,22 @@ impl<const D: usize> Cells<D> {
             match &self.lists {
                 Some(lists) => lists.prefetch_list(i),
                 None => self.grid.prefetch_block(&self.cached[i].coords),
+            }
+        }
+        self.hint_runner_up(world);
+    }
+
+    /// Hints the first lines read for the queue's runner-up, most often the next key popped
+    /// after the top's: they arrive while the top's is processed.
+    #[inline(never)]
+    fn hint_runner_up(&self, world: &World<D>) {
+        let next = self.queue.runner_up();
+        if !next.is_never() {
+            let (b, c) = next.holders();
+            self.queue.prefetch_path(b);
+            for i in [b, c] {
+                prefetch(&self.cached[i]);
+                prefetch(&world.bodies()[i]);
             }
         }
     }
@@ -687,7 +704,7 @@ impl<const D: usize> Finder<D> for Cells<D> {
             let e = key.event();
             self.clock = self.clock.max(e.time);
             if self.hints {
-                self.hint_event(key);
+                self.hint_event(world, key);
             }
             return Some(e);
         }
