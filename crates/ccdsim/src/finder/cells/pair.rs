@@ -3,9 +3,8 @@
 //! After a collision of bodies `i` and `j` both are recomputed. They touch, so their cells are
 //! the same or neighbours, and their 3^D blocks overlap: in 2D the union is 9 to 14 cells of
 //! the 18 that two separate scans visit. [`Cells::recompute_pair`] walks the union once (the
-//! table `PairBlock` of the grid): a body of a cell in both blocks is loaded once and
-//! evaluated against `i` and against `j` together, in the two lanes of the SIMD kernel
-//! [`toi_probes`], a body of a cell in one block only against that
+//! table [`PairBlock`] of the grid): a body of a cell in both blocks is loaded once and
+//! evaluated against `i` and against `j`, a body of a cell in one block only against that
 //! block's owner, and the pair `(i, j)` itself is evaluated once and offered to both.
 //!
 //! # Why the records are those of two `recompute`s, bit for bit
@@ -15,13 +14,10 @@
 //!   blocks, is skipped by the walk and offered up front. Likewise for `j`. Both cells are
 //!   interior, so every cell of either block exists without wrapping and is seen through the
 //!   zero image, as `scan_interior` sees it.
-//! * *Same times.* A candidate of a cell of one block only gets its time from
-//!   [`Cells::scan_list`], as in the separate scan. A body of a shared cell goes through
-//!   [`toi_probes`] with `i` in lane 0 and `j` in lane 1, each lane ordering its pair lower
-//!   index first: the scalar function's result bit for bit (see `narrow_lanes`), its rare
-//!   lanes computed by the scalar function itself on the same arguments; the zero shift is
-//!   `+0` either way round. The pair `(i, j)` comes from [`Cells::pair_toi`], the same
-//!   function with the same arguments. Nothing is stored between the two scans that the second one reads:
+//! * *Same times.* Each candidate's time comes from [`Cells::offer_body`], the function the
+//!   separate scan calls, on the same records, lower index first, with the zero shift (`+0`
+//!   either way round); the pair `(i, j)` from [`Cells::pair_toi`], the same function with
+//!   the same arguments. Nothing is stored between the two scans that the second one reads:
 //!   a scan reads the world (unchanged) and the grid (unchanged), and `store` writes only
 //!   the records of the body it stores.
 //! * *Order does not matter.* [`Best`] keeps the two smallest keys it is offered under the
@@ -36,14 +32,12 @@
 //!   `recompute`s do them, in that order, and `recomputes` counts two.
 
 use super::grid::Grid;
-use super::key::{ordered, Key, NONE};
+use super::key::{Key, NONE};
 use super::predict::{Best, Probe};
 use super::Cells;
 use crate::geom::Vector;
-use crate::narrow_lanes::{rare, toi_probes, PairArgs, Side};
 use crate::prefetch::prefetch;
 use crate::world::{Body, World};
-use wide::{f64x2, CmpLt};
 
 /// Most cells in the union of two 3^D blocks (two 3D blocks meeting at a corner: 27 + 27 − 8).
 const MAX_UNION: usize = 46;
@@ -132,46 +126,14 @@ impl<const D: usize> Cells<D> {
         let zero = Vector::ZERO;
         let image = Grid::<D>::ZERO_IMAGE;
         let (i, j) = (pi.i, pj.i);
-        // A body of a shared cell against both probes at once: lane 0 is the pair with `i`,
-        // lane 1 the pair with `j`, each lower index first (`toi_probes`; the rare lanes go
-        // to the scalar function with the same arguments). Zero shift in both modes.
-        let probes = Side::gather([&pi.b.motion, &pj.b.motion], [pi.b.radius, pj.b.radius]);
-        let indices = f64x2::new([i as f64, j as f64]);
-        let no_shift = [f64x2::ZERO; D];
         for &h in shared {
             let mut k = h;
             while k != NONE {
                 let ku = k as usize;
                 if ku != i && ku != j {
                     let b = &bodies[ku];
-                    let other = Side::splat(&b.motion, b.radius);
-                    // Indices are below 2³¹: exact as floats.
-                    let probe_first = indices.cmp_lt(f64x2::splat(ku as f64));
-                    let lanes = toi_probes::<D, PERIODIC>(&probes, &other, probe_first, &no_shift);
-                    lanes.each_time(
-                        |lane, t| {
-                            let (p, best) = if lane == 0 {
-                                (i, &mut *bi)
-                            } else {
-                                (j, &mut *bj)
-                            };
-                            let bits = ordered(t);
-                            if bits <= best.threshold() {
-                                best.offer(Key::body_bits(bits, p.min(ku), p.max(ku)), image);
-                            }
-                        },
-                        |lane| {
-                            let p = if lane == 0 { pi } else { pj };
-                            let (a, c) = if p.i < ku { (&p.b, b) } else { (b, &p.b) };
-                            rare::<D, PERIODIC>(PairArgs {
-                                a: &a.motion,
-                                ra: a.radius,
-                                b: &c.motion,
-                                rb: c.radius,
-                                shift: &zero,
-                            })
-                        },
-                    );
+                    Self::offer_body::<PERIODIC>(pi, ku, b, &zero, &zero, image, bi);
+                    Self::offer_body::<PERIODIC>(pj, ku, b, &zero, &zero, image, bj);
                 }
                 k = self.grid.next_in_cell(k);
             }
