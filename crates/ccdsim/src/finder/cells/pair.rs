@@ -5,29 +5,32 @@
 //! the 18 that two separate scans visit. [`Cells::recompute_pair`] walks the union once (the
 //! table `PairBlock` of the grid): a body of a cell in both blocks is loaded once and
 //! evaluated against `i` and against `j`, a body of a cell in one block only against that
-//! block's owner. Empty cells are left out before the walk, without a branch each, and the
-//! walk of the shared cells has no branch on whether a body is `i` or `j` (half the bodies
-//! there are): callgrind, 2D N = 10⁴ at packing 0.5, the branch mispredictions per
-//! collision fall from 43.7 (two scans) to 33.4 and the instructions from 3,743 to 3,666. (A
-//! plain union walk, with those branches, took 3,562 instructions and 38.9 mispredictions;
-//! a two-lane SIMD kernel for the shared cells, `i` and `j` in the lanes, 3,636 and 41.6:
-//! shared cells hold about two other bodies per scan.)
+//! block's owner, and the pair `(i, j)` itself is evaluated once and offered to both. Empty
+//! cells are left out before the walk, without a branch each, and the walk of the shared
+//! cells steps over `i` and `j` by selects on their links rather than by a branch per body
+//! (half the bodies there are the probes). Callgrind, 2D N = 10⁴ at packing 0.5,
+//! instructions and branch mispredictions per collision: two scans 3,743 and 43.7; this
+//! 3,636 and 32.9. Tried: a plain union walk with those branches, 3,562 and 38.9; the time
+//! of each probe with itself computed and dropped instead of the steps, 3,666 and 33.4;
+//! the steps by arithmetic masks (the code generator makes the selects branches), 3,727
+//! and 34.0; a two-lane SIMD kernel for the shared cells, `i` and `j` in the lanes, 3,636
+//! and 41.6 (shared cells hold about two other bodies per scan).
 //!
 //! # Why the records are those of two `recompute`s, bit for bit
 //!
 //! * *Same candidates.* `i`'s candidates are the bodies of the cells of both blocks and of
-//!   `i`'s block only, that is of `i`'s block, `i` excepted: the walk of the shared cells
-//!   computes a time for `i` with itself too, and drops it whatever it is, before offering
-//!   (see `offer_other`). `j`, filed in a cell of both blocks, is met there. Likewise for
-//!   `j`. Both cells are interior, so every cell of either block exists without wrapping and
-//!   is seen through the zero image, as `scan_interior` sees it.
-//! * *Same times.* Each candidate's time comes from the function the separate scan calls
-//!   ([`Cells::scan_list`] for the cells of one block, the same code in `offer_other` for the
-//!   shared ones), on the same records, lower index first, with the zero shift (`+0` either
-//!   way round): the pair `(i, j)` gets the same time whether it is met from `i`'s side or
-//!   from `j`'s. Nothing is stored between the two scans that the second one reads: a scan
-//!   reads the world (unchanged) and the grid (unchanged), and `store` writes only the
-//!   records of the body it stores.
+//!   `i`'s block only, that is of `i`'s block, `i` excepted; `j`, filed in a cell of both
+//!   blocks, is stepped over by the walk and offered up front. Likewise for `j`. (A list
+//!   holds each body once, so stepping over `i`, then `j`, then `i` again from any link
+//!   leaves neither: see `probe_skipper`.) Both cells are interior, so every cell of either
+//!   block exists without wrapping and is seen through the zero image, as `scan_interior`
+//!   sees it.
+//! * *Same times.* Each candidate's time comes from [`Cells::offer_body`], the function the
+//!   separate scan calls, on the same records, lower index first, with the zero shift (`+0`
+//!   either way round); the pair `(i, j)` from [`Cells::pair_toi`], the same function with
+//!   the same arguments. Nothing is stored between the two scans that the second one reads:
+//!   a scan reads the world (unchanged) and the grid (unchanged), and `store` writes only
+//!   the records of the body it stores.
 //! * *Order does not matter.* [`Best`] keeps the two smallest keys it is offered under the
 //!   full key order (and `known` stays true in a full scan). The keys offered to one body are
 //!   pairwise distinct: a body–body key names its pair, and in an interior block every body
@@ -40,7 +43,7 @@
 //!   `recompute`s do them, in that order, and `recomputes` counts two.
 
 use super::grid::Grid;
-use super::key::{ordered, Key, NONE};
+use super::key::{Key, NONE};
 use super::predict::{Best, Probe};
 use super::Cells;
 use crate::geom::Vector;
@@ -85,6 +88,13 @@ impl<const D: usize> Cells<D> {
             .interior_pair(&self.cached[i].coords, &self.cached[j].coords)?;
         let bodies = world.bodies();
         let (mut bi, mut bj) = (Best::NONE, Best::NONE);
+        // The pair itself, once, for both (the walk skips `i` and `j`).
+        let zero = Vector::ZERO;
+        if let Some(t) = self.pair_toi(pi, j, &pj.b, &zero) {
+            let key = Key::body(t, i.min(j), i.max(j));
+            bi.offer(key, Grid::<D>::ZERO_IMAGE);
+            bj.offer(key, Grid::<D>::ZERO_IMAGE);
+        }
         // Every head first, the empty cells' left out (a branch per cell on whether it is
         // empty mispredicts about as often as not), then a hint for each head's record and
         // link, as `scan_interior` gives.
@@ -96,9 +106,13 @@ impl<const D: usize> Cells<D> {
             &block.offsets[block.shared..block.shared + block.only_first],
             &block.offsets[block.shared + block.only_first..],
         ];
-        for (end, offsets) in ends.iter_mut().zip(sections) {
+        let skip = self.probe_skipper(i, j);
+        for (s, (end, offsets)) in ends.iter_mut().zip(sections).enumerate() {
             for &off in offsets {
-                let h = self.grid.first((base as isize + off) as u32);
+                let mut h = self.grid.first((base as isize + off) as u32);
+                if s == 0 {
+                    h = skip(h);
+                }
                 heads[n] = h;
                 n += usize::from(h != NONE);
             }
@@ -119,22 +133,22 @@ impl<const D: usize> Cells<D> {
         Some((bi, bj))
     }
 
-    /// Offers body `p` its pair with body `j` (record `bj`) of a shared cell, unless `j` is
-    /// `p` itself: as [`Cells::offer_body`] with the zero shift, except that the time is
-    /// computed before asking whether `j` is `p` (whatever it is for `p` with itself, it is
-    /// dropped), so that the walk has no branch on it: half the bodies of the shared cells
-    /// are the probes themselves.
+    /// A map from a link of a cell list (a body or `NONE`) to the first link from there on
+    /// that is neither `i` nor `j`: selects on two links read once, where a branch per body
+    /// on whether it is a probe would mispredict often (half the bodies of the shared cells
+    /// are the probes). A list holds each body once, so from a link at most the probes
+    /// `i, j` or `j, i` follow in a row: checking for `i`, then `j`, then `i` again is enough.
     #[inline(always)]
-    fn offer_other<const PERIODIC: bool>(p: &Probe<D>, j: usize, bj: &Body<D>, best: &mut Best) {
-        let i = p.i;
-        let zero = Vector::ZERO;
-        if let Some(t) = Self::body_time::<PERIODIC>(p, j, bj, &zero, &zero) {
-            let bits = ordered(t);
-            if bits <= best.threshold() && j != i {
-                best.offer(
-                    Key::body_bits(bits, i.min(j), i.max(j)),
-                    Grid::<D>::ZERO_IMAGE,
-                );
+    fn probe_skipper(&self, i: usize, j: usize) -> impl Fn(u32) -> u32 {
+        let (i, j) = (i as u32, j as u32);
+        let (after_i, after_j) = (self.grid.next_in_cell(i), self.grid.next_in_cell(j));
+        move |k| {
+            let k = if k == i { after_i } else { k };
+            let k = if k == j { after_j } else { k };
+            if k == i {
+                after_i
+            } else {
+                k
             }
         }
     }
@@ -157,15 +171,16 @@ impl<const D: usize> Cells<D> {
     ) {
         let zero = Vector::ZERO;
         let image = Grid::<D>::ZERO_IMAGE;
-        // Cells that are not empty: each list has a first body.
+        // Cells that are not empty: each list has a first body. The probes are skipped.
+        let skip = self.probe_skipper(pi.i, pj.i);
         for &h in shared {
             let mut k = h;
             loop {
                 let ku = k as usize;
                 let b = &bodies[ku];
-                Self::offer_other::<PERIODIC>(pi, ku, b, bi);
-                Self::offer_other::<PERIODIC>(pj, ku, b, bj);
-                k = self.grid.next_in_cell(k);
+                Self::offer_body::<PERIODIC>(pi, ku, b, &zero, &zero, image, bi);
+                Self::offer_body::<PERIODIC>(pj, ku, b, &zero, &zero, image, bj);
+                k = skip(self.grid.next_in_cell(k));
                 if k == NONE {
                     break;
                 }

@@ -193,34 +193,20 @@ impl<const D: usize> Cells<D> {
         best: &mut Best,
     ) {
         let i = p.i;
-        if let Some(t) = Self::body_time::<PERIODIC>(p, j, bj, shift, neg) {
-            let bits = ordered(t);
-            if bits <= best.threshold() {
-                best.offer(Key::body_bits(bits, i.min(j), i.max(j)), image);
-            }
-        }
-    }
-
-    /// The time of impact of body `p` with body `j` (record `bj`) seen through the image of
-    /// shift `shift` (`neg = 0 − shift`): [`toi_circle_circle`] in open worlds,
-    /// [`toi_circle_circle_shifted`] in periodic ones (`PERIODIC`), lower index first, the
-    /// shift negated when `j` comes first.
-    #[inline(always)]
-    pub(super) fn body_time<const PERIODIC: bool>(
-        p: &Probe<D>,
-        j: usize,
-        bj: &Body<D>,
-        shift: &Vector<D>,
-        neg: &Vector<D>,
-    ) -> Option<f64> {
         // One pointer select, not one per field: the records share a layout.
-        let probe_first = p.i < j;
+        let probe_first = i < j;
         let (a, c) = if probe_first { (&p.b, bj) } else { (bj, &p.b) };
-        if PERIODIC {
+        let t = if PERIODIC {
             let s = if probe_first { *shift } else { *neg };
             toi_circle_circle_shifted(&a.motion, a.radius, &c.motion, c.radius, s)
         } else {
             toi_circle_circle(&a.motion, a.radius, &c.motion, c.radius)
+        };
+        if let Some(t) = t {
+            let bits = ordered(t);
+            if bits <= best.threshold() {
+                best.offer(Key::body_bits(bits, i.min(j), i.max(j)), image);
+            }
         }
     }
 
