@@ -10,11 +10,14 @@
 //! cells steps over `i` and `j` by selects on their links rather than by a branch per body
 //! (half the bodies there are the probes). Callgrind, 2D N = 10⁴ at packing 0.5,
 //! instructions and branch mispredictions per collision: two scans 3,743 and 43.7; this
-//! 3,636 and 32.9. Tried: a plain union walk with those branches, 3,562 and 38.9; the time
-//! of each probe with itself computed and dropped instead of the steps, 3,666 and 33.4;
-//! the steps by arithmetic masks (the code generator makes the selects branches), 3,727
-//! and 34.0; a two-lane SIMD kernel for the shared cells, `i` and `j` in the lanes, 3,636
-//! and 41.6 (shared cells hold about two other bodies per scan).
+//! 3,604 and 34.6 (the simulated predictor's count moves by a mispredict or two with code
+//! layout alone: the same walk with bounds-checked gathering took 3,636 and 32.9, and the
+//! unchanged queue code's own count moved by 0.3 between the two). Tried: a plain union
+//! walk with those branches, 3,562 and 38.9; the time of each probe with itself computed
+//! and dropped instead of the steps, 3,666 and 33.4; the steps by arithmetic masks (the
+//! code generator makes the selects branches), 3,727 and 34.0; a two-lane SIMD kernel for
+//! the shared cells, `i` and `j` in the lanes, 3,636 and 41.6 (shared cells hold about two
+//! other bodies per scan).
 //!
 //! # Why the records are those of two `recompute`s, bit for bit
 //!
@@ -50,8 +53,9 @@ use crate::geom::Vector;
 use crate::prefetch::prefetch;
 use crate::world::{Body, World};
 
-/// Most cells in the union of two 3^D blocks (two 3D blocks meeting at a corner: 27 + 27 − 8).
-const MAX_UNION: usize = 46;
+/// Slots for the heads of the union of two 3^D blocks, a power of two: at least the most
+/// cells such a union has (two 3D blocks meeting at a corner: 27 + 27 − 8 = 46).
+const HEAD_SLOTS: usize = 64;
 
 impl<const D: usize> Cells<D> {
     /// Recomputes bodies `i` and `j` (both changed, at the same state of the world) as
@@ -98,26 +102,24 @@ impl<const D: usize> Cells<D> {
         // Every head first, the empty cells' left out (a branch per cell on whether it is
         // empty mispredicts about as often as not), then a hint for each head's record and
         // link, as `scan_interior` gives.
-        let mut heads = [NONE; MAX_UNION];
+        let mut heads = [NONE; HEAD_SLOTS];
         let mut n = 0;
-        let mut ends = [0usize; 3];
-        let sections = [
-            &block.offsets[..block.shared],
-            &block.offsets[block.shared..block.shared + block.only_first],
-            &block.offsets[block.shared + block.only_first..],
-        ];
         let skip = self.probe_skipper(i, j);
-        for (s, (end, offsets)) in ends.iter_mut().zip(sections).enumerate() {
-            for &off in offsets {
-                let mut h = self.grid.first((base as isize + off) as u32);
-                if s == 0 {
-                    h = skip(h);
-                }
-                heads[n] = h;
-                n += usize::from(h != NONE);
-            }
-            *end = n;
+        let first = |off: isize| self.grid.first((base as isize + off) as u32);
+        let (shared, rest) = block.offsets.split_at(block.shared);
+        let (only_i, only_j) = rest.split_at(block.only_first);
+        for &off in shared {
+            push_head(&mut heads, &mut n, skip(first(off)));
         }
+        let e0 = n;
+        for &off in only_i {
+            push_head(&mut heads, &mut n, first(off));
+        }
+        let e1 = n;
+        for &off in only_j {
+            push_head(&mut heads, &mut n, first(off));
+        }
+        let ends = [e0, e1, n];
         for &h in &heads[..n] {
             prefetch(&bodies[h as usize]);
             self.grid.prefetch_link(h as usize);
@@ -193,4 +195,13 @@ impl<const D: usize> Cells<D> {
             self.scan_list::<PERIODIC>(bodies, pj, h, &zero, image, bj);
         }
     }
+}
+
+/// Appends the head `h` to `heads[..*n]` unless it is `NONE` (an empty cell), without a
+/// branch. `*n` stays below the slots (a union has at most 46 cells): the mask only spares
+/// the bounds check.
+#[inline(always)]
+fn push_head(heads: &mut [u32; HEAD_SLOTS], n: &mut usize, h: u32) {
+    heads[*n & (HEAD_SLOTS - 1)] = h;
+    *n += usize::from(h != NONE);
 }
