@@ -7,7 +7,7 @@
 //! evaluated against `i` and against `j`, a body of a cell in one block only against that
 //! block's owner, and the pair `(i, j)` itself is evaluated once and offered to both. Empty
 //! cells are left out before the walk, without a branch each, and the walk of the shared
-//! cells steps over `i` and `j` by selects on their links rather than by a branch per body
+//! cells steps over `i` and `j` by selects on their links rather than by a test per body
 //! (half the bodies there are the probes). Callgrind, 2D N = 10⁴ at packing 0.5,
 //! instructions and branch mispredictions per collision: two scans 3,743 and 43.7; this
 //! 3,604 and 34.6 (the simulated predictor's count moves by a mispredict or two with code
@@ -119,14 +119,11 @@ impl<const D: usize> Cells<D> {
         for &off in only_j {
             push_head(&mut heads, &mut n, first(off));
         }
-        let ends = [e0, e1, n];
         for &h in &heads[..n] {
             prefetch(&bodies[h as usize]);
             self.grid.prefetch_link(h as usize);
         }
-        let shared = &heads[..ends[0]];
-        let only_i = &heads[ends[0]..ends[1]];
-        let only_j = &heads[ends[1]..ends[2]];
+        let (shared, only_i, only_j) = (&heads[..e0], &heads[e0..e1], &heads[e1..n]);
         if self.periodic {
             self.scan_union::<true>(bodies, pi, pj, shared, only_i, only_j, &mut bi, &mut bj);
         } else {
@@ -136,10 +133,13 @@ impl<const D: usize> Cells<D> {
     }
 
     /// A map from a link of a cell list (a body or `NONE`) to the first link from there on
-    /// that is neither `i` nor `j`: selects on two links read once, where a branch per body
-    /// on whether it is a probe would mispredict often (half the bodies of the shared cells
-    /// are the probes). A list holds each body once, so from a link at most the probes
-    /// `i, j` or `j, i` follow in a row: checking for `i`, then `j`, then `i` again is enough.
+    /// that is neither `i` nor `j`, from the two probes' links read once: it replaces a test
+    /// per body of whether it is a probe (half the bodies of the shared cells are). A list
+    /// holds each body once, so from a link at most the probes `i, j` or `j, i` follow in a
+    /// row: checking for `i`, then `j`, then `i` again is enough. (The code generator makes
+    /// branches of the selects, on the walk's chain of loads; they mispredict about twice a
+    /// collision in callgrind's model, the selects forced by arithmetic cost more, see the
+    /// module docs.)
     #[inline(always)]
     fn probe_skipper(&self, i: usize, j: usize) -> impl Fn(u32) -> u32 {
         let (i, j) = (i as u32, j as u32);
@@ -155,9 +155,9 @@ impl<const D: usize> Cells<D> {
         }
     }
 
-    /// Walks the lists starting at the heads `shared` (cells of both blocks), `only_i` and
-    /// `only_j` (cells of one block only), none of them empty, offering each body to the probes whose block holds
-    /// its cell.
+    /// Walks the lists starting at the heads `shared` (cells of both blocks, `i` and `j`
+    /// stepped over), `only_i` and `only_j` (cells of one block only), none of them empty,
+    /// offering each body to the probes whose block holds its cell.
     #[inline(always)]
     #[allow(clippy::too_many_arguments)]
     fn scan_union<const PERIODIC: bool>(
