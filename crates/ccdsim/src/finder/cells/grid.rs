@@ -40,6 +40,54 @@ impl AxisChoices {
     }
 }
 
+/// The union of the 3^D blocks around two interior cells `c₁` and `c₂` that are neighbours
+/// (or the same cell), as linear offsets from `c₁`, in a fixed order: first the cells of both
+/// blocks, then those of `c₁`'s block only, then those of `c₂`'s block only.
+#[derive(Clone, Debug)]
+pub(super) struct PairBlock {
+    /// Linear offsets from `c₁`: `shared` cells of both blocks, then `only_first` cells of
+    /// `c₁`'s block only, then the cells of `c₂`'s block only.
+    pub offsets: Vec<isize>,
+    /// Number of cells in both blocks.
+    pub shared: usize,
+    /// Number of cells in the first block only.
+    pub only_first: usize,
+}
+
+impl PairBlock {
+    /// The union for the second cell at per-axis offset `delta` (each in −1..=1) from the
+    /// first, with the linear strides `stride`.
+    fn new<const D: usize>(delta: [isize; D], stride: &[usize; D]) -> Self {
+        let (mut shared, mut first, mut second) = (Vec::new(), Vec::new(), Vec::new());
+        // Every cell within two of the first along each axis, axis 0 fastest.
+        for code in 0..5usize.pow(D as u32) {
+            let mut c = code;
+            let mut e = [0isize; D];
+            for x in &mut e {
+                *x = (c % 5) as isize - 2;
+                c /= 5;
+            }
+            let in_first = e.iter().all(|x| x.abs() <= 1);
+            let in_second = e.iter().zip(&delta).all(|(x, d)| (x - d).abs() <= 1);
+            let off: isize = e.iter().zip(stride).map(|(x, &s)| x * s as isize).sum();
+            match (in_first, in_second) {
+                (true, true) => shared.push(off),
+                (true, false) => first.push(off),
+                (false, true) => second.push(off),
+                (false, false) => {}
+            }
+        }
+        let (n_shared, n_first) = (shared.len(), first.len());
+        shared.extend(first);
+        shared.extend(second);
+        PairBlock {
+            offsets: shared,
+            shared: n_shared,
+            only_first: n_first,
+        }
+    }
+}
+
 /// Geometry and contents of the grid.
 #[derive(Clone, Debug)]
 pub(super) struct Grid<const D: usize> {
@@ -58,6 +106,9 @@ pub(super) struct Grid<const D: usize> {
     /// Linear offsets, from an interior cell, of the layer entered by a move along axis `a`
     /// in direction `up`: entry `2a + up`.
     layers: Vec<Vec<isize>>,
+    /// The union of the blocks of two interior cells, by the offset of the second cell from
+    /// the first (entry: the image code of that offset, see [`Grid::interior_pair`]).
+    pairs: Vec<PairBlock>,
     /// First body of each cell, or `NONE`.
     head: Vec<u32>,
     /// Next body in the same cell, or `NONE`.
@@ -174,8 +225,20 @@ impl<const D: usize> Grid<D> {
                 offs
             })
             .collect();
+        let pairs = (0..3usize.pow(D as u32))
+            .map(|code| {
+                let mut c = code;
+                let delta = std::array::from_fn(|_| {
+                    let x = (c % 3) as isize - 1;
+                    c /= 3;
+                    x
+                });
+                PairBlock::new::<D>(delta, &stride)
+            })
+            .collect();
         Grid {
             layers,
+            pairs,
             origin,
             width,
             dims,
@@ -206,6 +269,11 @@ impl<const D: usize> Grid<D> {
             + self.wall_start.capacity()
             + self.wall_ids.capacity())
             + std::mem::size_of::<isize>() * (self.interior.capacity() + 3usize.pow(D as u32))
+            + self
+                .pairs
+                .iter()
+                .map(|p| std::mem::size_of::<isize>() * p.offsets.capacity())
+                .sum::<usize>()
     }
 
     /// Cell coordinates of the point `p` (outer cells of open worlds extend to infinity;
@@ -517,6 +585,27 @@ impl<const D: usize> Grid<D> {
         }
         let c = self.linear_u32(k) as isize;
         Some(self.interior.iter().map(move |&off| (c + off) as u32))
+    }
+
+    /// When the cells of coordinates `k1` and `k2` are both interior and neighbours (or the
+    /// same cell): the linear index of `k1`'s cell and the union of their blocks (plain 3^D
+    /// blocks, zero image shift), else `None`.
+    #[inline(always)]
+    pub fn interior_pair(&self, k1: &[u32; D], k2: &[u32; D]) -> Option<(u32, &PairBlock)> {
+        if !self.is_interior(k1) || !self.is_interior(k2) {
+            return None;
+        }
+        let mut code = 0usize;
+        let mut pow = 1usize;
+        for d in 0..D {
+            let delta = k2[d] as isize - k1[d] as isize;
+            if !(-1..=1).contains(&delta) {
+                return None;
+            }
+            code += (delta + 1) as usize * pow;
+            pow *= 3;
+        }
+        Some((self.linear_u32(k1), &self.pairs[code]))
     }
 
     /// The cells entered by a move into the cell of coordinates `k` along `axis` in direction
@@ -883,6 +972,56 @@ mod tests {
         // Dense: the smallest width already gives fewer cells than the bound.
         assert_eq!(cells_of::<2>(10_000, 1.0, 100.0), (10_000, [100, 100]));
         assert_eq!(cells_of::<3>(10_000, 1.0, 20.0), (8_000, [20, 20, 20]));
+    }
+
+    /// The union of two blocks: both blocks' cells, each once, shared ones first.
+    fn check_pair_blocks<const D: usize>(g: &Grid<D>, sizes: &[usize]) {
+        let k1 = [2u32; D];
+        let c1 = g.linear_u32(&k1) as isize;
+        let block = |k: &[u32; D]| {
+            let mut cells = Vec::new();
+            g.visit_neighbours(k, |c, _, _| cells.push(c as isize));
+            cells
+        };
+        for code in 0..3usize.pow(D as u32) {
+            let mut c = code;
+            let k2: [u32; D] = std::array::from_fn(|d| {
+                let x = k1[d] + (c % 3) as u32 - 1;
+                c /= 3;
+                x
+            });
+            let (base, p) = g.interior_pair(&k1, &k2).unwrap();
+            assert_eq!(base as isize, c1);
+            let cells: Vec<isize> = p.offsets.iter().map(|o| c1 + o).collect();
+            let (b1, b2) = (block(&k1), block(&k2));
+            let (shared, rest) = cells.split_at(p.shared);
+            let (first, second) = rest.split_at(p.only_first);
+            assert!(shared.iter().all(|c| b1.contains(c) && b2.contains(c)));
+            assert!(first.iter().all(|c| b1.contains(c) && !b2.contains(c)));
+            assert!(second.iter().all(|c| !b1.contains(c) && b2.contains(c)));
+            let mut sorted = cells.clone();
+            sorted.sort_unstable();
+            sorted.dedup();
+            let mut union = [b1, b2].concat();
+            union.sort_unstable();
+            union.dedup();
+            assert_eq!(sorted, union, "offset code {code}");
+            assert_eq!(cells.len(), union.len());
+            assert!(sizes.contains(&cells.len()));
+        }
+        // Cells two apart, or a border cell: no union.
+        let mut far = k1;
+        far[0] += 2;
+        assert!(g.interior_pair(&k1, &far).is_none());
+        assert!(g.interior_pair(&[0; D], &[1; D]).is_none());
+    }
+
+    #[test]
+    fn pair_blocks_are_unions_of_blocks() {
+        let g = Grid::<2>::new(64, 1.0, Vector::ZERO, Vector([6.0; 2]), None);
+        check_pair_blocks(&g, &[9, 12, 14]);
+        let g = Grid::<3>::new(400, 1.0, Vector::ZERO, Vector([6.0; 3]), None);
+        check_pair_blocks(&g, &[27, 36, 42, 46]);
     }
 
     #[test]

@@ -30,8 +30,10 @@
 //! same) is *stale*: the body's second cached event takes its place if it is known, else the
 //! body is recomputed from scratch; anything else is returned. `update` refiles the bodies
 //! that changed if they left their cell, and recomputes them. Nothing else is touched: a
-//! collision costs two neighbourhood scans, a few queue operations and, now and then, one
-//! rescan for a body whose cached event involved the colliding bodies.
+//! collision costs two neighbourhood scans (in crossing mode, for two bodies in interior
+//! cells, one pass over the union of their blocks giving the same records, see [`pair`]), a
+//! few queue operations and, now and then, one rescan for a body whose cached event involved
+//! the colliding bodies.
 //!
 //! # Why every returned event is the oracle's
 //!
@@ -184,6 +186,7 @@
 mod grid;
 mod key;
 mod lists;
+mod pair;
 mod predict;
 mod tournament;
 
@@ -672,6 +675,13 @@ impl<const D: usize> Finder<D> for Cells<D> {
             if !self.grid.holds(&self.cached[i].coords, &p) {
                 let k = self.grid.coords_of_point(&p);
                 self.grid.relocate(i, &mut self.cached[i].coords, k);
+            }
+        }
+        // The two bodies of a collision: one scan of their neighbourhoods when it applies
+        // (see `pair`), the same records as two recomputes.
+        if let [i, j] = *changed {
+            if self.recompute_pair(world, i, j) {
+                return;
             }
         }
         for &i in changed {

@@ -14,7 +14,7 @@ use crate::world::{Body, World};
 
 /// What the finder caches about one body, in one record: read and written together whenever
 /// the body is predicted, scheduled or popped (one or two cache lines, not five).
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub(super) struct Cached<const D: usize> {
     /// Cached earliest event.
     pub best: Key,
@@ -131,7 +131,13 @@ impl<const D: usize> Cells<D> {
     /// Time of impact of body `p` with body `j` (record `bj`; image displaced by `shift`),
     /// computed exactly as the oracle does: by the same pure function, lower index first.
     #[inline(always)]
-    fn pair_toi(&self, p: &Probe<D>, j: usize, bj: &Body<D>, shift: &Vector<D>) -> Option<f64> {
+    pub(super) fn pair_toi(
+        &self,
+        p: &Probe<D>,
+        j: usize,
+        bj: &Body<D>,
+        shift: &Vector<D>,
+    ) -> Option<f64> {
         let (i, bi) = (p.i, &p.b);
         let (a, b) = if i < j { (bi, bj) } else { (bj, bi) };
         if self.periodic {
@@ -150,7 +156,7 @@ impl<const D: usize> Cells<D> {
     /// ones (`PERIODIC`), the shift negated when the partner comes first. The order is chosen
     /// by selecting references, not by branching on data.
     #[inline(always)]
-    fn scan_list<const PERIODIC: bool>(
+    pub(super) fn scan_list<const PERIODIC: bool>(
         &self,
         bodies: &[Body<D>],
         p: &Probe<D>,
@@ -165,25 +171,42 @@ impl<const D: usize> Cells<D> {
         let neg = Vector::ZERO - *shift;
         while j != NONE {
             let ju = j as usize;
-            let b = &bodies[ju];
             if ju != i {
-                // One pointer select, not one per field: the records share a layout.
-                let probe_first = i < ju;
-                let (a, c) = if probe_first { (&p.b, b) } else { (b, &p.b) };
-                let t = if PERIODIC {
-                    let s = if probe_first { *shift } else { neg };
-                    toi_circle_circle_shifted(&a.motion, a.radius, &c.motion, c.radius, s)
-                } else {
-                    toi_circle_circle(&a.motion, a.radius, &c.motion, c.radius)
-                };
-                if let Some(t) = t {
-                    let bits = ordered(t);
-                    if bits <= best.threshold() {
-                        best.offer(Key::body_bits(bits, i.min(ju), i.max(ju)), image);
-                    }
-                }
+                Self::offer_body::<PERIODIC>(p, ju, &bodies[ju], shift, &neg, image, best);
             }
             j = self.grid.next_in_cell(j);
+        }
+    }
+
+    /// Offers body `p` its pair with body `j` (record `bj`, a body other than `p`'s) seen
+    /// through the image of shift `shift` (`neg = 0 − shift`, code `image`): the oracle's
+    /// function on the oracle's arguments, lower index first (see [`Cells::scan_list`]).
+    #[inline(always)]
+    #[allow(clippy::too_many_arguments)]
+    pub(super) fn offer_body<const PERIODIC: bool>(
+        p: &Probe<D>,
+        j: usize,
+        bj: &Body<D>,
+        shift: &Vector<D>,
+        neg: &Vector<D>,
+        image: u8,
+        best: &mut Best,
+    ) {
+        let i = p.i;
+        // One pointer select, not one per field: the records share a layout.
+        let probe_first = i < j;
+        let (a, c) = if probe_first { (&p.b, bj) } else { (bj, &p.b) };
+        let t = if PERIODIC {
+            let s = if probe_first { *shift } else { *neg };
+            toi_circle_circle_shifted(&a.motion, a.radius, &c.motion, c.radius, s)
+        } else {
+            toi_circle_circle(&a.motion, a.radius, &c.motion, c.radius)
+        };
+        if let Some(t) = t {
+            let bits = ordered(t);
+            if bits <= best.threshold() {
+                best.offer(Key::body_bits(bits, i.min(j), i.max(j)), image);
+            }
         }
     }
 

@@ -4,6 +4,7 @@
 use super::{Cells, CellsStats};
 use crate::finder::{all_pairs_next_event, Finder, FinderOptions};
 use crate::generate::{gas, GasConfig};
+use crate::geom::Vector;
 use crate::resolve::{resolve_body_body, resolve_body_wall, resolve_exit};
 use crate::scene::Scene;
 use crate::world::World;
@@ -304,4 +305,107 @@ fn edits_behind_the_clock(scene: &Scene<2>, skin: f64) {
         resolve_and_update(&mut world, &mut finder, got);
     }
     assert!(finder.stats().undone > 0);
+}
+
+/// The state of `finder` that a recompute writes: every body's records and queue key, and the
+/// counters.
+fn records<const D: usize>(
+    finder: &Cells<D>,
+) -> (Vec<super::Cached<D>>, Vec<super::Key>, CellsStats) {
+    let keys = (0..finder.cached.len())
+        .map(|i| finder.queue.key(i))
+        .collect();
+    (finder.cached.clone(), keys, finder.stats)
+}
+
+/// `recompute_pair(i, j)` leaves every record, queue key and counter exactly as
+/// `recompute(i)` then `recompute(j)` do (keys, hence times bit for bit, images, second
+/// events, partner counts, crossings), on pairs of bodies in the same or neighbouring interior
+/// cells, after both were given random velocities as a collision would; and it declines
+/// (doing nothing) exactly when the cells are not both interior neighbours.
+fn pair_recompute_matches_two_recomputes<const D: usize>(scene: &Scene<D>, seed: u64) {
+    use rand::{Rng, SeedableRng};
+    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
+    let mut world = World::from_scene(scene).unwrap();
+    let mut finder = with_skin::<D>(0.0);
+    finder.init(&world).unwrap();
+    let n = world.len();
+    let (mut taken, mut declined, mut differs_from_before) = (0usize, 0usize, 0usize);
+    for _round in 0..12 {
+        // Move on: a few events, so that states and cells vary.
+        for _ in 0..40 {
+            let e = finder.next_event(&world).unwrap();
+            resolve_and_update(&mut world, &mut finder, e);
+        }
+        let t = world.now();
+        for _ in 0..15 {
+            let i = rng.random_range(0..n);
+            for j in 0..n {
+                if j == i {
+                    continue;
+                }
+                let (ki, kj) = (finder.cached[i].coords, finder.cached[j].coords);
+                let near = (0..D).all(|d| ki[d].abs_diff(kj[d]) <= 1);
+                let interior = finder.grid.interior_pair(&ki, &kj).is_some();
+                if !near && rng.random_range(0..8) != 0 {
+                    continue;
+                }
+                let mut w = world.clone();
+                for b in [i, j] {
+                    let p = w.position_at(b, t);
+                    let v = Vector(std::array::from_fn(|_| rng.random_range(-3.0..3.0)));
+                    w.set_state(b, p, v, t);
+                }
+                let mut one = finder.clone();
+                let mut two = finder.clone();
+                let took = one.recompute_pair(&w, i, j);
+                assert_eq!(took, near && interior, "bodies {i}, {j} in {ki:?}, {kj:?}");
+                if !took {
+                    declined += 1;
+                    assert_eq!(records(&one), records(&finder), "declined, yet changed");
+                    continue;
+                }
+                taken += 1;
+                two.recompute(&w, i);
+                two.recompute(&w, j);
+                assert_eq!(records(&one), records(&two), "bodies {i}, {j}");
+                if records(&one).0 != records(&finder).0 {
+                    differs_from_before += 1;
+                }
+                one.validate(&w).unwrap();
+            }
+        }
+    }
+    assert!(
+        taken > 100 && declined > 10,
+        "taken {taken}, declined {declined}"
+    );
+    assert!(
+        differs_from_before * 2 > taken,
+        "{differs_from_before} of {taken}"
+    );
+}
+
+#[test]
+fn pair_recompute_is_two_recomputes() {
+    for seed in [11, 12] {
+        let dense = gas(&cfg(300, 0.45, 0.5, 0.5, seed)).unwrap();
+        pair_recompute_matches_two_recomputes::<2>(&dense, seed);
+        let poly = gas(&cfg(250, 0.3, 0.2, 1.0, seed)).unwrap();
+        pair_recompute_matches_two_recomputes::<2>(&poly, seed);
+        let periodic = gas(&GasConfig {
+            periodic: true,
+            ..cfg(300, 0.45, 0.5, 0.5, seed)
+        })
+        .unwrap();
+        pair_recompute_matches_two_recomputes::<2>(&periodic, seed);
+        let spheres = gas(&cfg(400, 0.3, 0.5, 0.5, seed)).unwrap();
+        pair_recompute_matches_two_recomputes::<3>(&spheres, seed);
+        let periodic3 = gas(&GasConfig {
+            periodic: true,
+            ..cfg(400, 0.3, 0.4, 0.6, seed)
+        })
+        .unwrap();
+        pair_recompute_matches_two_recomputes::<3>(&periodic3, seed);
+    }
 }
