@@ -100,8 +100,8 @@ impl<const D: usize> Cells<D> {
             bj.offer(key, Grid::<D>::ZERO_IMAGE);
         }
         // Every head first, the empty cells' left out (a branch per cell on whether it is
-        // empty mispredicts about as often as not), then a hint for each head's record and
-        // link, as `scan_interior` gives.
+        // empty mispredicts about as often as not), then, in large worlds, a hint for each
+        // head's record, as `scan_interior` gives.
         let mut heads = [NONE; HEAD_SLOTS];
         let mut n = 0;
         let skip = self.probe_skipper(i, j);
@@ -119,9 +119,10 @@ impl<const D: usize> Cells<D> {
         for &off in only_j {
             push_head(&mut heads, &mut n, first(off));
         }
-        for &h in &heads[..n] {
-            prefetch(&bodies[h as usize]);
-            self.grid.prefetch_link(h as usize);
+        if self.hints {
+            for &h in &heads[..n] {
+                prefetch(&bodies[h as usize]);
+            }
         }
         let (shared, only_i, only_j) = (&heads[..e0], &heads[e0..e1], &heads[e1..n]);
         if self.periodic {
