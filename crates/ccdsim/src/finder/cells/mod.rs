@@ -167,14 +167,18 @@
 //!
 //! # Prefetch hints
 //!
-//! Beyond a few hundred thousand bodies the records no longer fit in the caches and a
-//! collision waits on memory more than it computes. When `next_event` returns an event it
-//! hints the lines its caller is about to need: the cell heads of both bodies' 3^D blocks
-//! (or both bodies' list blocks) and both bodies' paths in the queue, so those misses run
-//! while the caller resolves the event and scans the first body. A scan loads all its heads
-//! (or reads its list) before walking and hints every head's record and link, so the misses
-//! of one scan overlap instead of waiting one after another behind the walk's branches.
-//! Hints are not loads: they change no result and cannot fault ([`crate::prefetch`]).
+//! Once the records no longer fit in a core's cache, a collision waits on memory more than it
+//! computes. When the finder's structures and the body records take 2 MiB or more
+//! (`HINTS_FROM_BYTES`), `next_event`, as it returns an event, hints the lines its caller is
+//! about to need: the cell heads of both bodies' 3^D blocks (or both bodies' list blocks),
+//! both bodies' paths in the queue, and the cached and body records of the holders of the
+//! queue's runner-up key ([`TournamentQueue::runner_up`]), most often the next event. Those
+//! misses then run while the caller resolves the event and rescans its bodies, instead of
+//! one after another when each is needed. A scan hints its heads' records (a list scan its
+//! partners', a list rebuild its heads' centres and links) before walking, so the misses of
+//! one scan overlap instead of waiting behind the walk's branches. Hints are not loads: they
+//! change no result and cannot fault ([`crate::prefetch`]). Below 2 MiB the data stays
+//! cached and they would only cost instructions.
 //!
 //! # Edits behind the finder's clock
 //!
