@@ -9,9 +9,11 @@
 //! cells are left out before the walk, without a branch each, and the walk of the shared
 //! cells steps over `i` and `j` by selects on their links rather than by a test per body
 //! (half the bodies there are the probes). Callgrind, 2D N = 10⁴ at packing 0.5,
-//! instructions and branch mispredictions per collision: two scans 3,743 and 43.7; this
-//! 3,604 and 34.6 (the simulated predictor's count moves by a mispredict or two with code
-//! layout alone: the same walk with bounds-checked gathering took 3,636 and 32.9, and the
+//! instructions and branch mispredictions per collision: two scans 3,196 and 36.9; this
+//! 3,308 and 34.6, faster on the clock (session 6's results README). Measured on a base
+//! that still gave every scan prefetch hints (two scans 3,743 and 43.7, this 3,604 and
+//! 34.6; the simulated predictor's count moves by a mispredict or two with code layout
+//! alone: the same walk with bounds-checked gathering took 3,636 and 32.9, and the
 //! unchanged queue code's own count moved by 0.3 between the two). Tried: a plain union
 //! walk with those branches, 3,562 and 38.9; the time of each probe with itself computed
 //! and dropped instead of the steps, 3,666 and 33.4; the steps by arithmetic masks (the
