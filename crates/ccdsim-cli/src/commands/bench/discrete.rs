@@ -1,12 +1,11 @@
 //! `ccdsim bench discrete`: Table 5.2 of the thesis, the exact simulation against a
 //! discrete-time stepper at several time steps.
 
-use super::{parse_list, write_file};
+use super::{parse_list, write_file, SceneRuns};
 use crate::progress::Progress;
 use anyhow::{anyhow, Result};
 use ccdsim::bench::{run_discrete_bench, DiscreteBenchConfig};
 use ccdsim::FINDER_NAMES;
-use std::path::PathBuf;
 use std::process::ExitCode;
 
 /// Arguments of `ccdsim bench discrete`.
@@ -18,27 +17,11 @@ pub struct Args {
     /// Time steps of the discrete stepper, seconds, comma-separated.
     #[arg(long, default_value = "0.001,0.005,0.01,0.03,0.1,1", value_parser = parse_list::<f64>)]
     dt: std::vec::Vec<f64>,
-    /// Runs (seeds) per row.
-    #[arg(long, default_value_t = 3)]
-    runs: u32,
-    /// Seed of the first run.
-    #[arg(long, default_value_t = 1)]
-    seed: u64,
     /// The exact finder of the first row (default: bvh when built in, else sedgewick).
     #[arg(long)]
     finder: Option<String>,
-    /// Simulated seconds per run.
-    #[arg(long, default_value_t = 5.0)]
-    duration: f64,
-    /// Dimension, 2 (the thesis's) or 3.
-    #[arg(long, default_value_t = 2, value_parser = clap::value_parser!(u8).range(2..=3))]
-    dim: u8,
-    /// Directory for discrete.csv and discrete.json.
-    #[arg(long, default_value = "target/ccdsim-bench")]
-    out: PathBuf,
-    /// No progress bar.
-    #[arg(long, short)]
-    quiet: bool,
+    #[command(flatten)]
+    runs: SceneRuns,
 }
 
 /// Runs the command.
@@ -53,17 +36,14 @@ pub fn run(args: Args) -> Result<ExitCode> {
     let cfg = DiscreteBenchConfig {
         n: args.n,
         dts: args.dt,
-        runs: args.runs,
-        first_seed: args.seed,
+        runs: args.runs.runs()?,
+        first_seed: args.runs.seed,
         finder,
-        duration: args.duration,
-        dim: usize::from(args.dim),
+        duration: args.runs.duration,
+        dim: args.runs.dim(),
     };
-    if cfg.runs == 0 {
-        return Err(anyhow!("--runs must be at least 1"));
-    }
     let total = u64::from(cfg.runs) * (1 + cfg.dts.len() as u64);
-    let mut progress = Progress::new(total, "discrete bench", args.quiet);
+    let mut progress = Progress::new(total, "discrete bench", args.runs.quiet);
     let report = run_discrete_bench(&cfg, |done, _| progress.set(done)).map_err(|e| anyhow!(e))?;
     progress.finish();
     println!(
@@ -72,12 +52,12 @@ pub fn run(args: Args) -> Result<ExitCode> {
     );
     print!("{}", report.table());
     println!("total {:.1} s", report.total_seconds);
-    write_file(&args.out, "discrete.csv", &report.csv())?;
+    write_file(&args.runs.out, "discrete.csv", &report.csv())?;
     write_file(
-        &args.out,
+        &args.runs.out,
         "discrete.json",
         &(serde_json::to_string_pretty(&report)? + "\n"),
     )?;
-    println!("wrote {}/discrete.{{csv,json}}", args.out.display());
+    println!("wrote {}/discrete.{{csv,json}}", args.runs.out.display());
     Ok(ExitCode::SUCCESS)
 }

@@ -6,8 +6,8 @@ mod gas;
 mod plot;
 mod thesis;
 
-use anyhow::{Context, Result};
-use std::path::Path;
+use anyhow::{anyhow, Context, Result};
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 /// Arguments of `ccdsim bench`.
@@ -36,6 +36,45 @@ pub fn run(args: Args) -> Result<ExitCode> {
         Workload::Thesis(a) => thesis::run(a),
         Workload::Discrete(a) => discrete::run(a),
         Workload::Gas(a) => gas::run(a),
+    }
+}
+
+/// The options of the benchmarks on the thesis's §5.2 scene (`thesis`, `discrete`): which
+/// runs, how long each, and where the results go.
+#[derive(clap::Args)]
+struct SceneRuns {
+    /// Runs (seeds) per table cell; times and counts are averaged.
+    #[arg(long, default_value_t = 3)]
+    runs: u32,
+    /// Seed of the first run.
+    #[arg(long, default_value_t = 1)]
+    seed: u64,
+    /// Simulated seconds per run.
+    #[arg(long, default_value_t = 5.0)]
+    duration: f64,
+    /// Dimension, 2 (the thesis's) or 3.
+    #[arg(long, default_value_t = 2, value_parser = clap::value_parser!(u8).range(2..=3))]
+    dim: u8,
+    /// Directory for the result files (CSV, JSON and, for `thesis`, the plots).
+    #[arg(long, default_value = "target/ccdsim-bench")]
+    out: PathBuf,
+    /// No progress bar.
+    #[arg(long, short)]
+    quiet: bool,
+}
+
+impl SceneRuns {
+    /// The number of runs, refused when zero.
+    fn runs(&self) -> Result<u32> {
+        if self.runs == 0 {
+            return Err(anyhow!("--runs must be at least 1"));
+        }
+        Ok(self.runs)
+    }
+
+    /// The dimension as a `usize`.
+    fn dim(&self) -> usize {
+        usize::from(self.dim)
     }
 }
 

@@ -1,13 +1,12 @@
 //! `ccdsim bench thesis`: Table 5.1 and Figure 5.1 of the thesis, for every finder.
 
 use super::plot::{plot_times, Series};
-use super::{parse_list, write_file};
+use super::{parse_list, write_file, SceneRuns};
 use crate::progress::Progress;
 use anyhow::{anyhow, Result};
 use ccdsim::bench::{run_thesis_bench, CellStatus, ThesisBenchConfig};
 use ccdsim::generate::THESIS_TABLE_5_1;
 use ccdsim::FINDER_NAMES;
-use std::path::PathBuf;
 use std::process::ExitCode;
 
 /// Arguments of `ccdsim bench thesis`.
@@ -16,12 +15,6 @@ pub struct Args {
     /// Numbers of bodies, comma-separated, increasing.
     #[arg(long, default_value = "8,16,32,64,128,256,512,1024,2048", value_parser = parse_list::<usize>)]
     sizes: std::vec::Vec<usize>,
-    /// Runs (seeds) per size and finder; times and counts are averaged.
-    #[arg(long, default_value_t = 3)]
-    runs: u32,
-    /// Seed of the first run.
-    #[arg(long, default_value_t = 1)]
-    seed: u64,
     /// Finders, comma-separated (default: every finder).
     #[arg(long, value_parser = parse_list::<String>)]
     finders: Option<std::vec::Vec<String>>,
@@ -30,38 +23,25 @@ pub struct Args {
     /// larger sizes.
     #[arg(long, default_value_t = 120.0)]
     budget: f64,
-    /// Simulated seconds per run.
-    #[arg(long, default_value_t = 5.0)]
-    duration: f64,
-    /// Dimension, 2 (the thesis's) or 3.
-    #[arg(long, default_value_t = 2, value_parser = clap::value_parser!(u8).range(2..=3))]
-    dim: u8,
-    /// Directory for thesis.csv, thesis.json, thesis.png and thesis.svg.
-    #[arg(long, default_value = "target/ccdsim-bench")]
-    out: PathBuf,
-    /// No progress bar.
-    #[arg(long, short)]
-    quiet: bool,
+    #[command(flatten)]
+    runs: SceneRuns,
 }
 
 /// Runs the command.
 pub fn run(args: Args) -> Result<ExitCode> {
     let cfg = ThesisBenchConfig {
         sizes: args.sizes,
-        runs: args.runs,
-        first_seed: args.seed,
+        runs: args.runs.runs()?,
+        first_seed: args.runs.seed,
         finders: args
             .finders
             .unwrap_or_else(|| FINDER_NAMES.iter().map(|s| (*s).to_string()).collect()),
         budget_seconds: args.budget,
-        duration: args.duration,
-        dim: usize::from(args.dim),
+        duration: args.runs.duration,
+        dim: args.runs.dim(),
     };
-    if cfg.runs == 0 {
-        return Err(anyhow!("--runs must be at least 1"));
-    }
     let total = (cfg.sizes.len() * cfg.finders.len()) as u64 * u64::from(cfg.runs);
-    let mut progress = Progress::new(total, "thesis bench", args.quiet);
+    let mut progress = Progress::new(total, "thesis bench", args.runs.quiet);
     let report = run_thesis_bench(&cfg, |done, _| progress.set(done)).map_err(|e| anyhow!(e))?;
     progress.finish();
     println!(
@@ -78,9 +58,9 @@ pub fn run(args: Args) -> Result<ExitCode> {
     }
     println!("total {:.1} s", report.total_seconds);
 
-    write_file(&args.out, "thesis.csv", &report.csv())?;
+    write_file(&args.runs.out, "thesis.csv", &report.csv())?;
     write_file(
-        &args.out,
+        &args.runs.out,
         "thesis.json",
         &(serde_json::to_string_pretty(&report)? + "\n"),
     )?;
@@ -123,8 +103,11 @@ pub fn run(args: Args) -> Result<ExitCode> {
         "Thesis scene ({}D, {} s simulated): seconds per run against n",
         cfg.dim, cfg.duration
     );
-    plot_times(&args.out.join("thesis.png"), &title, &series)?;
-    plot_times(&args.out.join("thesis.svg"), &title, &series)?;
-    println!("wrote {}/thesis.{{csv,json,png,svg}}", args.out.display());
+    plot_times(&args.runs.out.join("thesis.png"), &title, &series)?;
+    plot_times(&args.runs.out.join("thesis.svg"), &title, &series)?;
+    println!(
+        "wrote {}/thesis.{{csv,json,png,svg}}",
+        args.runs.out.display()
+    );
     Ok(ExitCode::SUCCESS)
 }

@@ -7,11 +7,11 @@
 //! ball at `now` and at `now + Δ` (for straight-line motion, that box holds the ball at every
 //! time in between). The tree is built top-down by splitting the bodies at the median of an
 //! axis that cycles with the level (x, y, then z), with `select_nth_unstable` (linear time),
-//! into a flat balanced array ([`build`](tree::SweptTree::build)). Algorithm 3's self- and
-//! pair-checks ([`traverse`](tree::SweptTree::earliest_body_event)) hand every pair of bodies
+//! into a flat balanced array (`SweptTree::build` in `tree.rs`). Algorithm 3's self- and
+//! pair-checks (`SweptTree::earliest_body_event`) hand every pair of bodies
 //! whose leaf boxes overlap to the narrow phase, which keeps the earliest event with time
 //! ≤ `now + Δ`. While none is found, Δ ← Δ·grow and the boxes are refitted leaves-to-root
-//! ("Update Hierarchy", [`refit`](tree::SweptTree::refit)); once one is found,
+//! ("Update Hierarchy", `SweptTree::refit`); once one is found,
 //! Δ ← Δ·shrink. `grow`, `shrink` and the first Δ come from [`FinderOptions`] (thesis: 2,
 //! ½). Δ never shrinks below [`MIN_DT_FRACTION`] of the first Δ, so a burst of simultaneous
 //! events cannot drive it to zero (from where growing would never end).
@@ -42,7 +42,7 @@
 //!   event time `t0 + dt` carry errors of a few ε times the coordinates' and absolute times'
 //!   magnitudes. Each leaf box is therefore padded by
 //!   `1e-5·(r + |v|₁·(now + Δ − t_i)) + 1e-12·(|p|∞ + |v|₁·(|t_i| + |now + Δ|))`
-//!   ([`swept_box`](tree::swept_box)); the pair's two paddings sum to more than a hundred
+//!   (`swept_box` in `tree.rs`); the pair's two paddings sum to more than a hundred
 //!   times the first bound and thousands of times the second, and cost nothing measurable.
 //!
 //! # Walls
