@@ -31,9 +31,9 @@ const COLOURS: [RGBColor; 6] = [
 
 /// Writes the plot to `path`, PNG or SVG by its extension.
 ///
-/// Like Figure 5.1, an n² and an n·log n reference curve are drawn for comparison, scaled to
-/// have the same maximum as the measurements: each equals the largest measured time (of the
-/// series that are not the thesis's) at the largest n plotted.
+/// Like Figure 5.1, an n² and an n·log n reference curve are drawn for comparison. Both start
+/// from the fastest time measured here (the series that are not the thesis's) at the smallest
+/// n plotted, so each measured curve's slope reads against theirs from a common origin.
 pub fn plot_times(path: &Path, title: &str, series: &[Series]) -> Result<()> {
     let size = (1100, 750);
     match path.extension().and_then(|e| e.to_str()) {
@@ -74,33 +74,57 @@ where
     if x0 > x1 || y0 > y1 {
         return Err(anyhow!("nothing to plot: no cell completed"));
     }
-    // The reference curves meet the measurements' maximum at the largest n.
-    let ours_max = series
-        .iter()
-        .filter(|s| !s.thesis)
-        .flat_map(|s| s.points.iter().map(|p| p.1))
-        .fold(0.0, f64::max);
+    // The reference curves start from the fastest of our times at the smallest n (any of our
+    // times at all if none was measured there).
+    let ours = || {
+        series
+            .iter()
+            .filter(|s| !s.thesis)
+            .flat_map(|s| s.points.iter())
+    };
+    let fastest_at = |at: Option<f64>| {
+        ours()
+            .filter(|p| p.1 > 0.0 && at.is_none_or(|x| p.0 == x))
+            .map(|p| p.1)
+            .fold(f64::INFINITY, f64::min)
+    };
+    let first_x = ours().map(|p| p.0).fold(f64::INFINITY, f64::min);
+    let (anchor_x, anchor_y) = match fastest_at(Some(first_x)) {
+        y if y.is_finite() => (first_x, y),
+        _ => (x0, fastest_at(None).min(y1)),
+    };
     let references: [Reference; 2] = [
         ("n² (scaled)", |n| n * n),
         ("n log n (scaled)", |n| n * n.ln()),
     ];
     let ref_points: Vec<(String, Vec<(f64, f64)>)> = references
         .iter()
-        .map(|(label, f)| {
-            let k = ours_max / f(x1);
-            let mut pts = Vec::new();
+        .filter_map(|(label, f)| {
+            // n log n is 0 at n = 1: no scale makes it pass through the anchor there.
+            let k = anchor_y / f(anchor_x);
+            if !(k.is_finite() && k > 0.0) {
+                return None;
+            }
+            let mut xs = Vec::new();
             let mut n = x0;
             while n <= x1 * 1.0001 {
-                pts.push((n, k * f(n)));
+                xs.push(n);
                 n *= 1.1;
             }
-            pts.push((x1, k * f(x1)));
-            (label.to_string(), pts)
+            xs.push(x1);
+            // A log axis has no place for 0 (n log n at n = 1).
+            let pts = xs
+                .into_iter()
+                .map(|n| (n, k * f(n)))
+                .filter(|p| p.1 > 0.0)
+                .collect();
+            Some((label.to_string(), pts))
         })
         .collect();
     for (_, pts) in &ref_points {
         for &(_, y) in pts {
             y0 = y0.min(y);
+            y1 = y1.max(y);
         }
     }
     let mut chart = ChartBuilder::on(&root)
