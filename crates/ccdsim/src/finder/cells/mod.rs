@@ -192,6 +192,7 @@ mod key;
 mod lists;
 mod pair;
 mod predict;
+mod slots;
 mod tournament;
 
 use super::{DebugBox, Finder, FinderError, FinderMemory, FinderOptions};
@@ -613,15 +614,18 @@ impl<const D: usize> Finder<D> for Cells<D> {
             sigma_max * (1.0 + MARGIN)
         };
         self.grid = Grid::new(n, width, lo, hi, period);
-        self.lists = list_mode.then(|| Lists::new(n, skin, sigma_max + skin + slack));
+        self.lists = list_mode
+            .then(|| Lists::new(n, skin, sigma_max + skin + slack, self.grid.cell_count()));
         self.cached = vec![Cached::NONE; n];
         for i in 0..n {
             let p = world.position_at(i, now);
-            if let Some(lists) = &mut self.lists {
-                lists.centre[i] = p;
-            }
             let k = self.grid.coords_of_point(&p);
             self.cached[i].coords = self.grid.insert(i, k);
+            if let Some(lists) = &mut self.lists {
+                lists.centre[i] = p;
+                let c = self.grid.cell_at(&self.cached[i].coords);
+                lists.slots.insert(i, c, &p);
+            }
         }
         self.grid
             .file_walls(world.walls(), r1 + 0.5 * skin + MARGIN * sigma_max + slack);
