@@ -55,31 +55,6 @@ pub(super) fn entry_image(e: u32) -> u8 {
     (e & IMAGE_MASK) as u8
 }
 
-/// True when `list` holds `e`: a sweep of the whole list without an early exit, so the
-/// outcome steers no branch inside the sweep (lists are a dozen entries or so).
-#[inline(always)]
-fn holds(list: &[u32], e: u32) -> bool {
-    list.iter().fold(false, |found, &x| found | (x == e))
-}
-
-/// Calls `change(e, false)` for each entry `e` of `was` not in `now`, then `change(e, true)`
-/// for each entry of `now` not in `was`, each in its list's order (entries of a list are
-/// distinct). Lists are short, so membership is a branch-free sweep of the other list rather
-/// than a sorted merge: only the rare change takes a branch.
-#[inline(always)]
-fn list_changes(was: &[u32], now: &[u32], mut change: impl FnMut(u32, bool)) {
-    for &e in was {
-        if !holds(now, e) {
-            change(e, false);
-        }
-    }
-    for &e in now {
-        if !holds(was, e) {
-            change(e, true);
-        }
-    }
-}
-
 /// The entries `above` (of higher body index than some body) and `below` (of lower) in
 /// increasing order, into `out`: every entry of `below` sorts below every entry of `above`.
 #[cfg(test)]
@@ -169,6 +144,11 @@ pub(super) struct Lists<const D: usize> {
     added: Vec<u32>,
     /// The shell centres again, filed by cell (read by rebuilds).
     pub slots: CellSlots<D>,
+    /// Scratch of a rebuild: the cells near the shell (27 places, kept, never initialised
+    /// again).
+    near: Vec<(u32, u8)>,
+    /// Scratch of a rebuild: the list entries of each near cell's slots (27 places).
+    slot_entries: Vec<[u32; SLOTS]>,
 }
 
 /// A shell centre being tested against cells' slot records, in lanes: its coordinates and
@@ -202,6 +182,8 @@ impl<const D: usize> Lists<D> {
             old: Vec::new(),
             added: Vec::new(),
             slots: CellSlots::new(cells, n),
+            near: vec![(0, 0); 27],
+            slot_entries: vec![[0; SLOTS]; 27],
         }
     }
 
@@ -227,6 +209,8 @@ impl<const D: usize> Lists<D> {
             + 8 * self.exit.capacity()
             + std::mem::size_of::<(u32, f64)>() * self.log.capacity()
             + self.slots.bytes()
+            + std::mem::size_of::<(u32, u8)>() * self.near.capacity()
+            + std::mem::size_of::<[u32; SLOTS]>() * self.slot_entries.capacity()
     }
 
     /// Longest list the layout holds.
@@ -662,10 +646,12 @@ impl<const D: usize> Cells<D> {
         let mut below = std::mem::take(&mut self.lists_mut().fresh_below);
         above.clear();
         below.clear();
+        let mut near = std::mem::take(&mut self.lists_mut().near);
+        let mut slot_entries = std::mem::take(&mut self.lists_mut().slot_entries);
         let lists = self.lists();
         let xi = lists.centre[i];
-        let mut cells = [(0u32, 0u8); 27];
-        let count = lists.near_cells(&self.grid, &self.cached[i].coords, &xi, &mut cells);
+        let cells: &mut [(u32, u8); 27] = near.as_mut_slice().try_into().expect("27 cells");
+        let count = lists.near_cells(&self.grid, &self.cached[i].coords, &xi, cells);
         if self.hints {
             for &(c, _) in &cells[..count] {
                 lists.slots.prefetch_cell(c);
@@ -674,7 +660,8 @@ impl<const D: usize> Cells<D> {
         // First pass, without a branch on any test: each cell's slot entries go to `entries`,
         // and one bit per slot (bit `SLOTS·a + k` for slot `k` of the `a`-th cell of a
         // group of 16) says whether it is kept in the part of higher body index or of lower.
-        let mut entries = [[0u32; SLOTS]; 27];
+        let entries: &mut [[u32; SLOTS]; 27] =
+            slot_entries.as_mut_slice().try_into().expect("27 cells");
         let probe = CellProbe {
             x: std::array::from_fn(|d| f64x2::splat(xi[d])),
             me: i32x4::splat(i as i32),
@@ -729,6 +716,8 @@ impl<const D: usize> Cells<D> {
         let lists = self.lists_mut();
         lists.fresh = above;
         lists.fresh_below = below;
+        lists.near = near;
+        lists.slot_entries = slot_entries;
         (na, nb)
     }
 
@@ -739,6 +728,7 @@ impl<const D: usize> Cells<D> {
     /// covered since they became responsible, see the module docs).
     pub(super) fn relist(&mut self, world: &World<D>, i: usize, t: f64, best: Option<&mut Best>) {
         let x = world.motion(i).at(t);
+        let was_at = self.lists().centre[i];
         self.lists_mut().centre[i] = x;
         let from = self.grid.cell_at(&self.cached[i].coords);
         let from_border = self.grid.is_border(&self.cached[i].coords);
@@ -758,10 +748,14 @@ impl<const D: usize> Cells<D> {
             std::mem::take(&mut lists.fresh),
             std::mem::take(&mut lists.fresh_below),
         );
-        // The old list (a copy: partners' lists change below) and the new one are compared
-        // part by part (an entry's part is fixed by its body index): entries only in the old
-        // one leave their partner's list, entries only in the new one join it and go to
-        // `added`. Lists are short, so membership is a branch-free sweep of the other part.
+        // The old list (a copy: partners' lists change below) and the new one, part by part
+        // (an entry's part is fixed by its body index): entries only in the old one leave
+        // their partner's list, entries only in the new one join it and go to `added`. The
+        // lists equal the overlap relation on the centres before this rebuild and after it,
+        // and only `i`'s centre moved, so an old entry is not in the new list exactly when its
+        // partner's shell fails `Lists::overlap` with the new centre, and a new entry was not
+        // in the old list exactly when it fails it with the old centre `was_at`: one test per
+        // entry instead of a sweep of the other list.
         let mut old = std::mem::take(&mut lists.old);
         let (old_above, old_below) = lists.parts(i);
         let split = old_above.len();
@@ -772,15 +766,19 @@ impl<const D: usize> Cells<D> {
         added.clear();
         let parts = [(&old[..split], &above[..na]), (&old[split..], &below[..nb])];
         for (was, now) in parts {
-            list_changes(was, now, |e, gained| {
-                let mirror = entry(i, opposite::<D>(entry_image(e)));
-                if gained {
-                    lists.push(entry_body(e), mirror);
-                    added.push(e);
-                } else {
-                    lists.remove(entry_body(e), mirror);
+            for &e in was {
+                let (j, image) = (entry_body(e), entry_image(e));
+                if !lists.overlap(&x, &lists.centre[j], &lists.shifts[usize::from(image)]) {
+                    lists.remove(j, entry(i, opposite::<D>(image)));
                 }
-            });
+            }
+            for &e in now {
+                let (j, image) = (entry_body(e), entry_image(e));
+                if !lists.overlap(&was_at, &lists.centre[j], &lists.shifts[usize::from(image)]) {
+                    lists.push(j, entry(i, opposite::<D>(image)));
+                    added.push(e);
+                }
+            }
         }
         let (above_new, below_new) = (&above[..na], &below[..nb]);
         lists.set(i, above_new, below_new);

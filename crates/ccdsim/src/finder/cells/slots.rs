@@ -116,6 +116,12 @@ impl<const D: usize> CellSlots<D> {
         })
     }
 
+    /// Number of cells holding more bodies than their slots.
+    #[cfg(test)]
+    pub fn overflowing(&self) -> usize {
+        self.cells.iter().filter(|r| r.len as usize > SLOTS).count()
+    }
+
     /// Files body `i`, not filed anywhere, with shell centre `x` in cell `c`.
     pub fn insert(&mut self, i: usize, c: u32, x: &Vector<D>) {
         let rec = &mut self.cells[c as usize];

@@ -232,26 +232,6 @@ proptest! {
         check_near_cells(sides, cut, scale(x), &ys);
     }
 
-    /// The changes between two lists are exactly the set differences, in list order.
-    #[test]
-    fn list_changes_are_the_set_differences(
-        was in proptest::collection::hash_set(0u32..64, 0..24),
-        now in proptest::collection::hash_set(0u32..64, 0..24),
-    ) {
-        let was: Vec<u32> = was.into_iter().collect();
-        let now: Vec<u32> = now.into_iter().collect();
-        let (mut lost, mut gained) = (Vec::new(), Vec::new());
-        list_changes(&was, &now, |e, gain| if gain { gained.push(e) } else { lost.push(e) });
-        let want_lost: Vec<u32> = was.iter().copied().filter(|e| !now.contains(e)).collect();
-        let want_gained: Vec<u32> = now.iter().copied().filter(|e| !was.contains(e)).collect();
-        prop_assert_eq!(lost, want_lost);
-        prop_assert_eq!(gained, want_gained);
-        for &e in &was {
-            prop_assert!(holds(&was, e));
-            prop_assert_eq!(holds(&now, e), now.contains(&e));
-        }
-    }
-
     /// Up to its exit time, a body stays within the shell (up to rounding), and at the
     /// exit it is on the shell's surface.
     #[test]
