@@ -431,12 +431,6 @@ impl<const D: usize> Grid<D> {
         self.next[j as usize]
     }
 
-    /// Hints that body `j`'s link (see [`Grid::next_in_cell`]) will be read soon.
-    #[inline(always)]
-    pub fn prefetch_link(&self, j: usize) {
-        prefetch(&self.next[j]);
-    }
-
     /// Hints that the heads of the 3^D block around the cell of coordinates `k` will be
     /// read soon (interior cells only: the others are rare).
     #[inline(always)]

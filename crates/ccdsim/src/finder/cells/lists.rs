@@ -18,15 +18,15 @@
 //! times).
 
 use super::grid::{Grid, MARGIN};
-use super::key::NONE;
 use super::predict::{Best, Probe};
+use super::slots::{CellRecord, CellSlots, SLOTS};
 use super::Cells;
 use crate::geom::Vector;
 use crate::narrow::{toi_circle_circle, toi_circle_circle_shifted, Motion};
 use crate::narrow_lanes::{rare, toi_sides, vector_lanes, PairArgs, Side};
 use crate::prefetch::prefetch;
 use crate::world::{Body, World};
-use wide::f64x2;
+use wide::{f64x2, i32x4, CmpEq, CmpGt, CmpLe};
 
 /// Low bits of a list entry holding the image code (`3^3 = 27` codes fit in 5 bits).
 const IMAGE_BITS: u32 = 5;
@@ -53,31 +53,6 @@ pub(super) fn entry_body(e: u32) -> usize {
 #[inline(always)]
 pub(super) fn entry_image(e: u32) -> u8 {
     (e & IMAGE_MASK) as u8
-}
-
-/// True when `list` holds `e`: a sweep of the whole list without an early exit, so the
-/// outcome steers no branch inside the sweep (lists are a dozen entries or so).
-#[inline(always)]
-fn holds(list: &[u32], e: u32) -> bool {
-    list.iter().fold(false, |found, &x| found | (x == e))
-}
-
-/// Calls `change(e, false)` for each entry `e` of `was` not in `now`, then `change(e, true)`
-/// for each entry of `now` not in `was`, each in its list's order (entries of a list are
-/// distinct). Lists are short, so membership is a branch-free sweep of the other list rather
-/// than a sorted merge: only the rare change takes a branch.
-#[inline(always)]
-fn list_changes(was: &[u32], now: &[u32], mut change: impl FnMut(u32, bool)) {
-    for &e in was {
-        if !holds(now, e) {
-            change(e, false);
-        }
-    }
-    for &e in now {
-        if !holds(was, e) {
-            change(e, true);
-        }
-    }
 }
 
 /// The entries `above` (of higher body index than some body) and `below` (of lower) in
@@ -151,6 +126,8 @@ pub(super) struct Lists<const D: usize> {
     /// The shift of each image code as the oracle writes it for a partner listed first,
     /// `0 − shift` (zero components stay +0).
     neg_shifts: [Vector<D>; 1 << IMAGE_BITS],
+    /// Each axis of each image shift in both lanes (for the slot tests of a rebuild).
+    shift_lanes: [[f64x2; D]; 1 << IMAGE_BITS],
     /// Shell centre of each body.
     pub centre: Vec<Vector<D>>,
     /// Shell exit time of each body (infinity: never).
@@ -165,12 +142,28 @@ pub(super) struct Lists<const D: usize> {
     old: Vec<u32>,
     /// Scratch: the entries new to the list being replaced.
     added: Vec<u32>,
+    /// The shell centres again, filed by cell (read by rebuilds).
+    pub slots: CellSlots<D>,
+    /// Scratch of a rebuild: the cells near the shell (27 places, kept, never initialised
+    /// again).
+    near: Vec<(u32, u8)>,
+    /// Scratch of a rebuild: the list entries of each near cell's slots (27 places).
+    slot_entries: Vec<[u32; SLOTS]>,
+}
+
+/// A shell centre being tested against cells' slot records, in lanes: its coordinates and
+/// body index splatted, and the squared overlap distance.
+struct CellProbe<const D: usize> {
+    x: [f64x2; D],
+    me: i32x4,
+    cut: f64x2,
 }
 
 impl<const D: usize> Lists<D> {
     /// Lists for `n` bodies with the skin `skin`, listing pairs whose centres are at most
-    /// `cut` apart (all empty, centres at the origin).
-    pub fn new(n: usize, skin: f64, cut: f64) -> Self {
+    /// `cut` apart, on a grid of `cells` cells (all empty, centres at the origin, no body
+    /// filed).
+    pub fn new(n: usize, skin: f64, cut: f64, cells: usize) -> Self {
         let stride = 8;
         Lists {
             half: 0.5 * skin,
@@ -178,6 +171,7 @@ impl<const D: usize> Lists<D> {
             prune_margin: 2.0 * MARGIN * cut,
             shifts: [Vector::ZERO; 1 << IMAGE_BITS],
             neg_shifts: [Vector::ZERO; 1 << IMAGE_BITS],
+            shift_lanes: [[f64x2::ZERO; D]; 1 << IMAGE_BITS],
             stride,
             entries: vec![0; n * stride],
             centre: vec![Vector::ZERO; n],
@@ -187,6 +181,9 @@ impl<const D: usize> Lists<D> {
             fresh_below: Vec::new(),
             old: Vec::new(),
             added: Vec::new(),
+            slots: CellSlots::new(cells, n),
+            near: vec![(0, 0); 27],
+            slot_entries: vec![[0; SLOTS]; 27],
         }
     }
 
@@ -195,6 +192,9 @@ impl<const D: usize> Lists<D> {
         self.shifts[..shifts.len()].copy_from_slice(shifts);
         for (neg, s) in self.neg_shifts.iter_mut().zip(shifts) {
             *neg = Vector::ZERO - *s;
+        }
+        for (lanes, s) in self.shift_lanes.iter_mut().zip(shifts) {
+            *lanes = std::array::from_fn(|d| f64x2::splat(s[d]));
         }
     }
 
@@ -208,6 +208,9 @@ impl<const D: usize> Lists<D> {
             + std::mem::size_of::<Vector<D>>() * self.centre.capacity()
             + 8 * self.exit.capacity()
             + std::mem::size_of::<(u32, f64)>() * self.log.capacity()
+            + self.slots.bytes()
+            + std::mem::size_of::<(u32, u8)>() * self.near.capacity()
+            + std::mem::size_of::<[u32; SLOTS]>() * self.slot_entries.capacity()
     }
 
     /// Longest list the layout holds.
@@ -389,6 +392,41 @@ impl<const D: usize> Lists<D> {
             }
         }
         count
+    }
+
+    /// Tests the bodies of the slot record `rec` of a cell seen through image `image`
+    /// against the shell of `probe`'s body: returns the slot bits of those kept with a body
+    /// index above the probe's and of those kept below it, and writes each slot's list entry
+    /// to `out`. Each slot's test is `Lists::overlap`'s, the same operations in the same
+    /// order (the displacement `(x_j − x_i) + shift`, then its squared norm summed from 0
+    /// axis by axis), so its outcome is the same bit for bit; two slots per lane pair, and
+    /// unused slots (at infinity) never pass.
+    #[inline(always)]
+    fn test_cell(
+        &self,
+        rec: &CellRecord<D>,
+        image: u8,
+        probe: &CellProbe<D>,
+        out: &mut [u32; SLOTS],
+    ) -> (u32, u32) {
+        let shift = &self.shift_lanes[usize::from(image) & IMAGE_MASK as usize];
+        let mut near = 0u32;
+        for half in 0..SLOTS / 2 {
+            let mut sq = f64x2::ZERO;
+            for ((p, &x), &s) in rec.pos.iter().zip(&probe.x).zip(shift) {
+                let t = (f64x2::new([p[2 * half], p[2 * half + 1]]) - x) + s;
+                sq += t * t;
+            }
+            near |= (sq.cmp_le(probe.cut).move_mask() as u32) << (2 * half);
+        }
+        // Body indices are below 2^27: signed lanes compare them as they are.
+        let bodies = i32x4::new(rec.body.map(|j| j as i32));
+        let not_self = !bodies.cmp_eq(probe.me).move_mask() as u32;
+        let up = bodies.cmp_gt(probe.me).move_mask() as u32;
+        let keep = near & not_self;
+        let e = (bodies << IMAGE_BITS as i32) | i32x4::splat(i32::from(image));
+        *out = e.to_array().map(|e| e as u32);
+        (keep & up, keep & !up)
     }
 
     /// True when the shells of two bodies with centres `xa` and `xb` may overlap through the
@@ -586,62 +624,100 @@ impl<const D: usize> Cells<D> {
     /// the neighbour cells of `i`'s cell whose box comes within the overlap distance of its
     /// shell centre (see `Lists::near_cells`).
     ///
-    /// Branch-free filter: each candidate is written to the next free slot of a scratch list,
-    /// whose length advances by the overlap test's 0 or 1, and the kept ones are split by
-    /// body index the same way, so the outcome of a test never steers a branch. The
-    /// scratch lists keep their length (slots past the counts are junk); returns the numbers
-    /// of entries of higher and of lower body index, their leading slots.
+    /// The centres come from the cells' slot records ([`CellSlots`]), each cell's slots
+    /// tested together, lane by lane, without a branch on any test's outcome (only a cell's
+    /// overflow, rare, takes one): a first pass keeps one bit per slot and part, a second
+    /// copies the kept entries. Returns the numbers of entries of higher and of lower body
+    /// index (the scratch lists' lengths).
+    ///
+    /// The entries come in slot order, which swap-removes reshuffle: the order of a list is
+    /// not the order of its bodies' filing. No result depends on it: a scan offers every
+    /// entry to `Best`, which keeps the smallest keys, and keys are totally ordered, so two
+    /// entries tie only when they are the same pair through two images (an axis of a single
+    /// cell lists a pair once per overlapping image). Then the images' times are equal bit
+    /// for bit, the event returned (time, kind, bodies) is the same whichever image is kept,
+    /// and the kept image is only used to evaluate a promoted event again, to tell whether it
+    /// is live: on unchanged states either image gives that same time, and otherwise the
+    /// proof of the module docs holds whichever image was kept (a live key is returned, a
+    /// stale one replaced by its body's live minimum), so the events returned are the same
+    /// and only the `stale`/`recomputes` counters could tell.
     fn collect_overlapping(&mut self, i: usize) -> (usize, usize) {
         let mut above = std::mem::take(&mut self.lists_mut().fresh);
         let mut below = std::mem::take(&mut self.lists_mut().fresh_below);
+        above.clear();
+        below.clear();
+        let mut near = std::mem::take(&mut self.lists_mut().near);
+        let mut slot_entries = std::mem::take(&mut self.lists_mut().slot_entries);
         let lists = self.lists();
         let xi = lists.centre[i];
-        let grid = &self.grid;
-        let mut cells = [(0u32, 0u8); 27];
-        let count = lists.near_cells(grid, &self.cached[i].coords, &xi, &mut cells);
-        // The scratch lists are used as buffers of their full length (never shorter than
-        // what they hold). First every overlapping candidate goes to `below`...
+        let cells: &mut [(u32, u8); 27] = near.as_mut_slice().try_into().expect("27 cells");
+        let count = lists.near_cells(&self.grid, &self.cached[i].coords, &xi, cells);
         if self.hints {
-            // Hints for the heads' centres and links (see `scan_interior`).
-            let last = lists.centre.len() - 1;
             for &(c, _) in &cells[..count] {
-                let k = (grid.first(c) as usize).min(last);
-                prefetch(&lists.centre[k]);
-                grid.prefetch_link(k);
+                lists.slots.prefetch_cell(c);
             }
         }
-        let mut n = 0usize;
-        for &(c, image) in &cells[..count] {
-            let shift = &self.shifts[image as usize];
-            let mut j = grid.first(c);
-            while j != NONE {
-                let ju = j as usize;
-                let e = entry(ju, image);
-                match below.get_mut(n) {
-                    Some(slot) => *slot = e,
-                    None => below.push(e),
+        // First pass, without a branch on any test: each cell's slot entries go to `entries`,
+        // and one bit per slot (bit `SLOTS·a + k` for slot `k` of the `a`-th cell of a
+        // group of 16) says whether it is kept in the part of higher body index or of lower.
+        let entries: &mut [[u32; SLOTS]; 27] =
+            slot_entries.as_mut_slice().try_into().expect("27 cells");
+        let probe = CellProbe {
+            x: std::array::from_fn(|d| f64x2::splat(xi[d])),
+            me: i32x4::splat(i as i32),
+            cut: f64x2::splat(lists.cut_sq),
+        };
+        let mut kept = [(0u64, 0u64); 2];
+        let mut any_overflow = false;
+        for (group, bits) in kept.iter_mut().enumerate() {
+            let from = (16 * group).min(count);
+            let to = (16 * group + 16).min(count);
+            for (at, (&(c, image), out)) in cells[from..to]
+                .iter()
+                .zip(&mut entries[from..to])
+                .enumerate()
+            {
+                let rec = lists.slots.cell(c);
+                let (up, down) = lists.test_cell(rec, image, &probe, out);
+                bits.0 |= u64::from(up) << (SLOTS * at);
+                bits.1 |= u64::from(down) << (SLOTS * at);
+                any_overflow |= rec.len as usize > SLOTS;
+            }
+        }
+        // Second pass: the kept entries, in cell and slot order.
+        for (group, &(up, down)) in kept.iter().enumerate() {
+            let flat = entries[(16 * group).min(27)..].as_flattened();
+            for (mut bits, part) in [(up, &mut above), (down, &mut below)] {
+                while bits != 0 {
+                    part.push(flat[bits.trailing_zeros() as usize]);
+                    bits &= bits - 1;
                 }
-                n += usize::from(lists.overlap(&xi, &lists.centre[ju], shift) & (ju != i));
-                j = grid.next_in_cell(j);
             }
         }
-        // ... then they are split by body index, in place for the lower part (its slot is
-        // never after the one read).
-        if above.len() < n {
-            above.resize(n, 0);
+        if any_overflow {
+            // Full cells: their other bodies are in their overflow lists (rare), with their
+            // centres.
+            for &(c, image) in &cells[..count] {
+                let shift = &lists.shifts[usize::from(image) & IMAGE_MASK as usize];
+                for j in lists.slots.overflow(c) {
+                    let ju = j as usize;
+                    if lists.overlap(&xi, &lists.centre[ju], shift) && ju != i {
+                        let e = entry(ju, image);
+                        if ju > i {
+                            above.push(e);
+                        } else {
+                            below.push(e);
+                        }
+                    }
+                }
+            }
         }
-        let (mut na, mut nb) = (0usize, 0usize);
-        for k in 0..n {
-            let e = below[k];
-            let up = entry_body(e) > i;
-            above[na] = e;
-            below[nb] = e;
-            na += usize::from(up);
-            nb += usize::from(!up);
-        }
+        let (na, nb) = (above.len(), below.len());
         let lists = self.lists_mut();
         lists.fresh = above;
         lists.fresh_below = below;
+        lists.near = near;
+        lists.slot_entries = slot_entries;
         (na, nb)
     }
 
@@ -652,21 +728,34 @@ impl<const D: usize> Cells<D> {
     /// covered since they became responsible, see the module docs).
     pub(super) fn relist(&mut self, world: &World<D>, i: usize, t: f64, best: Option<&mut Best>) {
         let x = world.motion(i).at(t);
+        let was_at = self.lists().centre[i];
         self.lists_mut().centre[i] = x;
         let from = self.grid.cell_at(&self.cached[i].coords);
         let from_border = self.grid.is_border(&self.cached[i].coords);
         let k = self.grid.coords_of_point(&x);
         self.grid.relocate(i, &mut self.cached[i].coords, k);
+        let to = self.grid.cell_at(&self.cached[i].coords);
+        let lists = self.lists.as_mut().expect("list mode");
+        if to == from {
+            lists.slots.set_centre(i, to, &x);
+        } else {
+            lists.slots.remove(i, from, &lists.centre);
+            lists.slots.insert(i, to, &x);
+        }
         let (na, nb) = self.collect_overlapping(i);
         let lists = self.lists_mut();
         let (above, below) = (
             std::mem::take(&mut lists.fresh),
             std::mem::take(&mut lists.fresh_below),
         );
-        // The old list (a copy: partners' lists change below) and the new one are compared
-        // part by part (an entry's part is fixed by its body index): entries only in the old
-        // one leave their partner's list, entries only in the new one join it and go to
-        // `added`. Lists are short, so membership is a branch-free sweep of the other part.
+        // The old list (a copy: partners' lists change below) and the new one, part by part
+        // (an entry's part is fixed by its body index): entries only in the old one leave
+        // their partner's list, entries only in the new one join it and go to `added`. The
+        // lists equal the overlap relation on the centres before this rebuild and after it,
+        // and only `i`'s centre moved, so an old entry is not in the new list exactly when its
+        // partner's shell fails `Lists::overlap` with the new centre, and a new entry was not
+        // in the old list exactly when it fails it with the old centre `was_at`: one test per
+        // entry instead of a sweep of the other list.
         let mut old = std::mem::take(&mut lists.old);
         let (old_above, old_below) = lists.parts(i);
         let split = old_above.len();
@@ -677,15 +766,19 @@ impl<const D: usize> Cells<D> {
         added.clear();
         let parts = [(&old[..split], &above[..na]), (&old[split..], &below[..nb])];
         for (was, now) in parts {
-            list_changes(was, now, |e, gained| {
-                let mirror = entry(i, opposite::<D>(entry_image(e)));
-                if gained {
-                    lists.push(entry_body(e), mirror);
-                    added.push(e);
-                } else {
-                    lists.remove(entry_body(e), mirror);
+            for &e in was {
+                let (j, image) = (entry_body(e), entry_image(e));
+                if !lists.overlap(&x, &lists.centre[j], &lists.shifts[usize::from(image)]) {
+                    lists.remove(j, entry(i, opposite::<D>(image)));
                 }
-            });
+            }
+            for &e in now {
+                let (j, image) = (entry_body(e), entry_image(e));
+                if !lists.overlap(&was_at, &lists.centre[j], &lists.shifts[usize::from(image)]) {
+                    lists.push(j, entry(i, opposite::<D>(image)));
+                    added.push(e);
+                }
+            }
         }
         let (above_new, below_new) = (&above[..na], &below[..nb]);
         lists.set(i, above_new, below_new);
@@ -761,10 +854,13 @@ impl<const D: usize> Cells<D> {
     /// (up to rounding); every list entry mirrored in its partner's list and listed once; the
     /// lists holding exactly the pairs (images included) whose shells overlap (checked
     /// against every pair and every image, not the grid); every body filed in the cell of its
-    /// shell centre.
+    /// shell centre, in the grid and in the slot records (see `CellSlots::validate`).
     pub(super) fn validate_lists(&self, world: &World<D>) -> Result<(), String> {
         let lists = self.lists();
         let n = world.len();
+        lists
+            .slots
+            .validate(&lists.centre, |i| self.grid.cell_at(&self.cached[i].coords))?;
         let clock = self.clock;
         for i in 0..n {
             let m = world.motion(i);

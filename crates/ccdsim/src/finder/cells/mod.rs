@@ -126,6 +126,11 @@
 //!   distance of `X_i`, per-axis gaps taken less `2·MARGIN·(σ_max + s + slack)`: the centres
 //!   of a cell's bodies lie in its box up to rounding (far below that margin), so a skipped
 //!   cell holds no body whose shell overlaps `i`'s, and the lists still equal the relation.
+//!   The shell centres are also filed cell by cell in fixed slots ([`slots`]), so a rebuild
+//!   reads a cell's centres as one run and tests its slots lane by lane, each lane doing
+//!   `Lists::overlap`'s operations in its order (the same outcome bit for bit); the order of
+//!   the entries it produces follows the slots, and no result depends on it (see
+//!   `collect_overlapping`).
 //! * A full recompute of `i` scans `N(i)` (same pure functions, same argument order and
 //!   shift convention as above: a list keeps its partners of higher index first, so the
 //!   order is chosen once per part, and `0 − s` is computed once per image code; partners
@@ -175,7 +180,7 @@
 //! queue's runner-up key ([`TournamentQueue::runner_up`]), most often the next event. Those
 //! misses then run while the caller resolves the event and rescans its bodies, instead of
 //! one after another when each is needed. A scan hints its heads' records (a list scan its
-//! partners', a list rebuild its heads' centres and links) before walking, so the misses of
+//! partners', a list rebuild its cells' slot records) before walking, so the misses of
 //! one scan overlap instead of waiting behind the walk's branches. Hints are not loads: they
 //! change no result and cannot fault ([`crate::prefetch`]). Below 2 MiB the data stays
 //! cached and they would only cost instructions.
@@ -192,6 +197,7 @@ mod key;
 mod lists;
 mod pair;
 mod predict;
+mod slots;
 mod tournament;
 
 use super::{DebugBox, Finder, FinderError, FinderMemory, FinderOptions};
@@ -613,15 +619,18 @@ impl<const D: usize> Finder<D> for Cells<D> {
             sigma_max * (1.0 + MARGIN)
         };
         self.grid = Grid::new(n, width, lo, hi, period);
-        self.lists = list_mode.then(|| Lists::new(n, skin, sigma_max + skin + slack));
+        self.lists = list_mode
+            .then(|| Lists::new(n, skin, sigma_max + skin + slack, self.grid.cell_count()));
         self.cached = vec![Cached::NONE; n];
         for i in 0..n {
             let p = world.position_at(i, now);
-            if let Some(lists) = &mut self.lists {
-                lists.centre[i] = p;
-            }
             let k = self.grid.coords_of_point(&p);
             self.cached[i].coords = self.grid.insert(i, k);
+            if let Some(lists) = &mut self.lists {
+                lists.centre[i] = p;
+                let c = self.grid.cell_at(&self.cached[i].coords);
+                lists.slots.insert(i, c, &p);
+            }
         }
         self.grid
             .file_walls(world.walls(), r1 + 0.5 * skin + MARGIN * sigma_max + slack);

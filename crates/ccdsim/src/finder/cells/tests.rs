@@ -203,6 +203,28 @@ fn list_mode_edits_behind_the_clock_redo_rebuilds() {
     }
 }
 
+/// List mode in 3D with small bodies among large ones: cells (sized for the largest) hold
+/// more bodies than their slots, so rebuilds read overflow lists and moves refill slots from
+/// them; the structures, slot records included, stay consistent and every event is the
+/// oracle's.
+#[test]
+fn list_mode_with_overflowing_cells() {
+    for seed in [8, 9] {
+        let scene = gas(&GasConfig {
+            periodic: true,
+            ..cfg(150, 0.3, 0.15, 0.6, seed)
+        })
+        .unwrap();
+        let world = World::from_scene(&scene).unwrap();
+        let mut finder = with_skin::<3>(0.4);
+        finder.init(&world).unwrap();
+        let lists = finder.lists.as_ref().expect("list mode");
+        assert!(lists.slots.overflowing() > 0, "no cell overflows");
+        let stats = validated_run_with::<3>(&scene, 1500, 0.4);
+        assert!(stats.rebuilds > 0, "{stats:?}");
+    }
+}
+
 #[test]
 fn list_mode_structures_stay_consistent() {
     for seed in [5, 6] {
