@@ -101,6 +101,14 @@ fn cfg(n: usize, packing: f64, rmin: f64, rmax: f64, seed: u64) -> GasConfig {
     }
 }
 
+/// `c` in a periodic box.
+fn periodic(c: GasConfig) -> GasConfig {
+    GasConfig {
+        periodic: true,
+        ..c
+    }
+}
+
 #[test]
 fn structures_stay_consistent_2d() {
     for seed in [3, 4] {
@@ -112,10 +120,6 @@ fn structures_stay_consistent_2d() {
 #[test]
 fn periodic_structures_and_every_exit() {
     for seed in [5, 6] {
-        let periodic = |c: GasConfig| GasConfig {
-            periodic: true,
-            ..c
-        };
         validated_run::<2>(
             &gas(&periodic(cfg(150, 0.35, 0.5, 0.5, seed))).unwrap(),
             2000,
@@ -134,10 +138,6 @@ fn periodic_structures_and_every_exit() {
 /// Small worlds get no hints; the hinted paths (large worlds) must find the same events.
 #[test]
 fn prefetch_hints_change_no_event() {
-    let periodic = |c: GasConfig| GasConfig {
-        periodic: true,
-        ..c
-    };
     let small = gas(&periodic(cfg(150, 0.35, 0.5, 0.5, 7))).unwrap();
     let mut finder = with_skin::<2>(0.0);
     finder.init(&World::from_scene(&small).unwrap()).unwrap();
@@ -194,11 +194,7 @@ fn edits_behind_the_clock_undo_crossings() {
 #[test]
 fn list_mode_edits_behind_the_clock_redo_rebuilds() {
     for skin in [0.01, 0.2] {
-        let scene: Scene<2> = gas(&GasConfig {
-            periodic: true,
-            ..cfg(120, 0.3, 0.3, 0.6, 9)
-        })
-        .unwrap();
+        let scene: Scene<2> = gas(&periodic(cfg(120, 0.3, 0.3, 0.6, 9))).unwrap();
         edits_behind_the_clock(&scene, skin);
     }
 }
@@ -210,11 +206,7 @@ fn list_mode_edits_behind_the_clock_redo_rebuilds() {
 #[test]
 fn list_mode_with_overflowing_cells() {
     for seed in [8, 9] {
-        let scene = gas(&GasConfig {
-            periodic: true,
-            ..cfg(150, 0.3, 0.15, 0.6, seed)
-        })
-        .unwrap();
+        let scene = gas(&periodic(cfg(150, 0.3, 0.15, 0.6, seed))).unwrap();
         let world = World::from_scene(&scene).unwrap();
         let mut finder = with_skin::<3>(0.4);
         finder.init(&world).unwrap();
@@ -228,10 +220,6 @@ fn list_mode_with_overflowing_cells() {
 #[test]
 fn list_mode_structures_stay_consistent() {
     for seed in [5, 6] {
-        let periodic = |c: GasConfig| GasConfig {
-            periodic: true,
-            ..c
-        };
         for skin in [0.001, 0.1, 1.0] {
             let runs = [
                 validated_run_with::<2>(
@@ -260,11 +248,7 @@ fn list_mode_structures_stay_consistent() {
     let walled = gas(&cfg(50, 0.2, 0.5, 0.5, 1)).unwrap();
     finder.init(&World::from_scene(&walled).unwrap()).unwrap();
     assert!(!finder.uses_lists());
-    let periodic = gas(&GasConfig {
-        periodic: true,
-        ..cfg(50, 0.2, 0.5, 0.5, 1)
-    })
-    .unwrap();
+    let periodic = gas(&periodic(cfg(50, 0.2, 0.5, 0.5, 1))).unwrap();
     let world = World::from_scene(&periodic).unwrap();
     finder.init(&world).unwrap();
     assert!(finder.uses_lists());
@@ -415,19 +399,11 @@ fn pair_recompute_is_two_recomputes() {
         pair_recompute_matches_two_recomputes::<2>(&dense, seed);
         let poly = gas(&cfg(250, 0.3, 0.2, 1.0, seed)).unwrap();
         pair_recompute_matches_two_recomputes::<2>(&poly, seed);
-        let periodic = gas(&GasConfig {
-            periodic: true,
-            ..cfg(300, 0.45, 0.5, 0.5, seed)
-        })
-        .unwrap();
-        pair_recompute_matches_two_recomputes::<2>(&periodic, seed);
+        let periodic2 = gas(&periodic(cfg(300, 0.45, 0.5, 0.5, seed))).unwrap();
+        pair_recompute_matches_two_recomputes::<2>(&periodic2, seed);
         let spheres = gas(&cfg(400, 0.3, 0.5, 0.5, seed)).unwrap();
         pair_recompute_matches_two_recomputes::<3>(&spheres, seed);
-        let periodic3 = gas(&GasConfig {
-            periodic: true,
-            ..cfg(400, 0.3, 0.4, 0.6, seed)
-        })
-        .unwrap();
+        let periodic3 = gas(&periodic(cfg(400, 0.3, 0.4, 0.6, seed))).unwrap();
         pair_recompute_matches_two_recomputes::<3>(&periodic3, seed);
     }
 }
