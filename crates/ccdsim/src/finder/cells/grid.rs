@@ -706,7 +706,9 @@ impl<const D: usize> Grid<D> {
             let bound = self.origin[d] + (kd + usize::from(up)) as f64 * self.width[d];
             let t = m.time + (bound - m.pos[d]) / v;
             let take = valid & (!found | (t < best_t));
-            best_t = if take { t } else { best_t };
+            // A mask, not `if`: the code generator turns an `if` on floats into a branch.
+            let mask = u64::from(take).wrapping_neg();
+            best_t = f64::from_bits((t.to_bits() & mask) | (best_t.to_bits() & !mask));
             best_code = if take {
                 (2 * d) as u8 | u8::from(up)
             } else {
