@@ -49,15 +49,11 @@
 
 use super::grid::Grid;
 use super::key::{Key, NONE};
-use super::predict::{Best, Probe};
+use super::predict::{push_head, Best, Probe, HEAD_SLOTS};
 use super::Cells;
 use crate::geom::Vector;
 use crate::prefetch::prefetch;
 use crate::world::{Body, World};
-
-/// Slots for the heads of the union of two 3^D blocks, a power of two: at least the most
-/// cells such a union has (two 3D blocks meeting at a corner: 27 + 27 − 8 = 46).
-const HEAD_SLOTS: usize = 64;
 
 impl<const D: usize> Cells<D> {
     /// Recomputes bodies `i` and `j` (both changed, at the same state of the world) as
@@ -198,13 +194,4 @@ impl<const D: usize> Cells<D> {
             self.scan_list::<PERIODIC>(bodies, pj, h, &zero, image, bj);
         }
     }
-}
-
-/// Appends the head `h` to `heads[..*n]` unless it is `NONE` (an empty cell), without a
-/// branch. `*n` stays below the slots (a union has at most 46 cells): the mask only spares
-/// the bounds check.
-#[inline(always)]
-fn push_head(heads: &mut [u32; HEAD_SLOTS], n: &mut usize, h: u32) {
-    heads[*n & (HEAD_SLOTS - 1)] = h;
-    *n += usize::from(h != NONE);
 }

@@ -148,8 +148,10 @@ impl<const D: usize> Cells<D> {
         }
     }
 
-    /// Offers body `p` every pair with the bodies of one cell's list, starting at body `j`
-    /// (the cell's image shift `shift`, code `image`; see `Grid::visit_neighbours`).
+    /// Offers body `p` every pair with the bodies of one cell's list, starting at body `j`,
+    /// which is not `NONE`: callers leave empty cells out beforehand, without a branch per
+    /// cell (see [`push_head`]). The cell's image shift is `shift`, its code `image` (see
+    /// `Grid::visit_neighbours`).
     ///
     /// Times come from the oracle's narrow phase with the oracle's arguments, lower index
     /// first: [`toi_circle_circle`] in open worlds, [`toi_circle_circle_shifted`] in periodic
@@ -169,12 +171,16 @@ impl<const D: usize> Cells<D> {
         // The partner's shift as the oracle writes it, `k·L` with `k ∈ {−1, 0, 1}`: `0 − s`
         // keeps zero components +0 where `−s` would make them −0.
         let neg = Vector::ZERO - *shift;
-        while j != NONE {
+        debug_assert!(j != NONE, "scan_list from an empty cell");
+        loop {
             let ju = j as usize;
             if ju != i {
                 Self::offer_body::<PERIODIC>(p, ju, &bodies[ju], shift, &neg, image, best);
             }
             j = self.grid.next_in_cell(j);
+            if j == NONE {
+                break;
+            }
         }
     }
 
@@ -257,15 +263,23 @@ impl<const D: usize> Cells<D> {
     /// Offers body `p` every pair with a body of the cells `cells` (cell, image code).
     #[inline(never)]
     fn scan_listed(&self, bodies: &[Body<D>], p: &Probe<D>, cells: &[(u32, u8)], best: &mut Best) {
+        // The non-empty cells' heads first, without a branch per cell (see `push_head`).
+        let mut heads = [(NONE, 0u8); 27];
+        let mut n = 0;
+        for &(c, image) in cells {
+            let h = self.grid.first(c);
+            heads[n] = (h, image);
+            n += usize::from(h != NONE);
+        }
         if self.periodic {
-            for &(c, image) in cells {
+            for &(h, image) in &heads[..n] {
                 let shift = &self.shifts[image as usize];
-                self.scan_list::<true>(bodies, p, self.grid.first(c), shift, image, best);
+                self.scan_list::<true>(bodies, p, h, shift, image, best);
             }
         } else {
-            for &(c, image) in cells {
+            for &(h, image) in &heads[..n] {
                 let shift = &self.shifts[image as usize];
-                self.scan_list::<false>(bodies, p, self.grid.first(c), shift, image, best);
+                self.scan_list::<false>(bodies, p, h, shift, image, best);
             }
         }
     }
@@ -277,27 +291,34 @@ impl<const D: usize> Cells<D> {
         &self,
         bodies: &[Body<D>],
         p: &Probe<D>,
-        cells: impl Iterator<Item = u32> + Clone,
+        cells: impl Iterator<Item = u32>,
         best: &mut Best,
     ) {
         let zero = Vector::ZERO;
         let image = Grid::<D>::ZERO_IMAGE;
+        // The non-empty cells' heads first: in dilute worlds most cells are empty, and a
+        // branch per cell on it mispredicts about as often as not.
+        let mut heads = [NONE; HEAD_SLOTS];
+        let mut n = 0;
+        for c in cells {
+            push_head(&mut heads, &mut n, self.grid.first(c));
+        }
+        let heads = &heads[..n];
         if self.hints {
             // A hint for each head's record before the walk: the loads are independent, so
             // their misses overlap instead of waiting, cell after cell, behind the walk's
-            // branches (an empty cell's head points at the last body, harmlessly).
-            let last = bodies.len() - 1;
-            for c in cells.clone() {
-                prefetch(&bodies[(self.grid.first(c) as usize).min(last)]);
+            // branches.
+            for &h in heads {
+                prefetch(&bodies[h as usize]);
             }
         }
         if self.periodic {
-            for c in cells {
-                self.scan_list::<true>(bodies, p, self.grid.first(c), &zero, image, best);
+            for &h in heads {
+                self.scan_list::<true>(bodies, p, h, &zero, image, best);
             }
         } else {
-            for c in cells {
-                self.scan_list::<false>(bodies, p, self.grid.first(c), &zero, image, best);
+            for &h in heads {
+                self.scan_list::<false>(bodies, p, h, &zero, image, best);
             }
         }
     }
@@ -530,4 +551,17 @@ impl<const D: usize> Cells<D> {
         };
         self.queue.set(i, key);
     }
+}
+
+/// Slots for the heads of the cells of one scan, a power of two: at least the most cells a
+/// scan visits (the union of two 3D blocks meeting at a corner: 27 + 27 − 8 = 46).
+pub(super) const HEAD_SLOTS: usize = 64;
+
+/// Appends the head `h` to `heads[..*n]` unless it is `NONE` (an empty cell), without a
+/// branch. `*n` stays below the slots (a scan visits at most 46 cells): the mask only
+/// spares the bounds check.
+#[inline(always)]
+pub(super) fn push_head(heads: &mut [u32; HEAD_SLOTS], n: &mut usize, h: u32) {
+    heads[*n & (HEAD_SLOTS - 1)] = h;
+    *n += usize::from(h != NONE);
 }
