@@ -195,6 +195,7 @@
 mod grid;
 mod key;
 mod lists;
+mod order;
 mod pair;
 mod predict;
 mod slots;
@@ -641,6 +642,10 @@ impl<const D: usize> Finder<D> for Cells<D> {
             lists.set_shifts(&self.shifts);
         }
         self.queue = TournamentQueue::new(n);
+        self.queue.arrange(&order::z_order(
+            self.cached.iter().map(|c| c.coords),
+            self.grid.dims(),
+        ));
         self.log = Vec::new();
         self.clock = now;
         self.stats = CellsStats::default();
@@ -673,9 +678,7 @@ impl<const D: usize> Finder<D> for Cells<D> {
                     self.relist(world, i, world.time(i), None);
                 }
             }
-            for &i in changed {
-                self.recompute(world, i);
-            }
+            self.recompute_changed(world, changed);
             return;
         }
         self.undo_crossings_after(world, t);
@@ -697,9 +700,7 @@ impl<const D: usize> Finder<D> for Cells<D> {
                 return;
             }
         }
-        for &i in changed {
-            self.recompute(world, i);
-        }
+        self.recompute_changed(world, changed);
     }
 
     fn next_event(&mut self, world: &World<D>) -> Option<Event> {
