@@ -195,7 +195,6 @@
 mod grid;
 mod key;
 mod lists;
-mod order;
 mod pair;
 mod predict;
 mod slots;
@@ -642,10 +641,6 @@ impl<const D: usize> Finder<D> for Cells<D> {
             lists.set_shifts(&self.shifts);
         }
         self.queue = TournamentQueue::new(n);
-        self.queue.arrange(&order::z_order(
-            self.cached.iter().map(|c| c.coords),
-            self.grid.dims(),
-        ));
         self.log = Vec::new();
         self.clock = now;
         self.stats = CellsStats::default();
@@ -678,7 +673,9 @@ impl<const D: usize> Finder<D> for Cells<D> {
                     self.relist(world, i, world.time(i), None);
                 }
             }
-            self.recompute_changed(world, changed);
+            for &i in changed {
+                self.recompute(world, i);
+            }
             return;
         }
         self.undo_crossings_after(world, t);
@@ -700,7 +697,9 @@ impl<const D: usize> Finder<D> for Cells<D> {
                 return;
             }
         }
-        self.recompute_changed(world, changed);
+        for &i in changed {
+            self.recompute(world, i);
+        }
     }
 
     fn next_event(&mut self, world: &World<D>) -> Option<Event> {

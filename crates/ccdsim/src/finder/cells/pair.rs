@@ -76,7 +76,7 @@ impl<const D: usize> Cells<D> {
         self.scan_walls(world, &pi, &mut bi);
         self.scan_exit(world, &pi, &mut bi);
         self.store(world, i, &bi, true);
-        self.schedule_as::<true>(i, &pi.b.motion);
+        self.schedule(i, &pi.b.motion);
         self.scan_walls(world, &pj, &mut bj);
         self.scan_exit(world, &pj, &mut bj);
         self.store(world, j, &bj, true);

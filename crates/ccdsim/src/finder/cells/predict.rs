@@ -414,30 +414,10 @@ impl<const D: usize> Cells<D> {
     /// Recomputes body `i`'s earliest event from scratch (after its state changed, or when its
     /// cached event went stale) and reschedules it.
     pub(super) fn recompute(&mut self, world: &World<D>, i: usize) {
-        self.recompute_as::<false>(world, i);
-    }
-
-    /// Recomputes the bodies `changed` by an update, in order: when they are the two of a
-    /// collision, the first one's key is set as the first of a pair (see
-    /// [`super::tournament::TournamentQueue::set_first_of_pair`]).
-    pub(super) fn recompute_changed(&mut self, world: &World<D>, changed: &[usize]) {
-        if let [i, j] = *changed {
-            self.recompute_as::<true>(world, i);
-            self.recompute(world, j);
-            return;
-        }
-        for &i in changed {
-            self.recompute(world, i);
-        }
-    }
-
-    /// `recompute`; `FIRST_OF_PAIR`: the body's partner in a collision is recomputed next.
-    #[inline(always)]
-    fn recompute_as<const FIRST_OF_PAIR: bool>(&mut self, world: &World<D>, i: usize) {
         self.stats.recomputes += 1;
         let p = Probe::of(world, i);
         if self.lists.is_some() {
-            self.recompute_listed::<FIRST_OF_PAIR>(world, &p);
+            self.recompute_listed(world, &p);
             return;
         }
         let mut best = Best::NONE;
@@ -445,12 +425,12 @@ impl<const D: usize> Cells<D> {
         self.scan_walls(world, &p, &mut best);
         self.scan_exit(world, &p, &mut best);
         self.store(world, i, &best, true);
-        self.schedule_as::<FIRST_OF_PAIR>(i, &p.b.motion);
+        self.schedule(i, &p.b.motion);
     }
 
     /// `recompute` in list mode: the neighbour list instead of the cells, and the shell exit.
     #[inline(never)]
-    fn recompute_listed<const FIRST_OF_PAIR: bool>(&mut self, world: &World<D>, p: &Probe<D>) {
+    fn recompute_listed(&mut self, world: &World<D>, p: &Probe<D>) {
         let i = p.i;
         let mut best = Best::NONE;
         self.scan_neighbour_list(world, p, &mut best);
@@ -460,18 +440,13 @@ impl<const D: usize> Cells<D> {
         let t_ref = p.b.motion.time.max(self.clock);
         let lists = self.lists.as_mut().expect("list mode");
         lists.exit[i] = shell_exit_time(&p.b.motion, &lists.centre[i], lists.half, t_ref);
-        self.schedule_listed_as::<FIRST_OF_PAIR>(i);
+        self.schedule_listed(i);
     }
 
     /// `schedule` in list mode: the shell exit plays the crossing's part (never for a body
     /// at rest).
-    pub(super) fn schedule_listed(&mut self, i: usize) {
-        self.schedule_listed_as::<false>(i);
-    }
-
-    /// `schedule_listed`; `FIRST_OF_PAIR` as in `recompute_as`.
     #[inline(never)]
-    fn schedule_listed_as<const FIRST_OF_PAIR: bool>(&mut self, i: usize) {
+    pub(super) fn schedule_listed(&mut self, i: usize) {
         let exit = self.lists.as_ref().expect("list mode").exit[i];
         let key = if exit != f64::INFINITY && Key::crossing(exit, i) < self.cached[i].best {
             self.cached[i].cross = KEY_IS_CROSSING;
@@ -480,17 +455,7 @@ impl<const D: usize> Cells<D> {
             self.cached[i].cross = 0;
             self.cached[i].best
         };
-        self.set_key::<FIRST_OF_PAIR>(i, key);
-    }
-
-    /// Sets body `i`'s queue key; `FIRST_OF_PAIR` as in `recompute_as`.
-    #[inline(always)]
-    fn set_key<const FIRST_OF_PAIR: bool>(&mut self, i: usize, key: Key) {
-        if FIRST_OF_PAIR {
-            self.queue.set_first_of_pair(i, key);
-        } else {
-            self.queue.set(i, key);
-        }
+        self.queue.set(i, key);
     }
 
     /// Body `i`'s records.
@@ -542,14 +507,8 @@ impl<const D: usize> Cells<D> {
 
     /// Sets body `i`'s queue key: its next crossing or its cached event, whichever is first.
     pub(super) fn schedule(&mut self, i: usize, mi: &Motion<D>) {
-        self.schedule_as::<false>(i, mi);
-    }
-
-    /// `schedule`; `FIRST_OF_PAIR` as in `recompute_as`.
-    #[inline(always)]
-    pub(super) fn schedule_as<const FIRST_OF_PAIR: bool>(&mut self, i: usize, mi: &Motion<D>) {
         if self.lists.is_some() {
-            self.schedule_listed_as::<FIRST_OF_PAIR>(i);
+            self.schedule_listed(i);
             return;
         }
         let k = self.cached[i].coords;
@@ -569,6 +528,6 @@ impl<const D: usize> Cells<D> {
                 self.cached[i].best
             }
         };
-        self.set_key::<FIRST_OF_PAIR>(i, key);
+        self.queue.set(i, key);
     }
 }

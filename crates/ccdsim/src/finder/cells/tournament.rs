@@ -61,11 +61,8 @@ use super::key::Key;
 pub(super) struct TournamentQueue {
     /// Number of bodies.
     n: usize,
-    /// Where each body's key is kept: body `i`'s is key slot `slot[i]`, a permutation of
-    /// `0..n` (see [`TournamentQueue::arrange`]).
-    slot: Vec<u32>,
-    /// The keys by eights: key slot `s` is `octets[s / 8].0[s % 8]`; slots `n..` are
-    /// [`Key::NEVER`].
+    /// The bodies' keys by eights: body `i` is `octets[i / 8].0[i % 8]`; keys past the last
+    /// body are [`Key::NEVER`].
     octets: Vec<Octet>,
     /// Number of internal nodes of the tree over the octets, the root included: the smallest
     /// key of octet `j` is node `m + j`.
@@ -136,7 +133,6 @@ impl TournamentQueue {
         let m = (k - 1).div_ceil(3).max(1);
         TournamentQueue {
             n,
-            slot: (0..n as u32).collect(),
             octets: vec![Octet([pack(Key::NEVER); 8]); k],
             m,
             root: pack(Key::NEVER),
@@ -148,57 +144,6 @@ impl TournamentQueue {
     pub fn bytes(&self) -> usize {
         std::mem::size_of::<Octet>() * self.octets.capacity()
             + std::mem::size_of::<Group>() * self.groups.capacity()
-            + std::mem::size_of::<u32>() * self.slot.capacity()
-    }
-
-    /// Puts the keys in the slots `0..n` in the order `order` (a permutation of the bodies
-    /// `0..n`: body `order[s]`'s key goes to slot `s`) and rebuilds the tree. The root and
-    /// every body's key stay the same: only the walks change, since a walk stops at the
-    /// first node that keeps its key, and two bodies close in slot order share the lower
-    /// part of their paths.
-    pub fn arrange(&mut self, order: &[u32]) {
-        assert_eq!(order.len(), self.n, "one slot per body");
-        let never = pack(Key::NEVER);
-        let keys: Vec<u128> = if self.root == never {
-            // Every key is never: nothing to move (and no copy of the keys to hold).
-            Vec::new()
-        } else {
-            (0..self.n).map(|i| self.raw_key(i)).collect()
-        };
-        let mut seen = vec![false; self.n];
-        for (s, &i) in order.iter().enumerate() {
-            let i = i as usize;
-            assert!(!std::mem::replace(&mut seen[i], true), "body {i} twice");
-            self.slot[i] = s as u32;
-        }
-        if keys.is_empty() {
-            return;
-        }
-        for (i, &key) in keys.iter().enumerate() {
-            let s = self.slot[i] as usize;
-            self.octets[s >> 3].0[s & 7] = key;
-        }
-        self.rebuild();
-    }
-
-    /// Recomputes every node from the keys, bottom up.
-    fn rebuild(&mut self) {
-        for j in 0..self.octets.len() {
-            let leaf = self.m + j - 1;
-            self.groups[leaf >> 2].0[leaf & 3] = min8(&self.octets[j].0);
-        }
-        for k in (1..self.m).rev() {
-            let v = min4(&self.groups[k].0);
-            self.groups[(k - 1) >> 2].0[(k - 1) & 3] = v;
-        }
-        self.root = min4(&self.groups[0].0);
-    }
-
-    /// Body `i`'s key, packed.
-    #[inline(always)]
-    fn raw_key(&self, i: usize) -> u128 {
-        let s = self.slot[i] as usize;
-        self.octets[s >> 3].0[s & 7]
     }
 
     /// Node `k` of the tree over the octets.
@@ -214,7 +159,7 @@ impl TournamentQueue {
     /// Body `i`'s key.
     #[inline]
     pub fn key(&self, i: usize) -> Key {
-        unpack(self.raw_key(i))
+        unpack(self.octets[i >> 3].0[i & 7])
     }
 
     /// Hints that body `i`'s key will be set soon: its octet and the three lowest nodes on
@@ -222,9 +167,8 @@ impl TournamentQueue {
     /// most a 64th of the nodes and stay in the cache).
     #[inline(always)]
     pub fn prefetch_path(&self, i: usize) {
-        let s = self.slot[i] as usize;
-        crate::prefetch::prefetch(&self.octets[s >> 3]);
-        let mut g = (self.m + (s >> 3) - 1) >> 2;
+        crate::prefetch::prefetch(&self.octets[i >> 3]);
+        let mut g = (self.m + (i >> 3) - 1) >> 2;
         for _ in 0..3 {
             crate::prefetch::prefetch(&self.groups[g]);
             g = g.saturating_sub(1) >> 2;
@@ -234,38 +178,21 @@ impl TournamentQueue {
     /// Sets body `i`'s key to `key` ([`Key::NEVER`] takes it out).
     #[inline(always)]
     pub fn set(&mut self, i: usize, key: Key) {
-        self.set_walking::<true>(i, key);
-    }
-
-    /// [`TournamentQueue::set`] for the first body of a collision whose partner is set next:
-    /// both may hold the root's key, and then the nodes where their paths meet keep it
-    /// (the partner still holds it), so the walk stops there instead of rewriting the
-    /// shared part of the paths, which the partner's walk rewrites anyway.
-    #[inline(always)]
-    pub fn set_first_of_pair(&mut self, i: usize, key: Key) {
-        self.set_walking::<false>(i, key);
-    }
-
-    /// Sets body `i`'s key; `FORCE`: a key that was the root's is walked to the root without
-    /// asking whether each node changed.
-    #[inline(always)]
-    fn set_walking<const FORCE: bool>(&mut self, i: usize, key: Key) {
         debug_assert!(i < self.n);
-        let s = self.slot[i] as usize;
         let new = pack(key);
-        let octet = &mut self.octets[s >> 3].0;
-        let slot = &mut octet[s & 7];
+        let octet = &mut self.octets[i >> 3].0;
+        let slot = &mut octet[i & 7];
         if *slot == new {
             return;
         }
         *slot = new;
         let v = min8(octet);
-        self.set_octet::<FORCE>(s >> 3, v);
+        self.set_octet(i >> 3, v);
     }
 
     /// Sets the smallest key of octet `j` to `v` and updates its ancestors.
     #[inline(always)]
-    fn set_octet<const FORCE: bool>(&mut self, j: usize, mut v: u128) {
+    fn set_octet(&mut self, j: usize, mut v: u128) {
         let groups = &mut self.groups[..];
         let leaf = self.m + j - 1;
         // `g` is the node whose children changed.
@@ -281,7 +208,7 @@ impl TournamentQueue {
         // changes (or keeps an equal key of another body) and is rewritten without asking.
         // Other keys mostly lose within a level or two: stop at the first node that keeps
         // its key, since its ancestors depend on it through its key only.
-        let to_root = FORCE && old == self.root;
+        let to_root = old == self.root;
         v = min4(&groups[g].0);
         while g > 0 {
             let up = g - 1;
@@ -349,16 +276,9 @@ impl TournamentQueue {
     /// past the last body hold never (for tests).
     pub fn validate(&self) -> Result<(), String> {
         let never = pack(Key::NEVER);
-        let mut used = vec![false; self.n];
-        for (i, &s) in self.slot.iter().enumerate() {
-            let s = s as usize;
-            if s >= self.n || std::mem::replace(&mut used[s], true) {
-                return Err(format!("tournament slot {s} of body {i} is not its own"));
-            }
-        }
-        for s in self.n..8 * self.octets.len() {
-            if self.octets[s >> 3].0[s & 7] != never {
-                return Err(format!("tournament padding key {s} is not never"));
+        for i in self.n..8 * self.octets.len() {
+            if self.octets[i >> 3].0[i & 7] != never {
+                return Err(format!("tournament padding key {i} is not never"));
             }
         }
         for (j, octet) in self.octets.iter().enumerate() {
@@ -398,8 +318,6 @@ mod tests {
 
     /// Random sets, some never, many at equal times (ties decided by the tie word: crossings,
     /// then body events, then wall events, each by indices), some shared body–body keys.
-    /// Every other run puts the keys in a shuffled slot order, halfway through a second one
-    /// (keys moved), and sets some keys as the first of a pair.
     fn random_run(n: usize, rounds: usize, seed: u64) {
         let mut keys = vec![Key::NEVER; n];
         let mut q = TournamentQueue::new(n);
@@ -410,22 +328,7 @@ mod tests {
             x ^= x << 17;
             x
         };
-        let arranged = seed % 2 == 1;
-        let shuffle = |rnd: &mut dyn FnMut() -> u64| {
-            let mut order: Vec<u32> = (0..n as u32).collect();
-            for s in (1..n).rev() {
-                order.swap(s, (rnd() % (s as u64 + 1)) as usize);
-            }
-            order
-        };
-        if arranged {
-            q.arrange(&shuffle(&mut rnd));
-        }
         for round in 0..rounds {
-            if arranged && round == rounds / 2 {
-                q.arrange(&shuffle(&mut rnd));
-                q.validate().unwrap();
-            }
             let i = (rnd() % n as u64) as usize;
             let t = ((rnd() % 8) as f64) * 0.25;
             let j = (rnd() % n as u64) as usize;
@@ -437,11 +340,7 @@ mod tests {
                 _ => Key::crossing(t, i),
             };
             keys[i] = key;
-            if arranged && rnd() % 3 == 0 {
-                q.set_first_of_pair(i, key);
-            } else {
-                q.set(i, key);
-            }
+            q.set(i, key);
             // Sometimes the partner holds the same key, like a pair that predicted each other.
             if key.partner(i).is_some() && rnd() % 2 == 0 {
                 keys[j] = key;
