@@ -34,26 +34,30 @@ pub fn exit_face(axis: usize, upper: bool) -> usize {
 #[must_use]
 #[inline]
 pub fn toi_box_exit<const D: usize>(m: &Motion<D>, size: &Vector<D>) -> Option<(f64, usize)> {
-    let mut best: Option<(f64, usize)> = None;
+    // Every axis is evaluated and the choices are masks: which way a body moves along an
+    // axis, and which face it reaches first, are coin flips to a branch predictor. The time
+    // is the same expression either way (`−v` is `|v|` for `v < 0`).
+    let (mut best_t, mut best_face, mut found) = (f64::INFINITY, 0usize, false);
     for d in 0..D {
         let v = m.vel[d];
-        let (gap, speed, face) = if v > 0.0 {
-            (size[d] - m.pos[d], v, exit_face(d, true))
-        } else if v < 0.0 {
-            (m.pos[d], -v, exit_face(d, false))
-        } else {
-            continue;
-        };
-        let t = if gap <= 0.0 {
-            m.time
-        } else {
-            m.time + gap / speed
-        };
-        if best.is_none_or(|(bt, _)| t.total_cmp(&bt).is_lt()) {
-            best = Some((t, face));
-        }
+        let up = v > 0.0;
+        let valid = up | (v < 0.0);
+        let gap = select(up, size[d] - m.pos[d], m.pos[d]);
+        let t = select(gap <= 0.0, m.time, m.time + gap / v.abs());
+        let take = valid & (!found | t.total_cmp(&best_t).is_lt());
+        best_t = select(take, t, best_t);
+        best_face = if take { exit_face(d, up) } else { best_face };
+        found |= valid;
     }
-    best
+    found.then_some((best_t, best_face))
+}
+
+/// `if c { a } else { b }` by a mask: the code generator turns an `if` on floats into a
+/// branch.
+#[inline(always)]
+fn select(c: bool, a: f64, b: f64) -> f64 {
+    let mask = u64::from(c).wrapping_neg();
+    f64::from_bits((a.to_bits() & mask) | (b.to_bits() & !mask))
 }
 
 /// The displacement `dp` reduced to its minimum image: each component in `[−L/2, L/2]`.
@@ -76,14 +80,12 @@ fn round_half_away(x: f64) -> f64 {
     if x.abs() < 4_503_599_627_370_496.0 {
         let k = x as i64 as f64;
         let frac = x - k;
-        if frac >= 0.5 {
-            k + 1.0
-        } else if frac <= -0.5 {
-            k - 1.0
-        } else {
-            // Keeps the sign of a zero the way `round` does (−0.3 rounds to −0).
-            k.copysign(x)
-        }
+        // `k ± 1` when the fraction reaches a half, else `k`, without a branch (which way a
+        // displacement rounds is a coin flip). The step is exact, and `copysign` keeps the
+        // sign of a zero the way `round` does (−0.3 rounds to −0); `k ± 1` already has x's
+        // sign.
+        let step = f64::from(i8::from(frac >= 0.5) - i8::from(frac <= -0.5));
+        (k + step).copysign(x)
     } else {
         x.round()
     }
@@ -187,6 +189,61 @@ pub fn toi_circle_circle_periodic<const D: usize>(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// `toi_box_exit` as first written, with a branch per axis: the model the branch-free
+    /// version must match bit for bit.
+    fn toi_box_exit_model<const D: usize>(m: &Motion<D>, size: &Vector<D>) -> Option<(f64, usize)> {
+        let mut best: Option<(f64, usize)> = None;
+        for d in 0..D {
+            let v = m.vel[d];
+            let (gap, speed, face) = if v > 0.0 {
+                (size[d] - m.pos[d], v, exit_face(d, true))
+            } else if v < 0.0 {
+                (m.pos[d], -v, exit_face(d, false))
+            } else {
+                continue;
+            };
+            let t = if gap <= 0.0 {
+                m.time
+            } else {
+                m.time + gap / speed
+            };
+            if best.is_none_or(|(bt, _)| t.total_cmp(&bt).is_lt()) {
+                best = Some((t, face));
+            }
+        }
+        best
+    }
+
+    /// A coordinate or velocity component: often zero (either sign), on a face, outside the
+    /// box, tiny or huge.
+    fn component() -> impl proptest::strategy::Strategy<Value = f64> {
+        use proptest::prelude::*;
+        prop_oneof![
+            Just(0.0),
+            Just(-0.0),
+            Just(10.0),
+            Just(1e-300),
+            Just(-1e-300),
+            Just(1e300),
+            -12.0..12.0f64,
+        ]
+    }
+
+    proptest::proptest! {
+        #[test]
+        fn box_exit_matches_the_branching_model(
+            pos in proptest::collection::vec(component(), 3),
+            vel in proptest::collection::vec(component(), 3),
+            time in proptest::prop_oneof![proptest::strategy::Just(0.0), 0.0..100.0f64],
+        ) {
+            let m3 = Motion { pos: Vector([pos[0], pos[1], pos[2]]), vel: Vector([vel[0], vel[1], vel[2]]), time };
+            let m2 = Motion { pos: Vector([pos[0], pos[1]]), vel: Vector([vel[0], vel[1]]), time };
+            let bits = |r: Option<(f64, usize)>| r.map(|(t, f)| (t.to_bits(), f));
+            proptest::prop_assert_eq!(bits(toi_box_exit(&m3, &Vector([10.0; 3]))), bits(toi_box_exit_model(&m3, &Vector([10.0; 3]))));
+            proptest::prop_assert_eq!(bits(toi_box_exit(&m2, &Vector([10.0, 7.5]))), bits(toi_box_exit_model(&m2, &Vector([10.0, 7.5]))));
+        }
+    }
 
     proptest::proptest! {
         #[test]
