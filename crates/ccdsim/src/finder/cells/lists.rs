@@ -470,11 +470,11 @@ impl<const D: usize> Cells<D> {
     }
 
     /// Hints that the records of body `i`'s listed partners will be read soon: asked for
-    /// together, their misses overlap.
+    /// together, their misses overlap. Not the first quad's: the scan reads those at once.
     #[inline(always)]
     pub(super) fn prefetch_partners(&self, world: &World<D>, i: usize) {
         let bodies = world.bodies();
-        for &e in self.lists().list(i) {
+        for &e in self.lists().list(i).get(LANES..).unwrap_or_default() {
             prefetch(&bodies[entry_body(e)]);
         }
     }
