@@ -28,7 +28,7 @@ use crate::narrow_lanes::{
 };
 use crate::prefetch::prefetch;
 use crate::world::{Body, World};
-use wide::{f64x2, f64x4, i32x4, CmpEq, CmpGt, CmpLe};
+use wide::{f64x4, i32x4, CmpEq, CmpGt, CmpLe};
 
 /// Low bits of a list entry holding the image code (`3^3 = 27` codes fit in 5 bits).
 const IMAGE_BITS: u32 = 5;
@@ -141,8 +141,8 @@ pub(super) struct Lists<const D: usize> {
     /// The shift of each image code as the oracle writes it for a partner listed first,
     /// `0 − shift` (zero components stay +0).
     neg_shifts: [Vector<D>; 1 << IMAGE_BITS],
-    /// Each axis of each image shift in both lanes (for the slot tests of a rebuild).
-    shift_lanes: [[f64x2; D]; 1 << IMAGE_BITS],
+    /// Each axis of each image shift in all four lanes (for the slot tests of a rebuild).
+    shift_lanes: [[f64x4; D]; 1 << IMAGE_BITS],
     /// Shell centre of each body.
     pub centre: Vec<Vector<D>>,
     /// Shell exit time of each body (infinity: never).
@@ -169,9 +169,9 @@ pub(super) struct Lists<const D: usize> {
 /// A shell centre being tested against cells' slot records, in lanes: its coordinates and
 /// body index splatted, and the squared overlap distance.
 struct CellProbe<const D: usize> {
-    x: [f64x2; D],
+    x: [f64x4; D],
     me: i32x4,
-    cut: f64x2,
+    cut: f64x4,
 }
 
 impl<const D: usize> Lists<D> {
@@ -186,7 +186,7 @@ impl<const D: usize> Lists<D> {
             prune_margin: 2.0 * MARGIN * cut,
             shifts: [Vector::ZERO; 1 << IMAGE_BITS],
             neg_shifts: [Vector::ZERO; 1 << IMAGE_BITS],
-            shift_lanes: [[f64x2::ZERO; D]; 1 << IMAGE_BITS],
+            shift_lanes: [[f64x4::ZERO; D]; 1 << IMAGE_BITS],
             stride,
             entries: vec![0; n * stride],
             centre: vec![Vector::ZERO; n],
@@ -209,7 +209,7 @@ impl<const D: usize> Lists<D> {
             *neg = Vector::ZERO - *s;
         }
         for (lanes, s) in self.shift_lanes.iter_mut().zip(shifts) {
-            *lanes = std::array::from_fn(|d| f64x2::splat(s[d]));
+            *lanes = std::array::from_fn(|d| f64x4::splat(s[d]));
         }
     }
 
@@ -414,8 +414,9 @@ impl<const D: usize> Lists<D> {
     /// index above the probe's and of those kept below it, and writes each slot's list entry
     /// to `out`. Each slot's test is `Lists::overlap`'s, the same operations in the same
     /// order (the displacement `(x_j − x_i) + shift`, then its squared norm summed from 0
-    /// axis by axis), so its outcome is the same bit for bit; two slots per lane pair, and
-    /// unused slots (at infinity) never pass.
+    /// axis by axis), so its outcome is the same bit for bit; one slot per lane of a four-lane
+    /// vector (the `SLOTS` slots of an axis lie together), and unused slots (at infinity)
+    /// never pass.
     #[inline(always)]
     fn test_cell(
         &self,
@@ -425,15 +426,12 @@ impl<const D: usize> Lists<D> {
         out: &mut [u32; SLOTS],
     ) -> (u32, u32) {
         let shift = &self.shift_lanes[usize::from(image) & IMAGE_MASK as usize];
-        let mut near = 0u32;
-        for half in 0..SLOTS / 2 {
-            let mut sq = f64x2::ZERO;
-            for ((p, &x), &s) in rec.pos.iter().zip(&probe.x).zip(shift) {
-                let t = (f64x2::new([p[2 * half], p[2 * half + 1]]) - x) + s;
-                sq += t * t;
-            }
-            near |= (sq.cmp_le(probe.cut).move_mask() as u32) << (2 * half);
+        let mut sq = f64x4::ZERO;
+        for ((p, &x), &s) in rec.pos.iter().zip(&probe.x).zip(shift) {
+            let t = (f64x4::new(*p) - x) + s;
+            sq += t * t;
         }
+        let near = sq.cmp_le(probe.cut).move_mask() as u32;
         // Body indices are below 2^27: signed lanes compare them as they are.
         let bodies = i32x4::new(rec.body.map(|j| j as i32));
         let not_self = !bodies.cmp_eq(probe.me).move_mask() as u32;
@@ -734,9 +732,9 @@ impl<const D: usize> Cells<D> {
         let entries: &mut [[u32; SLOTS]; 27] =
             slot_entries.as_mut_slice().try_into().expect("27 cells");
         let probe = CellProbe {
-            x: std::array::from_fn(|d| f64x2::splat(xi[d])),
+            x: std::array::from_fn(|d| f64x4::splat(xi[d])),
             me: i32x4::splat(i as i32),
-            cut: f64x2::splat(lists.cut_sq),
+            cut: f64x4::splat(lists.cut_sq),
         };
         let mut kept = [(0u64, 0u64); 2];
         let mut any_overflow = false;
