@@ -23,10 +23,12 @@ use super::slots::{CellRecord, CellSlots, SLOTS};
 use super::Cells;
 use crate::geom::Vector;
 use crate::narrow::{toi_circle_circle, toi_circle_circle_shifted, Motion};
-use crate::narrow_lanes::{rare, toi_sides, vector_lanes, PairArgs, Side};
+use crate::narrow_lanes::{
+    first_lanes, toi_sides, vector_lanes, Lanes, PairArgs, Side, ALL_LANES, LANES,
+};
 use crate::prefetch::prefetch;
 use crate::world::{Body, World};
-use wide::{f64x2, i32x4, CmpEq, CmpGt, CmpLe};
+use wide::{f64x4, i32x4, CmpEq, CmpGt, CmpLe};
 
 /// Low bits of a list entry holding the image code (`3^3 = 27` codes fit in 5 bits).
 const IMAGE_BITS: u32 = 5;
@@ -53,6 +55,19 @@ pub(super) fn entry_body(e: u32) -> usize {
 #[inline(always)]
 pub(super) fn entry_image(e: u32) -> u8 {
     (e & IMAGE_MASK) as u8
+}
+
+/// Offers body `i` its pair with list entry `e`, meeting at time `t`.
+#[inline(always)]
+fn offer_entry(best: &mut Best, i: usize, e: u32, t: f64) {
+    let bits = super::key::ordered(t);
+    if bits <= best.threshold() {
+        let j = entry_body(e);
+        best.offer(
+            super::key::Key::body_bits(bits, i.min(j), i.max(j)),
+            entry_image(e),
+        );
+    }
 }
 
 /// The entries `above` (of higher body index than some body) and `below` (of lower) in
@@ -126,8 +141,8 @@ pub(super) struct Lists<const D: usize> {
     /// The shift of each image code as the oracle writes it for a partner listed first,
     /// `0 − shift` (zero components stay +0).
     neg_shifts: [Vector<D>; 1 << IMAGE_BITS],
-    /// Each axis of each image shift in both lanes (for the slot tests of a rebuild).
-    shift_lanes: [[f64x2; D]; 1 << IMAGE_BITS],
+    /// Each axis of each image shift in all four lanes (for the slot tests of a rebuild).
+    shift_lanes: [[f64x4; D]; 1 << IMAGE_BITS],
     /// Shell centre of each body.
     pub centre: Vec<Vector<D>>,
     /// Shell exit time of each body (infinity: never).
@@ -154,9 +169,9 @@ pub(super) struct Lists<const D: usize> {
 /// A shell centre being tested against cells' slot records, in lanes: its coordinates and
 /// body index splatted, and the squared overlap distance.
 struct CellProbe<const D: usize> {
-    x: [f64x2; D],
+    x: [f64x4; D],
     me: i32x4,
-    cut: f64x2,
+    cut: f64x4,
 }
 
 impl<const D: usize> Lists<D> {
@@ -171,7 +186,7 @@ impl<const D: usize> Lists<D> {
             prune_margin: 2.0 * MARGIN * cut,
             shifts: [Vector::ZERO; 1 << IMAGE_BITS],
             neg_shifts: [Vector::ZERO; 1 << IMAGE_BITS],
-            shift_lanes: [[f64x2::ZERO; D]; 1 << IMAGE_BITS],
+            shift_lanes: [[f64x4::ZERO; D]; 1 << IMAGE_BITS],
             stride,
             entries: vec![0; n * stride],
             centre: vec![Vector::ZERO; n],
@@ -194,7 +209,7 @@ impl<const D: usize> Lists<D> {
             *neg = Vector::ZERO - *s;
         }
         for (lanes, s) in self.shift_lanes.iter_mut().zip(shifts) {
-            *lanes = std::array::from_fn(|d| f64x2::splat(s[d]));
+            *lanes = std::array::from_fn(|d| f64x4::splat(s[d]));
         }
     }
 
@@ -399,8 +414,9 @@ impl<const D: usize> Lists<D> {
     /// index above the probe's and of those kept below it, and writes each slot's list entry
     /// to `out`. Each slot's test is `Lists::overlap`'s, the same operations in the same
     /// order (the displacement `(x_j − x_i) + shift`, then its squared norm summed from 0
-    /// axis by axis), so its outcome is the same bit for bit; two slots per lane pair, and
-    /// unused slots (at infinity) never pass.
+    /// axis by axis), so its outcome is the same bit for bit; one slot per lane of a four-lane
+    /// vector (the `SLOTS` slots of an axis lie together), and unused slots (at infinity)
+    /// never pass.
     #[inline(always)]
     fn test_cell(
         &self,
@@ -410,15 +426,12 @@ impl<const D: usize> Lists<D> {
         out: &mut [u32; SLOTS],
     ) -> (u32, u32) {
         let shift = &self.shift_lanes[usize::from(image) & IMAGE_MASK as usize];
-        let mut near = 0u32;
-        for half in 0..SLOTS / 2 {
-            let mut sq = f64x2::ZERO;
-            for ((p, &x), &s) in rec.pos.iter().zip(&probe.x).zip(shift) {
-                let t = (f64x2::new([p[2 * half], p[2 * half + 1]]) - x) + s;
-                sq += t * t;
-            }
-            near |= (sq.cmp_le(probe.cut).move_mask() as u32) << (2 * half);
+        let mut sq = f64x4::ZERO;
+        for ((p, &x), &s) in rec.pos.iter().zip(&probe.x).zip(shift) {
+            let t = (f64x4::new(*p) - x) + s;
+            sq += t * t;
         }
+        let near = sq.cmp_le(probe.cut).move_mask() as u32;
         // Body indices are below 2^27: signed lanes compare them as they are.
         let bodies = i32x4::new(rec.body.map(|j| j as i32));
         let not_self = !bodies.cmp_eq(probe.me).move_mask() as u32;
@@ -455,114 +468,170 @@ impl<const D: usize> Cells<D> {
     }
 
     /// Hints that the records of body `i`'s listed partners will be read soon: asked for
-    /// together, their misses overlap.
+    /// together, their misses overlap. Not the first quad's: the scan reads those at once.
     #[inline(always)]
     pub(super) fn prefetch_partners(&self, world: &World<D>, i: usize) {
         let bodies = world.bodies();
-        for &e in self.lists().list(i) {
+        for &e in self.lists().list(i).get(LANES..).unwrap_or_default() {
             prefetch(&bodies[entry_body(e)]);
         }
     }
 
     /// Offers body `p` every pair of its neighbour list, each by the oracle's narrow phase
-    /// with the oracle's arguments (see `scan_list`): the part of partners of higher index
-    /// with `p` first, then the rest with the partner first.
+    /// with the oracle's arguments (see `scan_list`): the partners of higher index (listed
+    /// first) with `p` first, the rest with the partner first.
     pub(super) fn scan_neighbour_list(&self, world: &World<D>, p: &Probe<D>, best: &mut Best) {
-        let (above, below) = self.lists().parts(p.i);
+        let lists = self.lists();
+        let above = lists.parts(p.i).0.len();
+        let entries = lists.list(p.i);
         let bodies = world.bodies();
         if self.hints {
             self.prefetch_partners(world, p.i);
         }
         if self.periodic {
-            self.scan_side::<true, true>(bodies, p, above, best);
-            self.scan_side::<true, false>(bodies, p, below, best);
+            self.scan_quads::<true>(bodies, p, entries, above, best);
         } else {
-            self.scan_side::<false, true>(bodies, p, above, best);
-            self.scan_side::<false, false>(bodies, p, below, best);
+            self.scan_quads::<false>(bodies, p, entries, above, best);
         }
     }
 
-    /// Offers body `p` the pairs of the list entries `entries`, all of higher body index
-    /// (`PROBE_FIRST`) or all of lower: the same calls as `scan_entries`, the order chosen
-    /// once for the whole part. Entries go two at a time through the lane kernel
-    /// ([`toi_sides`], the same times bit for bit; `p` is put in both lanes once per part) and are offered in list order.
+    /// Offers body `p` the pairs of the list entries `entries`, of which the first `above`
+    /// have a higher body index than `p`'s (`p` goes first in their pairs, the partner in
+    /// the others'). The entries go four at a time, in list order, through the lane kernel
+    /// ([`toi_sides`], each lane the scalar function's times bit for bit): `p` is put in
+    /// all lanes once; a quad of one part has `p` on one side, the quad where the parts meet
+    /// selects each lane's sides by its part, and the last quad is padded with copies of the
+    /// last entry, whose lanes are dropped (no time, never handed to the scalar function).
     #[inline(always)]
-    fn scan_side<const PERIODIC: bool, const PROBE_FIRST: bool>(
+    fn scan_quads<const PERIODIC: bool>(
         &self,
         bodies: &[Body<D>],
         p: &Probe<D>,
         entries: &[u32],
+        above: usize,
         best: &mut Best,
     ) {
-        let i = p.i;
-        let lists = self.lists();
-        // The pair of entry `e` in the oracle's argument order.
-        let args = |e: u32| {
-            let j = entry_body(e);
-            let image = usize::from(entry_image(e));
-            let b = &bodies[j];
-            debug_assert_eq!(PROBE_FIRST, i < j);
-            if PROBE_FIRST {
-                PairArgs {
-                    a: &p.b.motion,
-                    ra: p.b.radius,
-                    b: &b.motion,
-                    rb: b.radius,
-                    shift: &lists.shifts[image],
-                }
-            } else {
-                PairArgs {
-                    a: &b.motion,
-                    ra: b.radius,
-                    b: &p.b.motion,
-                    rb: p.b.radius,
-                    shift: &lists.neg_shifts[image],
-                }
-            }
-        };
-        let offer = |best: &mut Best, e: u32, t: Option<f64>| {
-            if let Some(t) = t {
-                let bits = super::key::ordered(t);
-                if bits <= best.threshold() {
-                    let j = entry_body(e);
-                    let key = if PROBE_FIRST {
-                        super::key::Key::body_bits(bits, i, j)
-                    } else {
-                        super::key::Key::body_bits(bits, j, i)
-                    };
-                    best.offer(key, entry_image(e));
-                }
-            }
-        };
-        // `p` in both lanes, once for the whole part.
+        let n = entries.len();
         let probe = Side::splat(&p.b.motion, p.b.radius);
-        let side_shifts = if PROBE_FIRST {
-            &lists.shifts
-        } else {
-            &lists.neg_shifts
-        };
-        let mut pairs = entries.chunks_exact(2);
-        for two in &mut pairs {
-            let (b0, b1) = (&bodies[entry_body(two[0])], &bodies[entry_body(two[1])]);
-            let other = Side::gather([&b0.motion, &b1.motion], [b0.radius, b1.radius]);
-            let shift = if PERIODIC {
-                let s = |k: usize| &side_shifts[usize::from(entry_image(two[k]))];
-                vector_lanes([s(0), s(1)])
+        let mut k = 0;
+        while k < n {
+            let (quad, valid) = if let Some(q) = entries.get(k..k + LANES) {
+                ([q[0], q[1], q[2], q[3]], ALL_LANES)
             } else {
-                [f64x2::ZERO; D]
+                // Past the end, the last entry again (its lanes are dropped).
+                let q = std::array::from_fn(|l| entries[(k + l).min(n - 1)]);
+                (q, (1 << (n - k)) - 1)
             };
-            let lanes = if PROBE_FIRST {
-                toi_sides::<D, PERIODIC>(&probe, &other, &shift)
+            if k + LANES <= above {
+                self.scan_quad::<PERIODIC, 0>(bodies, p, &probe, quad, LANES, valid, best);
+            } else if k >= above {
+                self.scan_quad::<PERIODIC, 1>(bodies, p, &probe, quad, 0, valid, best);
             } else {
-                toi_sides::<D, PERIODIC>(&other, &probe, &shift)
-            };
-            lanes.each_time(
-                |k, t| offer(best, two[k], Some(t)),
-                |k| rare::<D, PERIODIC>(args(two[k])),
-            );
+                self.scan_quad::<PERIODIC, 2>(bodies, p, &probe, quad, above - k, valid, best);
+            }
+            k += LANES;
         }
-        for &e in pairs.remainder() {
-            offer(best, e, args(e).scalar::<PERIODIC>());
+    }
+
+    /// Offers body `p` (in all lanes of `probe`) the pairs of the list entries `quad` whose
+    /// bits are set in `valid`: `p` first in all lanes (`ORDER` 0), in none (1), or in the
+    /// lanes below `first` (2).
+    #[inline(always)]
+    #[allow(clippy::too_many_arguments)]
+    fn scan_quad<const PERIODIC: bool, const ORDER: u8>(
+        &self,
+        bodies: &[Body<D>],
+        p: &Probe<D>,
+        probe: &Side<D>,
+        quad: [u32; LANES],
+        first: usize,
+        valid: u32,
+        best: &mut Best,
+    ) {
+        let lists = self.lists();
+        let b = quad.map(|e| &bodies[entry_body(e)]);
+        let other = Side::gather(b.map(|b| &b.motion), b.map(|b| b.radius));
+        // Each lane's shift as the oracle writes it for its order.
+        let shift_of = |table: [&[Vector<D>; 1 << IMAGE_BITS]; LANES]| {
+            if PERIODIC {
+                vector_lanes(std::array::from_fn(|l| {
+                    &table[l][usize::from(entry_image(quad[l]))]
+                }))
+            } else {
+                [f64x4::ZERO; D]
+            }
+        };
+        let lanes = match ORDER {
+            0 => toi_sides::<D, PERIODIC>(probe, &other, &shift_of([&lists.shifts; LANES])),
+            1 => toi_sides::<D, PERIODIC>(&other, probe, &shift_of([&lists.neg_shifts; LANES])),
+            _ => {
+                let mask = first_lanes(first);
+                let sa = Side::select(mask, probe, &other);
+                let sb = Side::select(mask, &other, probe);
+                let tables = std::array::from_fn(|l| {
+                    if l < first {
+                        &lists.shifts
+                    } else {
+                        &lists.neg_shifts
+                    }
+                });
+                toi_sides::<D, PERIODIC>(&sa, &sb, &shift_of(tables))
+            }
+        }
+        .only(valid);
+        if lanes.rare != 0 {
+            self.offer_rare_quad::<PERIODIC>(bodies, p, quad, lanes, best);
+            return;
+        }
+        let mut hits = lanes.hits;
+        while hits != 0 {
+            let l = hits.trailing_zeros() as usize;
+            offer_entry(best, p.i, quad[l], lanes.times[l]);
+            hits &= hits - 1;
+        }
+    }
+
+    /// [`Cells::scan_quad`]'s offers when a lane is left to the scalar function (rare: out of
+    /// line, so that the scan keeps its registers).
+    #[cold]
+    #[inline(never)]
+    fn offer_rare_quad<const PERIODIC: bool>(
+        &self,
+        bodies: &[Body<D>],
+        p: &Probe<D>,
+        quad: [u32; LANES],
+        lanes: Lanes,
+        best: &mut Best,
+    ) {
+        lanes.each_time(
+            |l, t| offer_entry(best, p.i, quad[l], t),
+            |l| self.list_pair(bodies, p, quad[l]).scalar::<PERIODIC>(),
+        );
+    }
+
+    /// The pair of body `p` and list entry `e` in the oracle's argument order.
+    #[inline(always)]
+    fn list_pair<'a>(&'a self, bodies: &'a [Body<D>], p: &'a Probe<D>, e: u32) -> PairArgs<'a, D> {
+        let lists = self.lists();
+        let j = entry_body(e);
+        let image = usize::from(entry_image(e));
+        let b = &bodies[j];
+        if p.i < j {
+            PairArgs {
+                a: &p.b.motion,
+                ra: p.b.radius,
+                b: &b.motion,
+                rb: b.radius,
+                shift: &lists.shifts[image],
+            }
+        } else {
+            PairArgs {
+                a: &b.motion,
+                ra: b.radius,
+                b: &p.b.motion,
+                rb: p.b.radius,
+                shift: &lists.neg_shifts[image],
+            }
         }
     }
 
@@ -663,9 +732,9 @@ impl<const D: usize> Cells<D> {
         let entries: &mut [[u32; SLOTS]; 27] =
             slot_entries.as_mut_slice().try_into().expect("27 cells");
         let probe = CellProbe {
-            x: std::array::from_fn(|d| f64x2::splat(xi[d])),
+            x: std::array::from_fn(|d| f64x4::splat(xi[d])),
             me: i32x4::splat(i as i32),
-            cut: f64x2::splat(lists.cut_sq),
+            cut: f64x4::splat(lists.cut_sq),
         };
         let mut kept = [(0u64, 0u64); 2];
         let mut any_overflow = false;

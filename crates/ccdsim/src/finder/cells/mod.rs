@@ -133,10 +133,13 @@
 //!   `collect_overlapping`).
 //! * A full recompute of `i` scans `N(i)` (same pure functions, same argument order and
 //!   shift convention as above: a list keeps its partners of higher index first, so the
-//!   order is chosen once per part, and `0 − s` is computed once per image code; partners
-//!   go two at a time through a two-lane SIMD kernel, `narrow_lanes::toi_sides`, whose
-//!   lanes perform the scalar function's operations in its order and hand every rare path
-//!   back to it, so its times are the scalar ones bit for bit, offered in list order), the walls
+//!   order is known per entry from its place, and `0 − s` is computed once per image code;
+//!   partners go four at a time through a four-lane SIMD kernel, `narrow_lanes::toi_sides`,
+//!   whose lanes perform the scalar function's operations in its order, each lane with its
+//!   pair's balls in the oracle's order (the quad where the two parts meet chooses them lane
+//!   by lane), and hand every rare path back to it, so its times are the scalar ones bit for
+//!   bit, offered in list order; a last quad of fewer entries is padded and its padding
+//!   lanes dropped), the walls
 //!   of the cell of `X_i` and, if that cell is a border cell, the box exit. A rebuild at a
 //!   shell exit moves `X_i` to the body's position then, refiles it, rebuilds `N(i)` and
 //!   offers `i` only the pairs new to `N(i)`, the walls new to its cell and, if it moved
