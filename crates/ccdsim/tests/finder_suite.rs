@@ -14,7 +14,7 @@
 use ccdsim::finder::{all_pairs_next_event, make_finder, FinderOptions, FINDER_NAMES};
 use ccdsim::generate::{box_walls, gas, rack, GasConfig, GenerateError, RackConfig};
 use ccdsim::record::RunWriter;
-use ccdsim::{BodySpec, Event, Scene, Settings, Simulation, Vector, Wall};
+use ccdsim::{BodySpec, Event, EventKind, Scene, Settings, Simulation, Vector, Wall};
 use proptest::prelude::*;
 
 /// Seeds of the small gases (n ≤ 64): each scene is run once per seed.
@@ -117,10 +117,23 @@ fn record_run<const D: usize>(
     let mut events = 0u64;
     let mut kick = KICK_SEED;
     let mut frame_end = scene.start_time;
+    // `peek_event` gives up after this many box exits in a row without a collision (bodies
+    // that never meet in a periodic box; see its docs).
+    let exit_guard = 1024 + 64 * scene.bodies.len() as u64;
     while events < max_events {
+        let exits_before = sim.stats().exits;
         let got = sim.peek_event();
         if check {
-            assert_same(got, all_pairs_next_event(sim.world()), || {
+            let mut want = all_pairs_next_event(sim.world());
+            let gave_up = got.is_none() && sim.stats().exits - exits_before == exit_guard;
+            if gave_up
+                && want
+                    .is_some_and(|w| w.kind == EventKind::Wall && w.b as usize >= scene.walls.len())
+            {
+                // The oracle's next event is one more exit, which the simulation declined.
+                want = None;
+            }
+            assert_same(got, want, || {
                 format!(
                     "{label} [{name}, {D}D, {drive:?}] before event {events} at t = {}",
                     sim.time()
@@ -805,6 +818,33 @@ fn grid_scene<const D: usize>(
     walls: bool,
     restitution: f64,
 ) -> Scene<D> {
+    grid_scene_in(
+        bodies,
+        if walls {
+            Boundary::Walls
+        } else {
+            Boundary::Open
+        },
+        restitution,
+    )
+}
+
+/// What surrounds a generated grid scene.
+#[derive(Clone, Copy, Debug)]
+enum Boundary {
+    Open,
+    Walls,
+    /// A periodic box one grid step wider than the walled one, so that it is wider than
+    /// four of the largest radii (below 1) even around a single body.
+    Periodic,
+}
+
+/// A scene on a jittered grid (never overlapping, also across the faces of a periodic box).
+fn grid_scene_in<const D: usize>(
+    bodies: Vec<([f64; D], [f64; D], f64)>,
+    boundary: Boundary,
+    restitution: f64,
+) -> Scene<D> {
     let n = bodies.len();
     let base = ((n as f64).powf(1.0 / D as f64).ceil() as usize).max(1);
     let bodies: Vec<BodySpec<D>> = bodies
@@ -824,28 +864,40 @@ fn grid_scene<const D: usize>(
         settings: Settings { restitution },
         start_time: 0.0,
         bodies,
-        walls: if walls {
-            box_walls(Vector::splat(3.0 * base as f64 + 1.0))
-        } else {
-            Vec::new()
+        walls: match boundary {
+            Boundary::Walls => box_walls(Vector::splat(3.0 * base as f64 + 1.0)),
+            Boundary::Open | Boundary::Periodic => Vec::new(),
         },
-        periodic: None,
+        periodic: match boundary {
+            Boundary::Periodic => Some(Vector::splat(3.0 * base as f64 + 2.0)),
+            Boundary::Open | Boundary::Walls => None,
+        },
     }
 }
 
-fn arb_scene<const D: usize>() -> impl Strategy<Value = Scene<D>> {
+/// Bodies for [`grid_scene_in`]: jitter, velocity (some at rest) and radius.
+fn arb_grid_bodies<const D: usize>() -> impl Strategy<Value = Vec<([f64; D], [f64; D], f64)>> {
     let speed = prop_oneof![Just(0.0), -3.0..3.0f64];
     let body = (
         prop::array::uniform::<_, D>(-0.45..0.45f64),
         prop::array::uniform::<_, D>(speed),
         0.05..1.0f64,
     );
+    prop::collection::vec(body, 1..40)
+}
+
+fn arb_scene<const D: usize>() -> impl Strategy<Value = Scene<D>> {
     (
-        prop::collection::vec(body, 1..40),
+        arb_grid_bodies::<D>(),
         any::<bool>(),
         prop_oneof![Just(1.0), 0.0..1.0f64],
     )
         .prop_map(|(bodies, walls, e)| grid_scene(bodies, walls, e))
+}
+
+fn arb_periodic_scene<const D: usize>() -> impl Strategy<Value = Scene<D>> {
+    (arb_grid_bodies::<D>(), prop_oneof![Just(1.0), 0.0..1.0f64])
+        .prop_map(|(bodies, e)| grid_scene_in(bodies, Boundary::Periodic, e))
 }
 
 proptest! {
@@ -860,9 +912,20 @@ proptest! {
     fn generated_scenes_3d(scene in arb_scene::<3>()) {
         check_all("proptest 3D", &scene, 300);
     }
+
+    #[test]
+    fn generated_periodic_scenes_2d(scene in arb_periodic_scene::<2>()) {
+        check_periodic("proptest periodic 2D", &scene, 300, Drive::Events);
+    }
+
+    #[test]
+    fn generated_periodic_scenes_3d(scene in arb_periodic_scene::<3>()) {
+        check_periodic("proptest periodic 3D", &scene, 300, Drive::Events);
+    }
 }
 
-/// True when finder `name` with `options` serves periodic worlds (the others refuse them).
+/// True when finder `name` with `options` serves periodic worlds (a finder that cannot
+/// refuses them at `init`; every finder here serves them).
 fn serves_periodic(name: &str, options: &FinderOptions) -> bool {
     let scene = Scene::<2> {
         periodic: Some(Vector([10.0, 10.0])),
@@ -871,8 +934,8 @@ fn serves_periodic(name: &str, options: &FinderOptions) -> bool {
     Simulation::with_finder(&scene, make_finder::<2>(name, options).expect("finder")).is_ok()
 }
 
-/// Runs the periodic `scene` through every variant that serves periodic worlds, driven by
-/// `drive`; returns the number of events.
+/// Runs the periodic `scene` through every variant, each of which must serve periodic
+/// worlds, driven by `drive`; returns the number of events.
 fn check_periodic<const D: usize>(
     label: &str,
     scene: &Scene<D>,
@@ -880,16 +943,14 @@ fn check_periodic<const D: usize>(
     drive: Drive,
 ) -> u64 {
     let oracle = reference(label, scene, max_events, drive);
-    let mut served = 0;
     for (name, options) in variants() {
-        if !serves_periodic(name, &options) {
-            continue;
-        }
-        served += 1;
+        assert!(
+            serves_periodic(name, &options),
+            "finder {name} refuses periodic worlds"
+        );
         let label = format!("{label} (cells_skin {:?})", options.cells_skin);
         check_run(&label, scene, name, &options, max_events, drive, &oracle);
     }
-    assert!(served >= 2, "no finder serves periodic worlds");
     oracle.events
 }
 

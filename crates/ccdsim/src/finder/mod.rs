@@ -14,9 +14,9 @@
 //! In a periodic world ([`World::periodic`]) the pair function is
 //! [`toi_circle_circle_periodic`](crate::periodic::toi_circle_circle_periodic) and each body's
 //! exit from the box ([`toi_box_exit`](crate::periodic::toi_box_exit)) is an event too, a wall
-//! event naming face `f` as wall `walls.len() + f`; the simulation applies exits silently. A
-//! finder that cannot serve periodic worlds refuses them in `init` with
-//! [`FinderError::Unsupported`].
+//! event naming face `f` as wall `walls.len() + f`; the simulation applies exits silently. Every
+//! finder of this crate serves periodic worlds; a finder that cannot would refuse them in
+//! `init` with [`FinderError::Unsupported`].
 
 mod all_pairs;
 pub mod bvh;

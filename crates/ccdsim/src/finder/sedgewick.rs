@@ -17,10 +17,16 @@
 //! the last time either body changed (or at `init`). Stale entries are skipped before the top is
 //! returned, and the heap orders entries by [`Event`]'s total order first, so the valid top is
 //! the oracle's minimum, ties included.
+//!
+//! In a periodic world ([`crate::periodic`]) pairs are predicted by the oracle's periodic
+//! function [`toi_circle_circle_periodic`], and each body's exit from the box is predicted
+//! with its walls, named like the oracle names it (wall `walls.len() + face`): it depends on
+//! the body's state alone, like a wall event.
 
 use super::{Finder, FinderError, FinderMemory};
 use crate::event::{Event, EventKind};
 use crate::narrow::{toi_circle_circle, toi_circle_wall};
+use crate::periodic::{toi_box_exit, toi_circle_circle_periodic};
 use crate::world::World;
 use std::cmp::Reverse;
 use std::collections::BinaryHeap;
@@ -146,6 +152,7 @@ impl Sedgewick {
     ) {
         let mi = world.motion(i);
         let ci = world.change_count(i);
+        let period = world.periodic();
         for j in 0..world.len() {
             if j == i || skip(j) {
                 continue;
@@ -157,7 +164,12 @@ impl Sedgewick {
             } else {
                 (world.motion(j), mi)
             };
-            if let Some(t) = toi_circle_circle(&ma, world.radius(a), &mb, world.radius(b)) {
+            let (ra, rb) = (world.radius(a), world.radius(b));
+            let t = match &period {
+                None => toi_circle_circle(&ma, ra, &mb, rb),
+                Some(size) => toi_circle_circle_periodic(&ma, ra, &mb, rb, size),
+            };
+            if let Some(t) = t {
                 self.push(Entry::new(
                     Event::body(t, a, b),
                     world.change_count(a),
@@ -170,6 +182,10 @@ impl Sedgewick {
                 self.push(Entry::new(Event::wall(t, i, w), ci, 0));
             }
         }
+        if let Some((t, face)) = period.and_then(|size| toi_box_exit(&mi, &size)) {
+            let exit = world.walls().len() + face;
+            self.push(Entry::new(Event::wall(t, i, exit), ci, 0));
+        }
     }
 }
 
@@ -179,16 +195,11 @@ impl<const D: usize> Finder<D> for Sedgewick {
     }
 
     fn init(&mut self, world: &World<D>) -> Result<(), FinderError> {
-        if world.len() > MAX_INDEX || world.walls().len() > MAX_INDEX {
+        // Box exits are named after the walls, two faces per axis.
+        if world.len() > MAX_INDEX || world.walls().len() + 2 * D > MAX_INDEX {
             return Err(FinderError::Unsupported {
                 finder: "sedgewick",
                 why: "more than 2^31 bodies or walls".into(),
-            });
-        }
-        if world.periodic().is_some() {
-            return Err(FinderError::Unsupported {
-                finder: "sedgewick",
-                why: "periodic boundaries".into(),
             });
         }
         self.heap = BinaryHeap::new();

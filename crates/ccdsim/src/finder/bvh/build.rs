@@ -19,6 +19,10 @@ impl<const D: usize> SweptTree<D> {
         self.now = now;
         self.horizon = horizon;
         self.built_horizon = horizon;
+        match world.periodic() {
+            Some(size) => super::traverse::half_image_shifts(&size, &mut self.shifts),
+            None => self.shifts.clear(),
+        }
         self.leaf_boxes.clear();
         self.leaf_boxes
             .extend((0..n).map(|i| swept_box(&world.motion(i), world.radius(i), now, horizon)));

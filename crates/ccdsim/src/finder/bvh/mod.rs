@@ -55,6 +55,27 @@
 //! found: every body event is then later than `W`, which is the answer. The final answer is
 //! the earlier of the body event and `W` under the event order.
 //!
+//! # Periodic boxes
+//!
+//! In a periodic world ([`crate::periodic`]) the oracle's time for a pair is the earliest
+//! contact over the images `k·L`, `k ∈ {−1, 0, 1}^D`, of the second body
+//! ([`toi_circle_circle_periodic`]), and each body's exit from the box is an event named like
+//! a wall. Exits depend on one body's state, so they go into the wall cache beside the walls
+//! (a periodic scene has none) and bound the growth of Δ like wall events do. The tree is
+//! built over the stored positions, which lie in the box, as before; besides its self-check
+//! it is pair-checked against each of its images shifted by `k·L` for half of the non-zero
+//! `k` (those whose first non-zero component is positive; `SweptTree::shifts`). Every pair
+//! that reaches the narrow phase, by any check, is evaluated by the oracle's periodic
+//! function with the lower index first, so a pair evaluated twice gives the same time twice.
+//!
+//! Why every pair with a time in `[now, now + Δ]` still reaches it: at the computed time `t`
+//! the first body touches the second's image `k` up to rounding, so the first body's box
+//! overlaps the second's shifted by `k·L` (the argument above, the shift being one more
+//! rounded addition); the same boxes shifted back by `−k·L` overlap too, so whichever of `k`
+//! and `−k` is in the half finds the pair. A shifted box is grown by `4·10⁻¹²·max L`, which
+//! covers the few ε of `L` that the shift adds to the box and to the narrow phase's
+//! displacement thousands of times over.
+//!
 //! # Termination
 //!
 //! With no event left to happen, Δ would grow for ever. The search is bounded instead:
@@ -85,6 +106,7 @@ pub use validate::InvalidTree;
 use super::{DebugBox, Finder, FinderError, FinderOptions};
 use crate::event::Event;
 use crate::narrow::toi_circle_circle;
+use crate::periodic::toi_circle_circle_periodic;
 use crate::world::World;
 use tree::{children, l1, SweptTree};
 use walls::WallCache;
@@ -236,9 +258,12 @@ impl<const D: usize> BvhFinder<D> {
         for i in 0..world.len() {
             let mi = world.motion(i);
             for j in i + 1..world.len() {
-                if let Some(t) =
-                    toi_circle_circle(&mi, world.radius(i), &world.motion(j), world.radius(j))
-                {
+                let (mj, ri, rj) = (world.motion(j), world.radius(i), world.radius(j));
+                let t = match world.periodic() {
+                    None => toi_circle_circle(&mi, ri, &mj, rj),
+                    Some(size) => toi_circle_circle_periodic(&mi, ri, &mj, rj, &size),
+                };
+                if let Some(t) = t {
                     best = Event::earliest(best, Some(Event::body(t, i, j)));
                 }
             }
@@ -252,13 +277,7 @@ impl<const D: usize> Finder<D> for BvhFinder<D> {
         "bvh"
     }
 
-    fn init(&mut self, world: &World<D>) -> Result<(), FinderError> {
-        if world.periodic().is_some() {
-            return Err(FinderError::Unsupported {
-                finder: "bvh",
-                why: "periodic boundaries".into(),
-            });
-        }
+    fn init(&mut self, _world: &World<D>) -> Result<(), FinderError> {
         self.delta = self.initial_dt;
         self.tree = SweptTree::default();
         self.walls.clear();

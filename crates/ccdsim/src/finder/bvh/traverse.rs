@@ -1,9 +1,12 @@
 //! "BVH collision check" (thesis Algorithm 3): the self-check of a node and the pair-check of
-//! two nodes, ending in the narrow phase on body pairs whose leaf boxes overlap.
+//! two nodes, ending in the narrow phase on body pairs whose leaf boxes overlap; in a periodic
+//! box also the pair-check of the tree against its own images.
 
-use super::tree::{children, SweptTree};
+use super::tree::{children, SweptTree, ROUND_PAD};
 use crate::event::Event;
+use crate::geom::{Aabb, Vector};
 use crate::narrow::toi_circle_circle;
+use crate::periodic::toi_circle_circle_periodic;
 use crate::world::World;
 
 /// What one traversal found and how much work it took.
@@ -20,7 +23,27 @@ struct Check<'a, const D: usize> {
     tree: &'a SweptTree<D>,
     world: &'a World<D>,
     horizon: f64,
+    /// The sides of the periodic box, if the world has one.
+    period: Option<Vector<D>>,
     out: Traversal,
+}
+
+/// Sets `out` to half of the `3^D − 1` non-zero image shifts `k·L`, `k ∈ {−1, 0, 1}^D`:
+/// those whose first non-zero component is positive. Each other shift is the negation of one
+/// of them.
+pub(crate) fn half_image_shifts<const D: usize>(size: &Vector<D>, out: &mut Vec<Vector<D>>) {
+    out.clear();
+    for code in 0..3usize.pow(D as u32) {
+        let mut k = [0i32; D];
+        let mut c = code;
+        for kd in &mut k {
+            *kd = (c % 3) as i32 - 1;
+            c /= 3;
+        }
+        if k.iter().find(|&&x| x != 0).is_some_and(|&x| x > 0) {
+            out.push(Vector(std::array::from_fn(|d| f64::from(k[d]) * size[d])));
+        }
+    }
 }
 
 impl<const D: usize> SweptTree<D> {
@@ -31,15 +54,31 @@ impl<const D: usize> SweptTree<D> {
     /// If the leaf boxes are [`swept_box`](super::tree::swept_box)es for `[now, horizon]`, a
     /// pair whose computed time of impact lies in that interval always reaches the narrow
     /// phase, so `best` is the minimum over *all* pairs with time ≤ `horizon`.
+    ///
+    /// In a periodic world (`world.periodic()`), pairs are evaluated by the oracle's periodic
+    /// narrow phase [`toi_circle_circle_periodic`], and the tree is also checked against
+    /// each of its images shifted by [`SweptTree::shifts`] (half of the non-zero shifts
+    /// `k·L`, see [`half_image_shifts`]): a pair touching through image `k` of its second body has
+    /// overlapping boxes once that body's box is shifted by `k·L`, or the first body's by
+    /// `−k·L`, and one of the two shifts is in the half.
     pub fn earliest_body_event(&self, world: &World<D>) -> Traversal {
         let mut c = Check {
             tree: self,
             world,
             horizon: self.horizon,
+            period: world.periodic(),
             out: Traversal::default(),
         };
         if !self.nodes.is_empty() {
             c.self_check(0);
+            if let Some(size) = c.period {
+                // Shifting a box by `k·L` rounds by a few ε of `L`; the padding covers
+                // thousands of times that (see the module docs of `super`).
+                let pad = 4.0 * ROUND_PAD * size.0.iter().fold(0.0f64, |m, &x| m.max(x.abs()));
+                for &shift in &self.shifts {
+                    c.image_check(0, 0, shift, pad);
+                }
+            }
         }
         c.out
     }
@@ -87,17 +126,59 @@ impl<const D: usize> Check<'_, D> {
         }
     }
 
-    /// The narrow phase, called exactly as the oracle calls it (lower index first).
+    /// Pairs with one body below node `a` and the other below node `b` (any two nodes, the
+    /// same one included), `b`'s boxes shifted by `shift` and grown by `pad`.
+    fn image_check(&mut self, a: usize, b: usize, shift: Vector<D>, pad: f64) {
+        let (na, nb) = (self.tree.nodes[a], self.tree.nodes[b]);
+        let grow = Vector::splat(pad);
+        let moved = Aabb {
+            min: nb.aabb.min + shift - grow,
+            max: nb.aabb.max + shift + grow,
+        };
+        if !na.aabb.overlaps(&moved) {
+            return;
+        }
+        match (na.is_leaf(), nb.is_leaf()) {
+            (true, true) => {
+                let (i, j) = (self.tree.body(&na), self.tree.body(&nb));
+                if i != j {
+                    self.narrow(i, j);
+                }
+            }
+            (true, false) => {
+                let (l, r) = children(b, nb.count);
+                self.image_check(a, l, shift, pad);
+                self.image_check(a, r, shift, pad);
+            }
+            (false, true) => {
+                let (l, r) = children(a, na.count);
+                self.image_check(l, b, shift, pad);
+                self.image_check(r, b, shift, pad);
+            }
+            (false, false) => {
+                let (al, ar) = children(a, na.count);
+                let (bl, br) = children(b, nb.count);
+                self.image_check(al, bl, shift, pad);
+                self.image_check(al, br, shift, pad);
+                self.image_check(ar, bl, shift, pad);
+                self.image_check(ar, br, shift, pad);
+            }
+        }
+    }
+
+    /// The narrow phase, called exactly as the oracle calls it (lower index first; in a
+    /// periodic world the earliest contact over the images, as the oracle computes it).
     #[inline]
     fn narrow(&mut self, i: usize, j: usize) {
         let (i, j) = if i < j { (i, j) } else { (j, i) };
         self.out.narrow_calls += 1;
-        let Some(t) = toi_circle_circle(
-            &self.world.motion(i),
-            self.world.radius(i),
-            &self.world.motion(j),
-            self.world.radius(j),
-        ) else {
+        let (mi, ri) = (self.world.motion(i), self.world.radius(i));
+        let (mj, rj) = (self.world.motion(j), self.world.radius(j));
+        let t = match &self.period {
+            None => toi_circle_circle(&mi, ri, &mj, rj),
+            Some(size) => toi_circle_circle_periodic(&mi, ri, &mj, rj, size),
+        };
+        let Some(t) = t else {
             return;
         };
         if t <= self.horizon {

@@ -66,6 +66,10 @@ pub(crate) struct SweptTree<const D: usize> {
     pub finite: bool,
     /// The box of all balls at `now` (not swept), metres.
     pub extent_now: Aabb<D>,
+    /// In a periodic world, half of the non-zero image shifts (see
+    /// [`half_image_shifts`](super::traverse::half_image_shifts)), set by each build; empty
+    /// otherwise.
+    pub shifts: Vec<Vector<D>>,
 }
 
 impl<const D: usize> Default for SweptTree<D> {
@@ -80,6 +84,7 @@ impl<const D: usize> Default for SweptTree<D> {
             built_horizon: 0.0,
             finite: true,
             extent_now: Aabb::EMPTY,
+            shifts: Vec::new(),
         }
     }
 }

@@ -1,11 +1,15 @@
-//! Body–wall events: each body's earliest wall event, cached and recomputed only for bodies
-//! whose stored state changed.
+//! Body–wall events: each body's earliest wall event (in a periodic box, its box exit too),
+//! cached and recomputed only for bodies whose stored state changed.
 
 use crate::event::Event;
 use crate::narrow::toi_circle_wall;
+use crate::periodic::toi_box_exit;
 use crate::world::World;
 
 /// Each body's earliest wall event and the [`World::change_count`] it was computed at.
+///
+/// In a periodic world a body's exit from the box counts as a wall event, naming face `f` as
+/// wall `walls.len() + f`, as the oracle names it ([`crate::periodic`]).
 ///
 /// A body's wall events depend on its stored state alone (walls never move), so the cached
 /// value stays exact until the body's change count moves. After a collision only the one or
@@ -35,6 +39,7 @@ impl WallCache {
             self.fresh = vec![false; n];
         }
         let mut recomputed = 0;
+        let (period, faces_from) = (world.periodic(), world.walls().len());
         for (i, r) in world.radii().enumerate() {
             let count = world.change_count(i);
             if self.fresh[i] && self.seen[i] == count {
@@ -46,6 +51,9 @@ impl WallCache {
                 if let Some(t) = toi_circle_wall(&m, r, wall) {
                     best = Event::earliest(best, Some(Event::wall(t, i, w)));
                 }
+            }
+            if let Some((t, face)) = period.and_then(|size| toi_box_exit(&m, &size)) {
+                best = Event::earliest(best, Some(Event::wall(t, i, faces_from + face)));
             }
             self.earliest[i] = best;
             self.seen[i] = count;
