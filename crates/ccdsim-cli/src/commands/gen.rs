@@ -38,6 +38,10 @@ struct ThesisArgs {
     /// Dimension, 2 (the thesis's 4-wall table) or 3 (a box of 6 planes).
     #[arg(long, default_value_t = 2, value_parser = clap::value_parser!(u8).range(2..=3))]
     dim: u8,
+    /// 2D: each side of the table as this many collinear segments (1: the thesis's four
+    /// walls), for a table of many walls with the same bodies.
+    #[arg(long, default_value_t = 1)]
+    wall_pieces: usize,
 }
 
 #[derive(clap::Args)]
@@ -147,7 +151,10 @@ pub fn run(args: Args) -> Result<ExitCode> {
             scene.into()
         }
         Kind::Thesis(t) => {
-            let cfg = ThesisConfig::new(t.n, t.seed);
+            let cfg = ThesisConfig {
+                wall_pieces: t.wall_pieces,
+                ..ThesisConfig::new(t.n, t.seed)
+            };
             if t.dim == 2 {
                 thesis::<2>(&cfg)?.into()
             } else {

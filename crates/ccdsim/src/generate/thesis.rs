@@ -9,7 +9,7 @@
 use super::place::place_balls;
 use super::{box_walls, random_direction, GenerateError};
 use crate::geom::Vector;
-use crate::scene::{BodySpec, Scene};
+use crate::scene::{BodySpec, Scene, Wall};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
@@ -35,6 +35,10 @@ pub struct ThesisConfig {
     /// Table length over width (a billiard table is 2); in 3D the box is
     /// `aspect · w × w × w`.
     pub aspect: f64,
+    /// In 2D, each side of the table is this many collinear segments of equal length (1: the
+    /// thesis's four walls; more make a table of many walls with the same bodies, to measure
+    /// what walls cost a finder). 3D tables are planes and need 1.
+    pub wall_pieces: usize,
 }
 
 /// The thesis's Table 5.1: number of bodies, mean number of collisions in 5 simulated seconds,
@@ -64,6 +68,9 @@ pub const THESIS_TABLE_5_2: [(Option<f64>, f64, f64); 7] = [
     (Some(1.0), 1.893161469, 87281.33),
 ];
 
+/// Largest [`ThesisConfig::wall_pieces`].
+pub const MAX_WALL_PIECES: usize = 1_000_000;
+
 /// Simulated duration of every thesis benchmark run, seconds.
 pub const THESIS_DURATION: f64 = 5.0;
 
@@ -78,6 +85,7 @@ impl Default for ThesisConfig {
             slowest: 0.0,
             crossing_time: 1.0,
             aspect: 2.0,
+            wall_pieces: 1,
         }
     }
 }
@@ -136,6 +144,9 @@ impl ThesisConfig {
         if !(self.aspect >= 1.0 && self.aspect.is_finite()) {
             return bad("aspect", "must be at least 1 and finite");
         }
+        if self.wall_pieces == 0 || self.wall_pieces > MAX_WALL_PIECES {
+            return bad("wall_pieces", "must be in 1 ..= 1,000,000");
+        }
         Ok(())
     }
 }
@@ -145,6 +156,12 @@ impl ThesisConfig {
 /// `[slowest · v_max, v_max]` and uniform directions.
 pub fn thesis<const D: usize>(cfg: &ThesisConfig) -> Result<Scene<D>, GenerateError> {
     cfg.check()?;
+    if D != 2 && cfg.wall_pieces != 1 {
+        return Err(GenerateError::Param {
+            param: "wall_pieces",
+            why: "a 3D table is six planes; only a 2D table's sides can be cut".to_string(),
+        });
+    }
     let mut rng = ChaCha8Rng::seed_from_u64(cfg.seed);
     let radii: Vec<f64> = (0..cfg.n)
         .map(|_| rng.random_range(cfg.radius_min..=cfg.radius_max))
@@ -161,7 +178,76 @@ pub fn thesis<const D: usize>(cfg: &ThesisConfig) -> Result<Scene<D>, GenerateEr
         .collect();
     Ok(Scene {
         bodies,
-        walls: box_walls(size),
+        walls: cut_walls(box_walls(size), cfg.wall_pieces),
         ..Scene::default()
     })
+}
+
+/// Each segment of `walls` as `pieces` collinear segments of equal length, in order, the end
+/// of one piece the start of the next (bit for bit) and the last ending at the segment's end.
+fn cut_walls<const D: usize>(walls: Vec<Wall<D>>, pieces: usize) -> Vec<Wall<D>> {
+    if pieces == 1 {
+        return walls;
+    }
+    let point = |a: Vector<D>, b: Vector<D>, k: usize| {
+        if k == pieces {
+            b
+        } else {
+            a + (b - a) * (k as f64 / pieces as f64)
+        }
+    };
+    walls
+        .into_iter()
+        .flat_map(|w| match w {
+            Wall::Segment { a, b } => (0..pieces)
+                .map(|k| Wall::Segment {
+                    a: point(a, b, k),
+                    b: point(a, b, k + 1),
+                })
+                .collect(),
+            plane @ Wall::Plane { .. } => vec![plane],
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn cut_sides_tile_the_table_with_the_same_bodies() {
+        let whole = thesis::<2>(&ThesisConfig::new(50, 4)).unwrap();
+        let cfg = ThesisConfig {
+            wall_pieces: 7,
+            ..ThesisConfig::new(50, 4)
+        };
+        let cut = thesis::<2>(&cfg).unwrap();
+        cut.validate().unwrap();
+        assert_eq!(cut.bodies, whole.bodies);
+        assert_eq!(cut.walls.len(), 4 * 7);
+        for (side, pieces) in whole.walls.iter().zip(cut.walls.chunks(7)) {
+            let (
+                Wall::Segment { a, b },
+                Wall::Segment { a: first, .. },
+                Wall::Segment { b: last, .. },
+            ) = (side, pieces[0], pieces[6])
+            else {
+                panic!("2D tables have segments");
+            };
+            assert_eq!((first, last), (*a, *b));
+            for w in pieces.windows(2) {
+                let (Wall::Segment { b: end, .. }, Wall::Segment { a: start, .. }) = (w[0], w[1])
+                else {
+                    panic!("2D tables have segments");
+                };
+                assert_eq!(end, start, "pieces meet");
+            }
+        }
+        let bad = ThesisConfig {
+            wall_pieces: 0,
+            ..ThesisConfig::new(50, 4)
+        };
+        assert!(thesis::<2>(&bad).is_err());
+        assert!(thesis::<3>(&cfg).is_err(), "3D tables are planes");
+    }
 }
