@@ -12,7 +12,9 @@
 //! options).
 
 use ccdsim::finder::{all_pairs_next_event, make_finder, FinderOptions, FINDER_NAMES};
-use ccdsim::generate::{box_walls, gas, rack, GasConfig, GenerateError, RackConfig};
+use ccdsim::generate::{
+    box_walls, gas, rack, thesis, GasConfig, GenerateError, RackConfig, ThesisConfig,
+};
 use ccdsim::record::RunWriter;
 use ccdsim::{BodySpec, Event, EventKind, Scene, Settings, Simulation, Vector, Wall};
 use proptest::prelude::*;
@@ -735,6 +737,22 @@ fn billiard_break() {
             ..RackConfig::default()
         });
         check_all(&format!("rack offset={offset}"), &scene, 3000);
+    }
+}
+
+/// The thesis's table with each side cut into many collinear segments (hundreds of walls;
+/// bodies reaching a joint touch two walls at once, a tie the wall indices decide).
+#[test]
+fn tables_of_many_walls() {
+    for (n, pieces, seed) in [(64, 100, 1), (200, 40, 2), (30, 250, 3)] {
+        let cfg = ThesisConfig {
+            wall_pieces: pieces,
+            ..ThesisConfig::new(n, seed)
+        };
+        let scene = thesis::<2>(&cfg).expect("thesis table");
+        assert_eq!(scene.walls.len(), 4 * pieces);
+        let label = format!("thesis table n={n}, {} walls", 4 * pieces);
+        assert_eq!(check_all(&label, &scene, 1200), 1200, "{label}");
     }
 }
 
