@@ -58,9 +58,9 @@ impl<const D: usize> SweptTree<D> {
     /// In a periodic world (`world.periodic()`), pairs are evaluated by the oracle's periodic
     /// narrow phase [`toi_circle_circle_periodic`], and the tree is also checked against
     /// each of its images shifted by [`SweptTree::shifts`] (half of the non-zero shifts
-    /// `k·L`, see [`half_image_shifts`]): a pair touching through image `k` of its second body has
-    /// overlapping boxes once that body's box is shifted by `k·L`, or the first body's by
-    /// `−k·L`, and one of the two shifts is in the half.
+    /// `k·L`, see [`half_image_shifts`]): a pair touching through image `k` of its second
+    /// body has overlapping boxes once that body's box is shifted by `k·L`, or the first
+    /// body's by `−k·L`, and one of the two shifts is in the half.
     pub fn earliest_body_event(&self, world: &World<D>) -> Traversal {
         let mut c = Check {
             tree: self,
