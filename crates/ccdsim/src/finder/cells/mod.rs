@@ -195,6 +195,7 @@
 //! after the change's time (moving the body back and recomputing it), so cells again match
 //! positions at that time.
 
+mod gather;
 mod grid;
 mod key;
 mod lists;
@@ -739,7 +740,7 @@ impl<const D: usize> Finder<D> for Cells<D> {
     fn debug_boxes(&mut self, _world: &World<D>) -> Vec<DebugBox<D>> {
         let mut out = Vec::new();
         for c in 0..self.grid.cell_count() as u32 {
-            if self.grid.first(c) == key::NONE {
+            if self.grid.cell(c).len == 0 {
                 continue;
             }
             let (lo, hi) = self.grid.nominal_box(&self.grid.coords(c));

@@ -47,13 +47,15 @@
 //! * Walls, box exit, `store` and `schedule` follow for `i`, then for `j`, exactly as the two
 //!   `recompute`s do them, in that order, and `recomputes` counts two.
 
+use super::gather::{Gathered, GATHER_2D, GATHER_3D};
 use super::grid::Grid;
-use super::key::{Key, NONE};
-use super::predict::{push_head, Best, Probe, HEAD_SLOTS};
+use super::key::Key;
+use super::predict::{Best, Probe};
 use super::Cells;
 use crate::geom::Vector;
+use crate::narrow_lanes::Side;
 use crate::prefetch::prefetch;
-use crate::world::{Body, World};
+use crate::world::World;
 
 impl<const D: usize> Cells<D> {
     /// Recomputes bodies `i` and `j` (both changed, at the same state of the world) as
@@ -81,117 +83,88 @@ impl<const D: usize> Cells<D> {
     }
 
     /// The body candidates of `pi` and of `pj` (see the module docs), if their cells are
-    /// interior and the same or neighbours.
+    /// interior and the same or neighbours and no cell of the union overflows its slots.
     #[inline(always)]
     fn scan_pair(&self, world: &World<D>, pi: &Probe<D>, pj: &Probe<D>) -> Option<(Best, Best)> {
+        if D == 2 {
+            self.scan_pair_in::<GATHER_2D>(world, pi, pj)
+        } else {
+            self.scan_pair_in::<GATHER_3D>(world, pi, pj)
+        }
+    }
+
+    /// [`Cells::scan_pair`] with a buffer of `CAP` candidates.
+    #[inline(always)]
+    fn scan_pair_in<const CAP: usize>(
+        &self,
+        world: &World<D>,
+        pi: &Probe<D>,
+        pj: &Probe<D>,
+    ) -> Option<(Best, Best)> {
         let (i, j) = (pi.i, pj.i);
         let (base, block) = self
             .grid
             .interior_pair(&self.cached[i].coords, &self.cached[j].coords)?;
+        // Every cell's slots, without a branch per cell: the shared cells', then those of
+        // `i`'s block only, then those of `j`'s block only.
+        let mut g = Gathered::<CAP>::new();
+        let cell = |off: isize| self.grid.cell((base as isize + off) as u32);
+        let (shared, rest) = block.offsets.split_at(block.shared);
+        let (only_i, only_j) = rest.split_at(block.only_first);
+        for &off in shared {
+            g.push(cell(off));
+        }
+        let e0 = g.n;
+        for &off in only_i {
+            g.push(cell(off));
+        }
+        let e1 = g.n;
+        for &off in only_j {
+            g.push(cell(off));
+        }
+        if g.overflow {
+            return None;
+        }
         let bodies = world.bodies();
+        if self.hints {
+            for &k in &g.ids[..g.n] {
+                prefetch(&bodies[k as usize]);
+            }
+        }
         let (mut bi, mut bj) = (Best::NONE, Best::NONE);
-        // The pair itself, once, for both (the walk skips `i` and `j`).
+        // The pair itself, once, for both (the quads drop `i` and `j`).
         let zero = Vector::ZERO;
         if let Some(t) = self.pair_toi(pi, j, &pj.b, &zero) {
             let key = Key::body(t, i.min(j), i.max(j));
             bi.offer(key, Grid::<D>::ZERO_IMAGE);
             bj.offer(key, Grid::<D>::ZERO_IMAGE);
         }
-        // Every head first, the empty cells' left out (a branch per cell on whether it is
-        // empty mispredicts about as often as not), then, in large worlds, a hint for each
-        // head's record, as `scan_interior` gives.
-        let mut heads = [NONE; HEAD_SLOTS];
-        let mut n = 0;
-        let skip = self.probe_skipper(i, j);
-        let first = |off: isize| self.grid.first((base as isize + off) as u32);
-        let (shared, rest) = block.offsets.split_at(block.shared);
-        let (only_i, only_j) = rest.split_at(block.only_first);
-        for &off in shared {
-            push_head(&mut heads, &mut n, skip(first(off)));
-        }
-        let e0 = n;
-        for &off in only_i {
-            push_head(&mut heads, &mut n, first(off));
-        }
-        let e1 = n;
-        for &off in only_j {
-            push_head(&mut heads, &mut n, first(off));
-        }
-        if self.hints {
-            for &h in &heads[..n] {
-                prefetch(&bodies[h as usize]);
-            }
-        }
-        let (shared, only_i, only_j) = (&heads[..e0], &heads[e0..e1], &heads[e1..n]);
+        let si = Side::splat(&pi.b.motion, pi.b.radius);
+        let sj = Side::splat(&pj.b.motion, pj.b.radius);
+        let (ids, n) = (&g.ids, g.n);
         if self.periodic {
-            self.scan_union::<true>(bodies, pi, pj, shared, only_i, only_j, &mut bi, &mut bj);
+            Self::scan_gathered_both::<true>(
+                bodies,
+                (pi, &si, &mut bi),
+                (pj, &sj, &mut bj),
+                ids,
+                0,
+                e0,
+            );
+            Self::scan_gathered::<true>(bodies, pi, &si, ids, e0, e1, j as u32, &mut bi);
+            Self::scan_gathered::<true>(bodies, pj, &sj, ids, e1, n, i as u32, &mut bj);
         } else {
-            self.scan_union::<false>(bodies, pi, pj, shared, only_i, only_j, &mut bi, &mut bj);
+            Self::scan_gathered_both::<false>(
+                bodies,
+                (pi, &si, &mut bi),
+                (pj, &sj, &mut bj),
+                ids,
+                0,
+                e0,
+            );
+            Self::scan_gathered::<false>(bodies, pi, &si, ids, e0, e1, j as u32, &mut bi);
+            Self::scan_gathered::<false>(bodies, pj, &sj, ids, e1, n, i as u32, &mut bj);
         }
         Some((bi, bj))
-    }
-
-    /// A map from a link of a cell list (a body or `NONE`) to the first link from there on
-    /// that is neither `i` nor `j`, from the two probes' links read once: it replaces a test
-    /// per body of whether it is a probe (half the bodies of the shared cells are). A list
-    /// holds each body once, so from a link at most the probes `i, j` or `j, i` follow in a
-    /// row: checking for `i`, then `j`, then `i` again is enough. (The code generator makes
-    /// branches of the selects, on the walk's chain of loads; they mispredict about twice a
-    /// collision in callgrind's model, the selects forced by arithmetic cost more, see the
-    /// module docs.)
-    #[inline(always)]
-    fn probe_skipper(&self, i: usize, j: usize) -> impl Fn(u32) -> u32 {
-        let (i, j) = (i as u32, j as u32);
-        let (after_i, after_j) = (self.grid.next_in_cell(i), self.grid.next_in_cell(j));
-        move |k| {
-            let k = if k == i { after_i } else { k };
-            let k = if k == j { after_j } else { k };
-            if k == i {
-                after_i
-            } else {
-                k
-            }
-        }
-    }
-
-    /// Walks the lists starting at the heads `shared` (cells of both blocks, `i` and `j`
-    /// stepped over), `only_i` and `only_j` (cells of one block only), none of them empty,
-    /// offering each body to the probes whose block holds its cell.
-    #[inline(always)]
-    #[allow(clippy::too_many_arguments)]
-    fn scan_union<const PERIODIC: bool>(
-        &self,
-        bodies: &[Body<D>],
-        pi: &Probe<D>,
-        pj: &Probe<D>,
-        shared: &[u32],
-        only_i: &[u32],
-        only_j: &[u32],
-        bi: &mut Best,
-        bj: &mut Best,
-    ) {
-        let zero = Vector::ZERO;
-        let image = Grid::<D>::ZERO_IMAGE;
-        // Cells that are not empty: each list has a first body. The probes are skipped.
-        let skip = self.probe_skipper(pi.i, pj.i);
-        for &h in shared {
-            let mut k = h;
-            loop {
-                let ku = k as usize;
-                let b = &bodies[ku];
-                Self::offer_body::<PERIODIC>(pi, ku, b, &zero, &zero, image, bi);
-                Self::offer_body::<PERIODIC>(pj, ku, b, &zero, &zero, image, bj);
-                k = skip(self.grid.next_in_cell(k));
-                if k == NONE {
-                    break;
-                }
-            }
-        }
-        for &h in only_i {
-            self.scan_list::<PERIODIC>(bodies, pi, h, &zero, image, bi);
-        }
-        for &h in only_j {
-            self.scan_list::<PERIODIC>(bodies, pj, h, &zero, image, bj);
-        }
     }
 }
