@@ -10,9 +10,10 @@
 //! zeroed and unused slots hold 0), so the padding lanes of a last, short quad read real
 //! records and are dropped ([`Lanes::only`]).
 //!
-//! *The probes* are in the buffer too (a probe is filed in its own cell, and a collision's
-//! two bodies are both in the shared cells): their lanes are dropped by comparing indices,
-//! a select rather than a branch per body.
+//! *The probes* are gathered too (a probe is filed in its own cell, and a collision's two
+//! bodies are both in the shared cells): they are then dropped from the buffer by a pass
+//! that stores every candidate and advances past the others only ([`Gathered::drop_probes`]),
+//! no branch on which.
 //!
 //! *Exactness.* A lane holds the pair of the probe `i` and a candidate `j` with the lower
 //! index's ball first (`Side::select` on `i < j`, lane by lane) and the zero shift, which is
@@ -31,7 +32,7 @@ use super::Cells;
 use crate::geom::Vector;
 use crate::narrow_lanes::{toi_sides, Lanes, Side, ALL_LANES, LANES};
 use crate::world::Body;
-use wide::f64x4;
+use wide::{f64x4, i32x4, CmpGt};
 
 // A cell's slots fill one quad.
 const _: () = assert!(CELL_SLOTS == LANES);
@@ -49,8 +50,8 @@ pub(super) struct Gathered<const CAP: usize> {
     pub ids: [u32; CAP],
     /// Number of candidates.
     pub n: usize,
-    /// Some cell held more bodies than its slots (its overflow is not gathered).
-    pub overflow: bool,
+    /// Number of bodies in the cells gathered, the overflowing ones included.
+    len: usize,
 }
 
 impl<const CAP: usize> Gathered<CAP> {
@@ -60,7 +61,7 @@ impl<const CAP: usize> Gathered<CAP> {
         Gathered {
             ids: [0; CAP],
             n: 0,
-            overflow: false,
+            len: 0,
         }
     }
 
@@ -70,26 +71,45 @@ impl<const CAP: usize> Gathered<CAP> {
         let n = self.n;
         self.ids[n..n + CELL_SLOTS].copy_from_slice(&cell.slots);
         self.n = n + cell.used();
-        self.overflow |= cell.len as usize > CELL_SLOTS;
+        self.len += cell.len as usize;
+    }
+
+    /// Drops bodies `i` and `j` (the same body for a single probe) from the candidates
+    /// gathered so far, keeping the others in order: a store and a conditional advance per
+    /// candidate, no branch on which are dropped. A probe takes a lane otherwise (a quarter
+    /// of a quad per probe and scan).
+    #[inline(always)]
+    pub fn drop_probes(&mut self, i: u32, j: u32) {
+        let n = self.n;
+        let mut m = 0;
+        for k in 0..n {
+            let id = self.ids[k];
+            self.ids[m] = id;
+            m += usize::from((id != i) & (id != j));
+        }
+        self.n = m;
+        self.len -= n - m;
+    }
+
+    /// True when some cell gathered held more bodies than its slots (its overflow is not
+    /// gathered).
+    #[inline(always)]
+    pub fn overflow(&self) -> bool {
+        self.len != self.n
     }
 }
 
-/// The lanes of `valid` whose candidate in `quad` is neither `i` nor `skip`, and the lane
-/// mask of those where `i` comes first (`i < j`).
+/// The lane mask of the lanes of `quad` where `i` comes first (`i < j`): a compare of the
+/// indices as floats, four at once (exact: indices are below 2³¹, see `key::MAX_INDEX`).
 #[inline(always)]
-fn lane_masks(quad: [u32; LANES], i: u32, skip: u32, valid: u32) -> (u32, f64x4) {
-    let mut keep = 0;
-    for (l, &j) in quad.iter().enumerate() {
-        keep |= u32::from((j != i) & (j != skip)) << l;
-    }
-    let first = quad.map(|j| f64::from_bits(u64::from(i < j).wrapping_neg()));
-    (keep & valid, f64x4::new(first))
+fn probe_first(quad: [u32; LANES], i: u32) -> f64x4 {
+    let q = i32x4::new(quad.map(|j| j as i32));
+    f64x4::from_i32x4(q).cmp_gt(f64x4::splat(f64::from(i)))
 }
 
 impl<const D: usize> Cells<D> {
     /// Offers body `p` (in all lanes of `probe`) its pairs with the candidates
-    /// `ids[from..to]` (`to + LANES ≤ ids.len()`), except `p` itself and body `skip`, in
-    /// quads.
+    /// `ids[from..to]` (`to + LANES ≤ ids.len()`; `p` not among them), in quads.
     #[inline(always)]
     #[allow(clippy::too_many_arguments)]
     pub(super) fn scan_gathered<const PERIODIC: bool>(
@@ -99,7 +119,6 @@ impl<const D: usize> Cells<D> {
         ids: &[u32],
         from: usize,
         to: usize,
-        skip: u32,
         best: &mut Best,
     ) {
         let mut k = from;
@@ -108,14 +127,14 @@ impl<const D: usize> Cells<D> {
             let valid = ALL_LANES >> (LANES - (to - k).min(LANES));
             let b = quad.map(|j| &bodies[j as usize]);
             let other = Side::gather(b.map(|b| &b.motion), b.map(|b| b.radius));
-            Self::offer_quad::<PERIODIC>(bodies, p, probe, &other, quad, valid, skip, best);
+            Self::offer_quad::<PERIODIC>(bodies, p, probe, &other, quad, valid, best);
             k += LANES;
         }
     }
 
     /// Offers bodies `pi` and `pj` (in all lanes of `si`, `sj`) their pairs with the
-    /// candidates `ids[from..to]` (`to + LANES ≤ ids.len()`), except `pi` and `pj`
-    /// themselves: each quad gathered once, evaluated for both.
+    /// candidates `ids[from..to]` (`to + LANES ≤ ids.len()`; neither probe among them): each
+    /// quad gathered once, evaluated for both.
     #[inline(always)]
     #[allow(clippy::too_many_arguments)]
     pub(super) fn scan_gathered_both<const PERIODIC: bool>(
@@ -126,22 +145,20 @@ impl<const D: usize> Cells<D> {
         from: usize,
         to: usize,
     ) {
-        let (i, j) = (pi.i as u32, pj.i as u32);
         let mut k = from;
         while k < to {
             let quad: [u32; LANES] = std::array::from_fn(|l| ids[k + l]);
             let valid = ALL_LANES >> (LANES - (to - k).min(LANES));
             let b = quad.map(|j| &bodies[j as usize]);
             let other = Side::gather(b.map(|b| &b.motion), b.map(|b| b.radius));
-            Self::offer_quad::<PERIODIC>(bodies, pi, si, &other, quad, valid, j, bi);
-            Self::offer_quad::<PERIODIC>(bodies, pj, sj, &other, quad, valid, i, bj);
+            Self::offer_quad::<PERIODIC>(bodies, pi, si, &other, quad, valid, bi);
+            Self::offer_quad::<PERIODIC>(bodies, pj, sj, &other, quad, valid, bj);
             k += LANES;
         }
     }
 
     /// Offers body `p` its pairs with the bodies `quad` (balls in `other`) of the lanes in
-    /// `valid`, except `p` itself and `skip`: the kernel on each lane's pair in the oracle's
-    /// order, with the zero shift.
+    /// `valid`: the kernel on each lane's pair in the oracle's order, with the zero shift.
     #[inline(always)]
     #[allow(clippy::too_many_arguments)]
     fn offer_quad<const PERIODIC: bool>(
@@ -151,12 +168,11 @@ impl<const D: usize> Cells<D> {
         other: &Side<D>,
         quad: [u32; LANES],
         valid: u32,
-        skip: u32,
         best: &mut Best,
     ) {
-        let (valid, probe_first) = lane_masks(quad, p.i as u32, skip, valid);
-        let sa = Side::select(probe_first, probe, other);
-        let sb = Side::select(probe_first, other, probe);
+        let mask = probe_first(quad, p.i as u32);
+        let sa = Side::select(mask, probe, other);
+        let sb = Side::select(mask, other, probe);
         let lanes = toi_sides::<D, PERIODIC>(&sa, &sb, &[f64x4::ZERO; D]).only(valid);
         if lanes.rare != 0 {
             Self::offer_rare_lanes::<PERIODIC>(bodies, p, quad, lanes, best);

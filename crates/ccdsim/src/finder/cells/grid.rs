@@ -1205,6 +1205,48 @@ mod tests {
         check_pair_blocks(&g, &[27, 36, 42, 46]);
     }
 
+    proptest! {
+        /// Filing, stepping and removing bodies in a grid of few cells, so that cells
+        /// overflow their slots and drain again: after every move each body is filed once,
+        /// in its cell, slots full before any overflow (`validate`), and each cell's bodies
+        /// are the set a model keeps.
+        #[test]
+        fn slots_and_overflow_stay_exact(
+            moves in prop::collection::vec((0..12usize, 0..4usize, any::<bool>()), 1..200),
+        ) {
+            let n = 12;
+            let mut g = Grid::<2>::new(n, 1.0, Vector::ZERO, Vector([3.0; 2]), None);
+            prop_assert_eq!(g.dims(), [3, 3]);
+            let mut coords = vec![[0u32; 2]; n];
+            for (i, c) in coords.iter_mut().enumerate() {
+                *c = g.insert(i, [1, i % 3]);
+            }
+            for &(i, axis, up) in &moves {
+                let axis = axis % 2;
+                let k = coords[i][axis];
+                let up = if k == 0 { true } else if k == 2 { false } else { up };
+                if axis == 1 && i % 4 == 0 {
+                    // A remove and insert instead of a step, as `relocate` does.
+                    let mut k = coords[i].map(|x| x as usize);
+                    k[1] = if up { k[1] + 1 } else { k[1] - 1 };
+                    g.relocate(i, &mut coords[i], k);
+                } else {
+                    g.step(i, &mut coords[i], axis, up);
+                }
+                let r = g.validate(|b| coords[b]);
+                prop_assert!(r.is_ok(), "{:?}", r);
+                for c in 0..g.cell_count() as u32 {
+                    let mut got: Vec<u32> = g.bodies_in(c).collect();
+                    got.sort_unstable();
+                    let want: Vec<u32> = (0..n as u32)
+                        .filter(|&b| g.cell_at(&coords[b as usize]) == c)
+                        .collect();
+                    prop_assert_eq!(got, want);
+                }
+            }
+        }
+    }
+
     #[test]
     fn segment_box_distances() {
         let lo = Vector([0.0, 0.0]);

@@ -105,8 +105,8 @@ impl<const D: usize> Cells<D> {
         let (base, block) = self
             .grid
             .interior_pair(&self.cached[i].coords, &self.cached[j].coords)?;
-        // Every cell's slots, without a branch per cell: the shared cells', then those of
-        // `i`'s block only, then those of `j`'s block only.
+        // Every cell's slots, without a branch per cell: the shared cells' (less `i` and `j`),
+        // then those of `i`'s block only, then those of `j`'s block only.
         let mut g = Gathered::<CAP>::new();
         let cell = |off: isize| self.grid.cell((base as isize + off) as u32);
         let (shared, rest) = block.offsets.split_at(block.shared);
@@ -114,6 +114,7 @@ impl<const D: usize> Cells<D> {
         for &off in shared {
             g.push(cell(off));
         }
+        g.drop_probes(i as u32, j as u32);
         let e0 = g.n;
         for &off in only_i {
             g.push(cell(off));
@@ -122,7 +123,7 @@ impl<const D: usize> Cells<D> {
         for &off in only_j {
             g.push(cell(off));
         }
-        if g.overflow {
+        if g.overflow() {
             return None;
         }
         let bodies = world.bodies();
@@ -132,7 +133,7 @@ impl<const D: usize> Cells<D> {
             }
         }
         let (mut bi, mut bj) = (Best::NONE, Best::NONE);
-        // The pair itself, once, for both (the quads drop `i` and `j`).
+        // The pair itself, once, for both (the candidates are the others).
         let zero = Vector::ZERO;
         if let Some(t) = self.pair_toi(pi, j, &pj.b, &zero) {
             let key = Key::body(t, i.min(j), i.max(j));
@@ -151,8 +152,8 @@ impl<const D: usize> Cells<D> {
                 0,
                 e0,
             );
-            Self::scan_gathered::<true>(bodies, pi, &si, ids, e0, e1, j as u32, &mut bi);
-            Self::scan_gathered::<true>(bodies, pj, &sj, ids, e1, n, i as u32, &mut bj);
+            Self::scan_gathered::<true>(bodies, pi, &si, ids, e0, e1, &mut bi);
+            Self::scan_gathered::<true>(bodies, pj, &sj, ids, e1, n, &mut bj);
         } else {
             Self::scan_gathered_both::<false>(
                 bodies,
@@ -162,8 +163,8 @@ impl<const D: usize> Cells<D> {
                 0,
                 e0,
             );
-            Self::scan_gathered::<false>(bodies, pi, &si, ids, e0, e1, j as u32, &mut bi);
-            Self::scan_gathered::<false>(bodies, pj, &sj, ids, e1, n, i as u32, &mut bj);
+            Self::scan_gathered::<false>(bodies, pi, &si, ids, e0, e1, &mut bi);
+            Self::scan_gathered::<false>(bodies, pj, &sj, ids, e1, n, &mut bj);
         }
         Some((bi, bj))
     }

@@ -297,7 +297,7 @@ impl<const D: usize> Cells<D> {
         for c in cells.clone() {
             g.push(self.grid.cell(c));
         }
-        if g.overflow {
+        if g.overflow() {
             let mut listed = [(0u32, Grid::<D>::ZERO_IMAGE); 27];
             let mut n = 0;
             for c in cells {
@@ -307,6 +307,7 @@ impl<const D: usize> Cells<D> {
             self.scan_listed(bodies, p, &listed[..n], best);
             return;
         }
+        g.drop_probes(p.i as u32, p.i as u32);
         let ids = &g.ids[..g.n];
         if self.hints {
             // A hint for each candidate's record before the evaluation: the loads are
@@ -316,11 +317,10 @@ impl<const D: usize> Cells<D> {
             }
         }
         let probe = Side::splat(&p.b.motion, p.b.radius);
-        let me = p.i as u32;
         if self.periodic {
-            Self::scan_gathered::<true>(bodies, p, &probe, &g.ids, 0, g.n, me, best);
+            Self::scan_gathered::<true>(bodies, p, &probe, &g.ids, 0, g.n, best);
         } else {
-            Self::scan_gathered::<false>(bodies, p, &probe, &g.ids, 0, g.n, me, best);
+            Self::scan_gathered::<false>(bodies, p, &probe, &g.ids, 0, g.n, best);
         }
     }
 
