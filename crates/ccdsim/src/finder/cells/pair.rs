@@ -2,38 +2,39 @@
 //!
 //! After a collision of bodies `i` and `j` both are recomputed. They touch, so their cells are
 //! the same or neighbours, and their 3^D blocks overlap: in 2D the union is 9 to 14 cells of
-//! the 18 that two separate scans visit. [`Cells::recompute_pair`] walks the union once (the
-//! table `PairBlock` of the grid): a body of a cell in both blocks is loaded once and
-//! evaluated against `i` and against `j`, a body of a cell in one block only against that
-//! block's owner, and the pair `(i, j)` itself is evaluated once and offered to both. Empty
-//! cells are left out before the walk, without a branch each, and the walk of the shared
-//! cells steps over `i` and `j` by selects on their links rather than by a test per body
-//! (half the bodies there are the probes). Callgrind, 2D N = 10⁴ at packing 0.5,
-//! instructions and branch mispredictions per collision: two scans 3,196 and 36.9; this
-//! 3,308 and 34.6, faster on the clock (session 6's results README). Measured on a base
-//! that still gave every scan prefetch hints (two scans 3,743 and 43.7, this 3,604 and
-//! 34.6; the simulated predictor's count moves by a mispredict or two with code layout
-//! alone: the same walk with bounds-checked gathering took 3,636 and 32.9, and the
-//! unchanged queue code's own count moved by 0.3 between the two). Tried: a plain union
-//! walk with those branches, 3,562 and 38.9; the time of each probe with itself computed
-//! and dropped instead of the steps, 3,666 and 33.4; the steps by arithmetic masks (the
-//! code generator makes the selects branches), 3,727 and 34.0; a two-lane SIMD kernel for
-//! the shared cells, `i` and `j` in the lanes, 3,636 and 41.6 (shared cells hold about two
-//! other bodies per scan).
+//! the 18 that two separate scans visit. [`Cells::recompute_pair`] gathers the union once (the
+//! table `PairBlock` of the grid, see `gather`): the slots of the cells in both blocks, from
+//! which `i` and `j` are then dropped, then those of `i`'s block only, then those of `j`'s
+//! block only, without a branch per cell. A quad of the shared cells' bodies is loaded once
+//! and evaluated against `i` and against `j` by the four-lane kernel, the quads of one block
+//! only against that block's owner, and the pair `(i, j)` itself is evaluated once and
+//! offered to both. A union with a cell that overflows its slots is left to two `recompute`s.
+//!
+//! Callgrind, 2D N = 10⁴ at packing 0.5, instructions and branch mispredictions per
+//! collision (`step_event`): linked cell lists walked body by body with the scalar function
+//! (session 8's main) 3,174 and 27.3; slots gathered and evaluated four at a time 3,323 and
+//! 17.5: the walks' exits and the scalar function's coin flips (receding, missing) were
+//! most of the mispredictions. Earlier, on the linked lists (session 6): two separate scans
+//! 3,196 and 36.9, this union walk 3,308 and 34.6; tried then: a plain union walk with
+//! branches, 3,562 and 38.9; the time of each probe with itself computed and dropped
+//! instead of stepping over it, 3,666 and 33.4; a two-lane SIMD kernel for the shared
+//! cells, `i` and `j` in the lanes, 3,636 and 41.6 (shared cells hold about two other
+//! bodies per scan).
 //!
 //! # Why the records are those of two `recompute`s, bit for bit
 //!
 //! * *Same candidates.* `i`'s candidates are the bodies of the cells of both blocks and of
 //!   `i`'s block only, that is of `i`'s block, `i` excepted; `j`, filed in a cell of both
-//!   blocks, is stepped over by the walk and offered up front. Likewise for `j`. (A list
-//!   holds each body once, so stepping over `i`, then `j`, then `i` again from any link
-//!   leaves neither: see `probe_skipper`.) Both cells are interior, so every cell of either
-//!   block exists without wrapping and is seen through the zero image, as `scan_interior`
-//!   sees it.
-//! * *Same times.* Each candidate's time comes from [`Cells::offer_body`], the function the
-//!   separate scan calls, on the same records, lower index first, with the zero shift (`+0`
-//!   either way round); the pair `(i, j)` from [`Cells::pair_toi`], the same function with
-//!   the same arguments. Nothing is stored between the two scans that the second one reads:
+//!   blocks, is dropped from the gathered bodies and offered up front. Likewise for `j`. (No
+//!   cell overflows, so the slots hold every body of the union, each once; the drop removes
+//!   exactly the entries equal to `i` or `j`.) Both cells are interior, so every cell of
+//!   either block exists without wrapping and is seen through the zero image, as
+//!   `scan_interior` sees it.
+//! * *Same times.* Each candidate's time is the one the separate scan computes (see
+//!   `gather`: the kernel's lane on the same records, lower index first, with the zero shift,
+//!   `+0` either way round, or the scalar [`Cells::offer_body`] for a rare lane), offered
+//!   with the same key, image and threshold test; the pair `(i, j)` from
+//!   [`Cells::pair_toi`], the same function with the same arguments. Nothing is stored between the two scans that the second one reads:
 //!   a scan reads the world (unchanged) and the grid (unchanged), and `store` writes only
 //!   the records of the body it stores.
 //! * *Order does not matter.* [`Best`] keeps the two smallest keys it is offered under the
