@@ -193,7 +193,7 @@ impl<const D: usize> Cells<D> {
         let k = self.cached[p.i].coords;
         let bodies = world.bodies();
         if let Some(cells) = self.grid.interior_neighbours(&k) {
-            self.scan_interior(bodies, p, cells, best);
+            self.scan_interior::<true>(bodies, p, cells, best);
         } else {
             // Border cells: list the cells first, so that the scan below is inlined once.
             let mut cells = [(0u32, 0u8); 27];
@@ -219,7 +219,8 @@ impl<const D: usize> Cells<D> {
         let k = self.cached[p.i].coords;
         let bodies = world.bodies();
         if let Some(cells) = self.grid.interior_entered_layer(&k, axis, up) {
-            self.scan_interior(bodies, p, cells, best);
+            // The layer lies beyond the body's own cell: it does not hold the body.
+            self.scan_interior::<false>(bodies, p, cells, best);
         } else {
             let mut cells = [(0u32, 0u8); 9];
             let mut n = 0;
@@ -268,9 +269,10 @@ impl<const D: usize> Cells<D> {
 
     /// Offers body `p` every pair with a body of the interior cells `cells` (zero image
     /// shift): gathered from the cells' slots and evaluated four at a time (see `gather`),
-    /// or, when a cell overflows its slots, body by body.
+    /// or, when a cell overflows its slots, body by body. `OWN`: the cells may hold `p`
+    /// (its own cell is among them), which is then dropped from the candidates.
     #[inline(always)]
-    fn scan_interior(
+    fn scan_interior<const OWN: bool>(
         &self,
         bodies: &[Body<D>],
         p: &Probe<D>,
@@ -278,15 +280,15 @@ impl<const D: usize> Cells<D> {
         best: &mut Best,
     ) {
         if D == 2 {
-            self.scan_interior_in::<GATHER_2D>(bodies, p, cells, best);
+            self.scan_interior_in::<GATHER_2D, OWN>(bodies, p, cells, best);
         } else {
-            self.scan_interior_in::<GATHER_3D>(bodies, p, cells, best);
+            self.scan_interior_in::<GATHER_3D, OWN>(bodies, p, cells, best);
         }
     }
 
     /// [`Cells::scan_interior`] with a buffer of `CAP` candidates.
     #[inline(always)]
-    fn scan_interior_in<const CAP: usize>(
+    fn scan_interior_in<const CAP: usize, const OWN: bool>(
         &self,
         bodies: &[Body<D>],
         p: &Probe<D>,
@@ -307,7 +309,9 @@ impl<const D: usize> Cells<D> {
             self.scan_listed(bodies, p, &listed[..n], best);
             return;
         }
-        g.drop_probes(p.i as u32, p.i as u32);
+        if OWN {
+            g.drop_probes(p.i as u32, p.i as u32);
+        }
         let ids = &g.ids[..g.n];
         if self.hints {
             // A hint for each candidate's record before the evaluation: the loads are
