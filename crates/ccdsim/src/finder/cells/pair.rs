@@ -68,9 +68,10 @@ impl<const D: usize> Cells<D> {
             return false;
         }
         let (pi, pj) = (Probe::of(world, i), Probe::of(world, j));
-        let Some((mut bi, mut bj)) = self.scan_pair(world, &pi, &pj) else {
+        let (mut bi, mut bj) = (Best::NONE, Best::NONE);
+        if !self.scan_pair(world, &pi, &pj, &mut bi, &mut bj) {
             return false;
-        };
+        }
         self.stats.recomputes += 2;
         self.scan_walls(world, &pi, &mut bi);
         self.scan_exit(world, &pi, &mut bi);
@@ -83,14 +84,22 @@ impl<const D: usize> Cells<D> {
         true
     }
 
-    /// The body candidates of `pi` and of `pj` (see the module docs), if their cells are
-    /// interior and the same or neighbours and no cell of the union overflows its slots.
+    /// Offers `bi` and `bj` the body candidates of `pi` and of `pj` (see the module docs),
+    /// and returns true, if their cells are interior and the same or neighbours and no cell
+    /// of the union overflows its slots; else returns false, having offered nothing.
     #[inline(always)]
-    fn scan_pair(&self, world: &World<D>, pi: &Probe<D>, pj: &Probe<D>) -> Option<(Best, Best)> {
+    fn scan_pair(
+        &self,
+        world: &World<D>,
+        pi: &Probe<D>,
+        pj: &Probe<D>,
+        bi: &mut Best,
+        bj: &mut Best,
+    ) -> bool {
         if D == 2 {
-            self.scan_pair_in::<GATHER_2D>(world, pi, pj)
+            self.scan_pair_in::<GATHER_2D>(world, pi, pj, bi, bj)
         } else {
-            self.scan_pair_in::<GATHER_3D>(world, pi, pj)
+            self.scan_pair_in::<GATHER_3D>(world, pi, pj, bi, bj)
         }
     }
 
@@ -101,11 +110,16 @@ impl<const D: usize> Cells<D> {
         world: &World<D>,
         pi: &Probe<D>,
         pj: &Probe<D>,
-    ) -> Option<(Best, Best)> {
+        bi: &mut Best,
+        bj: &mut Best,
+    ) -> bool {
         let (i, j) = (pi.i, pj.i);
-        let (base, block) = self
+        let Some((base, block)) = self
             .grid
-            .interior_pair(&self.cached[i].coords, &self.cached[j].coords)?;
+            .interior_pair(&self.cached[i].coords, &self.cached[j].coords)
+        else {
+            return false;
+        };
         // Every cell's slots, without a branch per cell: the shared cells' (less `i` and `j`),
         // then those of `i`'s block only, then those of `j`'s block only.
         let mut g = Gathered::<CAP>::new();
@@ -125,7 +139,7 @@ impl<const D: usize> Cells<D> {
             g.push(cell(off));
         }
         if g.overflow() {
-            return None;
+            return false;
         }
         let bodies = world.bodies();
         if self.hints {
@@ -133,7 +147,6 @@ impl<const D: usize> Cells<D> {
                 prefetch(&bodies[k as usize]);
             }
         }
-        let (mut bi, mut bj) = (Best::NONE, Best::NONE);
         // The pair itself, once, for both (the candidates are the others).
         let zero = Vector::ZERO;
         if let Some(t) = self.pair_toi(pi, j, &pj.b, &zero) {
@@ -147,26 +160,26 @@ impl<const D: usize> Cells<D> {
         if self.periodic {
             Self::scan_gathered_both::<true>(
                 bodies,
-                (pi, &si, &mut bi),
-                (pj, &sj, &mut bj),
+                (pi, &si, &mut *bi),
+                (pj, &sj, &mut *bj),
                 ids,
                 0,
                 e0,
             );
-            Self::scan_gathered::<true>(bodies, pi, &si, ids, e0, e1, &mut bi);
-            Self::scan_gathered::<true>(bodies, pj, &sj, ids, e1, n, &mut bj);
+            Self::scan_gathered::<true>(bodies, pi, &si, ids, e0, e1, bi);
+            Self::scan_gathered::<true>(bodies, pj, &sj, ids, e1, n, bj);
         } else {
             Self::scan_gathered_both::<false>(
                 bodies,
-                (pi, &si, &mut bi),
-                (pj, &sj, &mut bj),
+                (pi, &si, &mut *bi),
+                (pj, &sj, &mut *bj),
                 ids,
                 0,
                 e0,
             );
-            Self::scan_gathered::<false>(bodies, pi, &si, ids, e0, e1, &mut bi);
-            Self::scan_gathered::<false>(bodies, pj, &sj, ids, e1, n, &mut bj);
+            Self::scan_gathered::<false>(bodies, pi, &si, ids, e0, e1, bi);
+            Self::scan_gathered::<false>(bodies, pj, &sj, ids, e1, n, bj);
         }
-        Some((bi, bj))
+        true
     }
 }
