@@ -12,8 +12,8 @@
 //!
 //! Callgrind, 2D N = 10⁴ at packing 0.5, instructions and branch mispredictions per
 //! collision (`step_event`): linked cell lists walked body by body with the scalar function
-//! (session 8's main) 3,174 and 27.3; slots gathered and evaluated four at a time 3,306 and
-//! 17.5: the walks' exits and the scalar function's coin flips (receding, missing) were
+//! (session 8's main) 3,174 and 27.3; slots gathered and evaluated four at a time 3,259 and
+//! 17.0: the walks' exits and the scalar function's coin flips (receding, missing) were
 //! most of the mispredictions (see `gather` for the other figures). Earlier, on the linked lists (session 6): two separate scans
 //! 3,196 and 36.9, this union walk 3,308 and 34.6; tried then: a plain union walk with
 //! branches, 3,562 and 38.9; the time of each probe with itself computed and dropped
