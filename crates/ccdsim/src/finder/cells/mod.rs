@@ -4,9 +4,10 @@
 //! # How it works
 //!
 //! * **Grid** ([`grid`]): cells at least the largest contact distance `σ_max = r₁ + r₂` (the
-//!   two largest radii) wide, times `1 + MARGIN`. Every body is filed in one cell. A body's
-//!   *neighbourhood* is the 3^D block of cells around its own. Each cell also lists the walls
-//!   that come within `r_max` (times the same margin) of it.
+//!   two largest radii) wide, times `1 + MARGIN`. Every body is filed in one cell (its first
+//!   four bodies in fixed slots, any others in an overflow list). A body's *neighbourhood* is
+//!   the 3^D block of cells around its own. Each cell also lists the walls that come within
+//!   `r_max` (times the same margin) of it.
 //! * **Predictions** ([`predict`]): for each body `i` the finder caches `best(i)`, the minimum
 //!   under [`Event`]'s full order (time, kind, a, b) of the times of impact of `i` with every
 //!   body in its neighbourhood, every wall of its cell and (periodic worlds, when its cell is
@@ -95,6 +96,13 @@
 //! axis too short for three cells is a single cell whose three images are all scanned, like
 //! the oracle does.
 //!
+//! A scan of an interior block (every cell present, zero shift) gathers the bodies of its
+//! cells from their slots and evaluates them four at a time ([`gather`]): each lane is the
+//! oracle's function on its pair's states in the oracle's order, bit for bit, and the offers
+//! are the scalar scan's, so the records are the same (the order of offers does not matter,
+//! see [`pair`]). A block with a cell that overflows its slots, and every border block, is
+//! scanned body by body.
+//!
 //! The margin covers rounding as long as positions are computed to better than `MARGIN·σ_max`
 //! (that is, `|x| + |v|·|t|` below about 10⁹ σ_max), which is far beyond where the simulation's
 //! own overlap tolerance of 10⁻⁹ would already fail.
@@ -178,13 +186,13 @@
 //! Once the records no longer fit in a core's cache, a collision waits on memory more than it
 //! computes. When the finder's structures and the body records take 2 MiB or more
 //! (`HINTS_FROM_BYTES`), `next_event`, as it returns an event, hints the lines its caller is
-//! about to need: the cell heads of both bodies' 3^D blocks (or both bodies' list blocks),
+//! about to need: the cell records of both bodies' 3^D blocks (or both bodies' list blocks),
 //! both bodies' paths in the queue, and the cached and body records of the holders of the
 //! queue's runner-up key ([`TournamentQueue::runner_up`]), most often the next event. Those
 //! misses then run while the caller resolves the event and rescans its bodies, instead of
-//! one after another when each is needed. A scan hints its heads' records (a list scan its
-//! partners', a list rebuild its cells' slot records) before walking, so the misses of
-//! one scan overlap instead of waiting behind the walk's branches. Hints are not loads: they
+//! one after another when each is needed. A scan hints its candidates' records (a list scan
+//! its partners', a list rebuild its cells' slot records) before evaluating them, so the
+//! misses of one scan overlap instead of waiting one after another. Hints are not loads: they
 //! change no result and cannot fault ([`crate::prefetch`]). Below 2 MiB the data stays
 //! cached and they would only cost instructions.
 //!
@@ -195,6 +203,7 @@
 //! after the change's time (moving the body back and recomputing it), so cells again match
 //! positions at that time.
 
+mod gather;
 mod grid;
 mod key;
 mod lists;
@@ -739,7 +748,7 @@ impl<const D: usize> Finder<D> for Cells<D> {
     fn debug_boxes(&mut self, _world: &World<D>) -> Vec<DebugBox<D>> {
         let mut out = Vec::new();
         for c in 0..self.grid.cell_count() as u32 {
-            if self.grid.first(c) == key::NONE {
+            if self.grid.cell(c).len == 0 {
                 continue;
             }
             let (lo, hi) = self.grid.nominal_box(&self.grid.coords(c));

@@ -2,38 +2,39 @@
 //!
 //! After a collision of bodies `i` and `j` both are recomputed. They touch, so their cells are
 //! the same or neighbours, and their 3^D blocks overlap: in 2D the union is 9 to 14 cells of
-//! the 18 that two separate scans visit. [`Cells::recompute_pair`] walks the union once (the
-//! table `PairBlock` of the grid): a body of a cell in both blocks is loaded once and
-//! evaluated against `i` and against `j`, a body of a cell in one block only against that
-//! block's owner, and the pair `(i, j)` itself is evaluated once and offered to both. Empty
-//! cells are left out before the walk, without a branch each, and the walk of the shared
-//! cells steps over `i` and `j` by selects on their links rather than by a test per body
-//! (half the bodies there are the probes). Callgrind, 2D N = 10⁴ at packing 0.5,
-//! instructions and branch mispredictions per collision: two scans 3,196 and 36.9; this
-//! 3,308 and 34.6, faster on the clock (session 6's results README). Measured on a base
-//! that still gave every scan prefetch hints (two scans 3,743 and 43.7, this 3,604 and
-//! 34.6; the simulated predictor's count moves by a mispredict or two with code layout
-//! alone: the same walk with bounds-checked gathering took 3,636 and 32.9, and the
-//! unchanged queue code's own count moved by 0.3 between the two). Tried: a plain union
-//! walk with those branches, 3,562 and 38.9; the time of each probe with itself computed
-//! and dropped instead of the steps, 3,666 and 33.4; the steps by arithmetic masks (the
-//! code generator makes the selects branches), 3,727 and 34.0; a two-lane SIMD kernel for
-//! the shared cells, `i` and `j` in the lanes, 3,636 and 41.6 (shared cells hold about two
-//! other bodies per scan).
+//! the 18 that two separate scans visit. [`Cells::recompute_pair`] gathers the union once (the
+//! table `PairBlock` of the grid, see `gather`): the slots of the cells in both blocks, from
+//! which `i` and `j` are then dropped, then those of `i`'s block only, then those of `j`'s
+//! block only, without a branch per cell. A quad of the shared cells' bodies is loaded once
+//! and evaluated against `i` and against `j` by the four-lane kernel, the quads of one block
+//! only against that block's owner, and the pair `(i, j)` itself is evaluated once and
+//! offered to both. A union with a cell that overflows its slots is left to two `recompute`s.
+//!
+//! Callgrind, 2D N = 10⁴ at packing 0.5, instructions and branch mispredictions per
+//! collision (`step_event`): linked cell lists walked body by body with the scalar function
+//! (session 8's main) 3,174 and 27.3; slots gathered and evaluated four at a time 3,259 and
+//! 17.0: the walks' exits and the scalar function's coin flips (receding, missing) were
+//! most of the mispredictions (see `gather` for the other figures). Earlier, on the linked lists (session 6): two separate scans
+//! 3,196 and 36.9, this union walk 3,308 and 34.6; tried then: a plain union walk with
+//! branches, 3,562 and 38.9; the time of each probe with itself computed and dropped
+//! instead of stepping over it, 3,666 and 33.4; a two-lane SIMD kernel for the shared
+//! cells, `i` and `j` in the lanes, 3,636 and 41.6 (shared cells hold about two other
+//! bodies per scan).
 //!
 //! # Why the records are those of two `recompute`s, bit for bit
 //!
 //! * *Same candidates.* `i`'s candidates are the bodies of the cells of both blocks and of
 //!   `i`'s block only, that is of `i`'s block, `i` excepted; `j`, filed in a cell of both
-//!   blocks, is stepped over by the walk and offered up front. Likewise for `j`. (A list
-//!   holds each body once, so stepping over `i`, then `j`, then `i` again from any link
-//!   leaves neither: see `probe_skipper`.) Both cells are interior, so every cell of either
-//!   block exists without wrapping and is seen through the zero image, as `scan_interior`
-//!   sees it.
-//! * *Same times.* Each candidate's time comes from [`Cells::offer_body`], the function the
-//!   separate scan calls, on the same records, lower index first, with the zero shift (`+0`
-//!   either way round); the pair `(i, j)` from [`Cells::pair_toi`], the same function with
-//!   the same arguments. Nothing is stored between the two scans that the second one reads:
+//!   blocks, is dropped from the gathered bodies and offered up front. Likewise for `j`. (No
+//!   cell overflows, so the slots hold every body of the union, each once; the drop removes
+//!   exactly the entries equal to `i` or `j`.) Both cells are interior, so every cell of
+//!   either block exists without wrapping and is seen through the zero image, as
+//!   `scan_interior` sees it.
+//! * *Same times.* Each candidate's time is the one the separate scan computes (see
+//!   `gather`: the kernel's lane on the same records, lower index first, with the zero shift,
+//!   `+0` either way round, or the scalar [`Cells::offer_body`] for a rare lane), offered
+//!   with the same key, image and threshold test; the pair `(i, j)` from
+//!   [`Cells::pair_toi`], the same function with the same arguments. Nothing is stored between the two scans that the second one reads:
 //!   a scan reads the world (unchanged) and the grid (unchanged), and `store` writes only
 //!   the records of the body it stores.
 //! * *Order does not matter.* [`Best`] keeps the two smallest keys it is offered under the
@@ -47,13 +48,15 @@
 //! * Walls, box exit, `store` and `schedule` follow for `i`, then for `j`, exactly as the two
 //!   `recompute`s do them, in that order, and `recomputes` counts two.
 
+use super::gather::{Gathered, GATHER_2D, GATHER_3D};
 use super::grid::Grid;
-use super::key::{Key, NONE};
-use super::predict::{push_head, Best, Probe, HEAD_SLOTS};
+use super::key::Key;
+use super::predict::{Best, Probe};
 use super::Cells;
 use crate::geom::Vector;
+use crate::narrow_lanes::Side;
 use crate::prefetch::prefetch;
-use crate::world::{Body, World};
+use crate::world::World;
 
 impl<const D: usize> Cells<D> {
     /// Recomputes bodies `i` and `j` (both changed, at the same state of the world) as
@@ -65,9 +68,10 @@ impl<const D: usize> Cells<D> {
             return false;
         }
         let (pi, pj) = (Probe::of(world, i), Probe::of(world, j));
-        let Some((mut bi, mut bj)) = self.scan_pair(world, &pi, &pj) else {
+        let (mut bi, mut bj) = (Best::NONE, Best::NONE);
+        if !self.scan_pair(world, &pi, &pj, &mut bi, &mut bj) {
             return false;
-        };
+        }
         self.stats.recomputes += 2;
         self.scan_walls(world, &pi, &mut bi);
         self.scan_exit(world, &pi, &mut bi);
@@ -80,118 +84,102 @@ impl<const D: usize> Cells<D> {
         true
     }
 
-    /// The body candidates of `pi` and of `pj` (see the module docs), if their cells are
-    /// interior and the same or neighbours.
+    /// Offers `bi` and `bj` the body candidates of `pi` and of `pj` (see the module docs),
+    /// and returns true, if their cells are interior and the same or neighbours and no cell
+    /// of the union overflows its slots; else returns false, having offered nothing.
     #[inline(always)]
-    fn scan_pair(&self, world: &World<D>, pi: &Probe<D>, pj: &Probe<D>) -> Option<(Best, Best)> {
+    fn scan_pair(
+        &self,
+        world: &World<D>,
+        pi: &Probe<D>,
+        pj: &Probe<D>,
+        bi: &mut Best,
+        bj: &mut Best,
+    ) -> bool {
+        if D == 2 {
+            self.scan_pair_in::<GATHER_2D>(world, pi, pj, bi, bj)
+        } else {
+            self.scan_pair_in::<GATHER_3D>(world, pi, pj, bi, bj)
+        }
+    }
+
+    /// [`Cells::scan_pair`] with a buffer of `CAP` candidates.
+    #[inline(always)]
+    fn scan_pair_in<const CAP: usize>(
+        &self,
+        world: &World<D>,
+        pi: &Probe<D>,
+        pj: &Probe<D>,
+        bi: &mut Best,
+        bj: &mut Best,
+    ) -> bool {
         let (i, j) = (pi.i, pj.i);
-        let (base, block) = self
+        let Some((base, block)) = self
             .grid
-            .interior_pair(&self.cached[i].coords, &self.cached[j].coords)?;
+            .interior_pair(&self.cached[i].coords, &self.cached[j].coords)
+        else {
+            return false;
+        };
+        // Every cell's slots, without a branch per cell: the shared cells' (less `i` and `j`),
+        // then those of `i`'s block only, then those of `j`'s block only.
+        let mut g = Gathered::<CAP>::new();
+        let cell = |off: isize| self.grid.cell((base as isize + off) as u32);
+        let (shared, rest) = block.offsets.split_at(block.shared);
+        let (only_i, only_j) = rest.split_at(block.only_first);
+        for &off in shared {
+            g.push(cell(off));
+        }
+        g.drop_probes(i as u32, j as u32);
+        let e0 = g.n;
+        for &off in only_i {
+            g.push(cell(off));
+        }
+        let e1 = g.n;
+        for &off in only_j {
+            g.push(cell(off));
+        }
+        if g.overflow() {
+            return false;
+        }
         let bodies = world.bodies();
-        let (mut bi, mut bj) = (Best::NONE, Best::NONE);
-        // The pair itself, once, for both (the walk skips `i` and `j`).
+        if self.hints {
+            for &k in &g.ids[..g.n] {
+                prefetch(&bodies[k as usize]);
+            }
+        }
+        // The pair itself, once, for both (the candidates are the others).
         let zero = Vector::ZERO;
         if let Some(t) = self.pair_toi(pi, j, &pj.b, &zero) {
             let key = Key::body(t, i.min(j), i.max(j));
             bi.offer(key, Grid::<D>::ZERO_IMAGE);
             bj.offer(key, Grid::<D>::ZERO_IMAGE);
         }
-        // Every head first, the empty cells' left out (a branch per cell on whether it is
-        // empty mispredicts about as often as not), then, in large worlds, a hint for each
-        // head's record, as `scan_interior` gives.
-        let mut heads = [NONE; HEAD_SLOTS];
-        let mut n = 0;
-        let skip = self.probe_skipper(i, j);
-        let first = |off: isize| self.grid.first((base as isize + off) as u32);
-        let (shared, rest) = block.offsets.split_at(block.shared);
-        let (only_i, only_j) = rest.split_at(block.only_first);
-        for &off in shared {
-            push_head(&mut heads, &mut n, skip(first(off)));
-        }
-        let e0 = n;
-        for &off in only_i {
-            push_head(&mut heads, &mut n, first(off));
-        }
-        let e1 = n;
-        for &off in only_j {
-            push_head(&mut heads, &mut n, first(off));
-        }
-        if self.hints {
-            for &h in &heads[..n] {
-                prefetch(&bodies[h as usize]);
-            }
-        }
-        let (shared, only_i, only_j) = (&heads[..e0], &heads[e0..e1], &heads[e1..n]);
+        let si = Side::splat(&pi.b.motion, pi.b.radius);
+        let sj = Side::splat(&pj.b.motion, pj.b.radius);
+        let (ids, n) = (&g.ids, g.n);
         if self.periodic {
-            self.scan_union::<true>(bodies, pi, pj, shared, only_i, only_j, &mut bi, &mut bj);
+            Self::scan_gathered_both::<true>(
+                bodies,
+                (pi, &si, &mut *bi),
+                (pj, &sj, &mut *bj),
+                ids,
+                0,
+                e0,
+            );
+            Self::scan_gathered::<true>(bodies, pi, &si, ids, e0, e1, bi);
+            Self::scan_gathered::<true>(bodies, pj, &sj, ids, e1, n, bj);
         } else {
-            self.scan_union::<false>(bodies, pi, pj, shared, only_i, only_j, &mut bi, &mut bj);
+            Self::scan_gathered_both::<false>(
+                bodies,
+                (pi, &si, &mut *bi),
+                (pj, &sj, &mut *bj),
+                ids,
+                0,
+                e0,
+            );
+            Self::scan_gathered::<false>(bodies, pi, &si, ids, e0, e1, bi);
+            Self::scan_gathered::<false>(bodies, pj, &sj, ids, e1, n, bj);
         }
-        Some((bi, bj))
-    }
-
-    /// A map from a link of a cell list (a body or `NONE`) to the first link from there on
-    /// that is neither `i` nor `j`, from the two probes' links read once: it replaces a test
-    /// per body of whether it is a probe (half the bodies of the shared cells are). A list
-    /// holds each body once, so from a link at most the probes `i, j` or `j, i` follow in a
-    /// row: checking for `i`, then `j`, then `i` again is enough. (The code generator makes
-    /// branches of the selects, on the walk's chain of loads; they mispredict about twice a
-    /// collision in callgrind's model, the selects forced by arithmetic cost more, see the
-    /// module docs.)
-    #[inline(always)]
-    fn probe_skipper(&self, i: usize, j: usize) -> impl Fn(u32) -> u32 {
-        let (i, j) = (i as u32, j as u32);
-        let (after_i, after_j) = (self.grid.next_in_cell(i), self.grid.next_in_cell(j));
-        move |k| {
-            let k = if k == i { after_i } else { k };
-            let k = if k == j { after_j } else { k };
-            if k == i {
-                after_i
-            } else {
-                k
-            }
-        }
-    }
-
-    /// Walks the lists starting at the heads `shared` (cells of both blocks, `i` and `j`
-    /// stepped over), `only_i` and `only_j` (cells of one block only), none of them empty,
-    /// offering each body to the probes whose block holds its cell.
-    #[inline(always)]
-    #[allow(clippy::too_many_arguments)]
-    fn scan_union<const PERIODIC: bool>(
-        &self,
-        bodies: &[Body<D>],
-        pi: &Probe<D>,
-        pj: &Probe<D>,
-        shared: &[u32],
-        only_i: &[u32],
-        only_j: &[u32],
-        bi: &mut Best,
-        bj: &mut Best,
-    ) {
-        let zero = Vector::ZERO;
-        let image = Grid::<D>::ZERO_IMAGE;
-        // Cells that are not empty: each list has a first body. The probes are skipped.
-        let skip = self.probe_skipper(pi.i, pj.i);
-        for &h in shared {
-            let mut k = h;
-            loop {
-                let ku = k as usize;
-                let b = &bodies[ku];
-                Self::offer_body::<PERIODIC>(pi, ku, b, &zero, &zero, image, bi);
-                Self::offer_body::<PERIODIC>(pj, ku, b, &zero, &zero, image, bj);
-                k = skip(self.grid.next_in_cell(k));
-                if k == NONE {
-                    break;
-                }
-            }
-        }
-        for &h in only_i {
-            self.scan_list::<PERIODIC>(bodies, pi, h, &zero, image, bi);
-        }
-        for &h in only_j {
-            self.scan_list::<PERIODIC>(bodies, pj, h, &zero, image, bj);
-        }
+        true
     }
 }

@@ -2,12 +2,14 @@
 //! earliest event, checking that a cached event is still live, and scheduling the body's next
 //! cell crossing.
 
+use super::gather::{Gathered, GATHER_2D, GATHER_3D};
 use super::grid::Grid;
-use super::key::{ordered, Key, NONE};
+use super::key::{ordered, Key};
 use super::lists::shell_exit_time;
 use super::{Cells, KEY_IS_CROSSING, NO_CROSSING, SECOND_KNOWN};
 use crate::geom::Vector;
 use crate::narrow::{toi_circle_circle, toi_circle_circle_shifted, toi_circle_wall, Motion};
+use crate::narrow_lanes::Side;
 use crate::periodic::toi_box_exit;
 use crate::prefetch::prefetch;
 use crate::world::{Body, World};
@@ -148,45 +150,15 @@ impl<const D: usize> Cells<D> {
         }
     }
 
-    /// Offers body `p` every pair with the bodies of one cell's list, starting at body `j`,
-    /// which is not `NONE`: callers leave empty cells out beforehand, without a branch per
-    /// cell (see [`push_head`]). The cell's image shift is `shift`, its code `image` (see
-    /// `Grid::visit_neighbours`).
+    /// Offers body `p` its pair with body `j` (record `bj`, a body other than `p`'s) seen
+    /// through the image of shift `shift` (`neg = 0 − shift`, code `image`): the oracle's
+    /// function on the oracle's arguments, lower index first.
     ///
     /// Times come from the oracle's narrow phase with the oracle's arguments, lower index
     /// first: [`toi_circle_circle`] in open worlds, [`toi_circle_circle_shifted`] in periodic
-    /// ones (`PERIODIC`), the shift negated when the partner comes first. The order is chosen
-    /// by selecting references, not by branching on data.
-    #[inline(always)]
-    pub(super) fn scan_list<const PERIODIC: bool>(
-        &self,
-        bodies: &[Body<D>],
-        p: &Probe<D>,
-        mut j: u32,
-        shift: &Vector<D>,
-        image: u8,
-        best: &mut Best,
-    ) {
-        let i = p.i;
-        // The partner's shift as the oracle writes it, `k·L` with `k ∈ {−1, 0, 1}`: `0 − s`
-        // keeps zero components +0 where `−s` would make them −0.
-        let neg = Vector::ZERO - *shift;
-        debug_assert!(j != NONE, "scan_list from an empty cell");
-        loop {
-            let ju = j as usize;
-            if ju != i {
-                Self::offer_body::<PERIODIC>(p, ju, &bodies[ju], shift, &neg, image, best);
-            }
-            j = self.grid.next_in_cell(j);
-            if j == NONE {
-                break;
-            }
-        }
-    }
-
-    /// Offers body `p` its pair with body `j` (record `bj`, a body other than `p`'s) seen
-    /// through the image of shift `shift` (`neg = 0 − shift`, code `image`): the oracle's
-    /// function on the oracle's arguments, lower index first (see [`Cells::scan_list`]).
+    /// ones (`PERIODIC`), the shift negated when the partner comes first (`0 − s` keeps zero
+    /// components +0 where `−s` would make them −0). The order is chosen by selecting
+    /// references, not by branching on data.
     #[inline(always)]
     #[allow(clippy::too_many_arguments)]
     pub(super) fn offer_body<const PERIODIC: bool>(
@@ -221,7 +193,7 @@ impl<const D: usize> Cells<D> {
         let k = self.cached[p.i].coords;
         let bodies = world.bodies();
         if let Some(cells) = self.grid.interior_neighbours(&k) {
-            self.scan_interior(bodies, p, cells, best);
+            self.scan_interior::<true>(bodies, p, cells, best);
         } else {
             // Border cells: list the cells first, so that the scan below is inlined once.
             let mut cells = [(0u32, 0u8); 27];
@@ -247,7 +219,8 @@ impl<const D: usize> Cells<D> {
         let k = self.cached[p.i].coords;
         let bodies = world.bodies();
         if let Some(cells) = self.grid.interior_entered_layer(&k, axis, up) {
-            self.scan_interior(bodies, p, cells, best);
+            // The layer lies beyond the body's own cell: it does not hold the body.
+            self.scan_interior::<false>(bodies, p, cells, best);
         } else {
             let mut cells = [(0u32, 0u8); 9];
             let mut n = 0;
@@ -263,63 +236,95 @@ impl<const D: usize> Cells<D> {
     /// Offers body `p` every pair with a body of the cells `cells` (cell, image code).
     #[inline(never)]
     fn scan_listed(&self, bodies: &[Body<D>], p: &Probe<D>, cells: &[(u32, u8)], best: &mut Best) {
-        // The non-empty cells' heads first, without a branch per cell (see `push_head`).
-        let mut heads = [(NONE, 0u8); 27];
-        let mut n = 0;
-        for &(c, image) in cells {
-            let h = self.grid.first(c);
-            heads[n] = (h, image);
-            n += usize::from(h != NONE);
-        }
         if self.periodic {
-            for &(h, image) in &heads[..n] {
-                let shift = &self.shifts[image as usize];
-                self.scan_list::<true>(bodies, p, h, shift, image, best);
-            }
+            self.scan_cells::<true>(bodies, p, cells, best);
         } else {
-            for &(h, image) in &heads[..n] {
-                let shift = &self.shifts[image as usize];
-                self.scan_list::<false>(bodies, p, h, shift, image, best);
+            self.scan_cells::<false>(bodies, p, cells, best);
+        }
+    }
+
+    /// [`Cells::scan_listed`], body by body.
+    #[inline(always)]
+    fn scan_cells<const PERIODIC: bool>(
+        &self,
+        bodies: &[Body<D>],
+        p: &Probe<D>,
+        cells: &[(u32, u8)],
+        best: &mut Best,
+    ) {
+        for &(c, image) in cells {
+            if self.grid.cell(c).len == 0 {
+                continue;
+            }
+            let shift = &self.shifts[image as usize];
+            let neg = Vector::ZERO - *shift;
+            for j in self.grid.bodies_in(c) {
+                let j = j as usize;
+                if j != p.i {
+                    Self::offer_body::<PERIODIC>(p, j, &bodies[j], shift, &neg, image, best);
+                }
             }
         }
     }
 
     /// Offers body `p` every pair with a body of the interior cells `cells` (zero image
-    /// shift).
+    /// shift): gathered from the cells' slots and evaluated four at a time (see `gather`),
+    /// or, when a cell overflows its slots, body by body. `OWN`: the cells may hold `p`
+    /// (its own cell is among them), which is then dropped from the candidates.
     #[inline(always)]
-    fn scan_interior(
+    fn scan_interior<const OWN: bool>(
         &self,
         bodies: &[Body<D>],
         p: &Probe<D>,
-        cells: impl Iterator<Item = u32>,
+        cells: impl Iterator<Item = u32> + Clone,
         best: &mut Best,
     ) {
-        let zero = Vector::ZERO;
-        let image = Grid::<D>::ZERO_IMAGE;
-        // The non-empty cells' heads first: in dilute worlds most cells are empty, and a
-        // branch per cell on it mispredicts about as often as not.
-        let mut heads = [NONE; HEAD_SLOTS];
-        let mut n = 0;
-        for c in cells {
-            push_head(&mut heads, &mut n, self.grid.first(c));
-        }
-        let heads = &heads[..n];
-        if self.hints {
-            // A hint for each head's record before the walk: the loads are independent, so
-            // their misses overlap instead of waiting, cell after cell, behind the walk's
-            // branches.
-            for &h in heads {
-                prefetch(&bodies[h as usize]);
-            }
-        }
-        if self.periodic {
-            for &h in heads {
-                self.scan_list::<true>(bodies, p, h, &zero, image, best);
-            }
+        if D == 2 {
+            self.scan_interior_in::<GATHER_2D, OWN>(bodies, p, cells, best);
         } else {
-            for &h in heads {
-                self.scan_list::<false>(bodies, p, h, &zero, image, best);
+            self.scan_interior_in::<GATHER_3D, OWN>(bodies, p, cells, best);
+        }
+    }
+
+    /// [`Cells::scan_interior`] with a buffer of `CAP` candidates.
+    #[inline(always)]
+    fn scan_interior_in<const CAP: usize, const OWN: bool>(
+        &self,
+        bodies: &[Body<D>],
+        p: &Probe<D>,
+        cells: impl Iterator<Item = u32> + Clone,
+        best: &mut Best,
+    ) {
+        let mut g = Gathered::<CAP>::new();
+        for c in cells.clone() {
+            g.push(self.grid.cell(c));
+        }
+        if g.overflow() {
+            let mut listed = [(0u32, Grid::<D>::ZERO_IMAGE); 27];
+            let mut n = 0;
+            for c in cells {
+                listed[n].0 = c;
+                n += 1;
             }
+            self.scan_listed(bodies, p, &listed[..n], best);
+            return;
+        }
+        if OWN {
+            g.drop_probes(p.i as u32, p.i as u32);
+        }
+        let ids = &g.ids[..g.n];
+        if self.hints {
+            // A hint for each candidate's record before the evaluation: the loads are
+            // independent, so their misses overlap.
+            for &j in ids {
+                prefetch(&bodies[j as usize]);
+            }
+        }
+        let probe = Side::splat(&p.b.motion, p.b.radius);
+        if self.periodic {
+            Self::scan_gathered::<true>(bodies, p, &probe, &g.ids, 0, g.n, best);
+        } else {
+            Self::scan_gathered::<false>(bodies, p, &probe, &g.ids, 0, g.n, best);
         }
     }
 
@@ -551,17 +556,4 @@ impl<const D: usize> Cells<D> {
         };
         self.queue.set(i, key);
     }
-}
-
-/// Slots for the heads of the cells of one scan, a power of two: at least the most cells a
-/// scan visits (the union of two 3D blocks meeting at a corner: 27 + 27 − 8 = 46).
-pub(super) const HEAD_SLOTS: usize = 64;
-
-/// Appends the head `h` to `heads[..*n]` unless it is `NONE` (an empty cell), without a
-/// branch. `*n` stays below the slots (a scan visits at most 46 cells): the mask only
-/// spares the bounds check.
-#[inline(always)]
-pub(super) fn push_head(heads: &mut [u32; HEAD_SLOTS], n: &mut usize, h: u32) {
-    heads[*n & (HEAD_SLOTS - 1)] = h;
-    *n += usize::from(h != NONE);
 }
