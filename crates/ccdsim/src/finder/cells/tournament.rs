@@ -54,6 +54,36 @@
 //! the heap (about 60 instructions) and heaping the next bucket (about 270 every 2–3 pops)
 //! win back most of the walk. Not worth twice the memory and code: the tree stays.
 //!
+//! A binary heap with lazy invalidation, the first queue issue 5 names, was measured against
+//! this tree in session 9 (kept on branch `heap9`, not merged: `finder/cells/heap.rs` behind a
+//! cargo feature `heap-queue`): `std`'s `BinaryHeap` of whole 128-bit keys with each body's current key
+//! beside it; setting a key pushes it, an entry is live while a holder of its key
+//! ([`Key::holders`]) still has it (the key is its own sequence number, so an entry needs no
+//! body index: 16 bytes), the top pops dead entries, the body just popped replaces its own
+//! entry in place, and past `2n + 64` entries the heap is rebuilt from the current keys by a
+//! linear heapify (48 bytes per body against 18.7). Same events bit for bit (run files
+//! byte-identical to main's on `g2p`, `g3p` and `th`, `cells_vs_oracle` green with it).
+//! Callgrind, `step_event` instructions and mispredicts per collision or event: 2D gas
+//! N = 10⁴ 3,174 → 3,560 (+12 %), 27.3 → 33.0; 3D gas N = 10,976 5,415 → 5,614 (+3.7 %),
+//! 36.7 → 42.1; thesis n = 2048 4,904 → 5,375 (+9.6 %), 29.8 → 37.8 (without the in-place
+//! replacement: 3,569, 5,588, 5,450 instructions: it saves the dead entry's pop but sinks
+//! with two compares a level where a pop's walk to the bottom takes one; a hand-written
+//! heap whose pop and replacement walk the hole to the bottom and let the key climb back,
+//! Floyd's way, took 3,809 on 2D gas, its walks never stopping early and its indices
+//! checked). On the clock (CPU collisions per second, six runs alternated
+//! with main's binary on a busy machine, medians): 2D N = 10⁴ 2.10e6 → 1.64e6 (−22 %), 3D
+//! 1.29e6 → 0.99e6 (−23 %), thesis n = 2048 median seconds 0.158–0.159 → 0.181–0.189
+//! (+16 %, two runs of `bench thesis --runs 3` each), 2D N = 10⁶ 6.8–7.0e5 → 3.0e5 (−56 %,
+//! two runs each; peak 191–193 bytes per body against 165). Counted in a scratch build
+//! (2D gas, per collision): 1.67 replacements of the top, 1.00 pushes, 0.97 dead entries
+//! popped, no rebuild (the heap ended at 1.96 n entries); thesis, per event: 4.3, 0.94,
+//! 0.94; 2D N = 10⁶: 1.8, 1.0, 0.7, the heap at 1.6 n. The popped body's new key sinks
+//! from the root through about `log₂ 2n` levels at two compares each, and a partner's key
+//! costs a push and, later, a pop through as many, where the tree stops most partners' sets
+//! in their octet and walks the popped body through `1 + ⌈log₄(n/8)⌉` lines whose upper
+//! levels stay cached; at 10⁶ bodies each of the heap's lower levels is a cache miss. The
+//! tree stays.
+//!
 //! Session 8 measured where the walks go (counters in a scratch build; callgrind,
 //! instructions per event or collision on main: thesis n = 2048 4,680, 2D gas N = 10⁴
 //! 3,104, 3D gas N = 10,976 5,803). Nearly all of the queue's work is walks forced to the
