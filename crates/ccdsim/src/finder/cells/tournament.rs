@@ -55,9 +55,9 @@
 //! win back most of the walk. Not worth twice the memory and code: the tree stays.
 //!
 //! A binary heap with lazy invalidation, the first queue issue 5 names, was measured against
-//! this tree in session 9 (kept on branch `heap9`, not merged: `finder/cells/heap.rs` behind a
-//! cargo feature `heap-queue`): `std`'s `BinaryHeap` of whole 128-bit keys with each body's current key
-//! beside it; setting a key pushes it, an entry is live while a holder of its key
+//! this tree in session 9 (kept on branch `heap9`, not merged: `finder/cells/heap.rs`
+//! behind a cargo feature `heap-queue`): `std`'s `BinaryHeap` of whole 128-bit keys with
+//! each body's current key beside it; setting a key pushes it, an entry is live while a holder of its key
 //! ([`Key::holders`]) still has it (the key is its own sequence number, so an entry needs no
 //! body index: 16 bytes), the top pops dead entries, the body just popped replaces its own
 //! entry in place, and past `2n + 64` entries the heap is rebuilt from the current keys by a
