@@ -120,6 +120,25 @@ fn probe_first(quad: [u32; LANES], i: u32) -> f64x4 {
     f64x4::from_i32x4(q).cmp_gt(f64x4::splat(f64::from(i)))
 }
 
+/// The quad of candidates `ids[k..k + LANES]` (`k < to`), the mask of its lanes below `to`
+/// (the others pad a last, short quad and are dropped), and the quad's balls.
+#[inline(always)]
+fn quad_at<const D: usize>(
+    bodies: &[Body<D>],
+    ids: &[u32],
+    k: usize,
+    to: usize,
+) -> ([u32; LANES], u32, Side<D>) {
+    let quad: [u32; LANES] = std::array::from_fn(|l| ids[k + l]);
+    let valid = ALL_LANES >> (LANES - (to - k).min(LANES));
+    let b = quad.map(|j| &bodies[j as usize]);
+    (
+        quad,
+        valid,
+        Side::gather(b.map(|b| &b.motion), b.map(|b| b.radius)),
+    )
+}
+
 impl<const D: usize> Cells<D> {
     /// Offers body `p` (in all lanes of `probe`) its pairs with the candidates
     /// `ids[from..to]` (`to + LANES ≤ ids.len()`; `p` not among them), in quads.
@@ -136,10 +155,7 @@ impl<const D: usize> Cells<D> {
     ) {
         let mut k = from;
         while k < to {
-            let quad: [u32; LANES] = std::array::from_fn(|l| ids[k + l]);
-            let valid = ALL_LANES >> (LANES - (to - k).min(LANES));
-            let b = quad.map(|j| &bodies[j as usize]);
-            let other = Side::gather(b.map(|b| &b.motion), b.map(|b| b.radius));
+            let (quad, valid, other) = quad_at(bodies, ids, k, to);
             Self::offer_quad::<PERIODIC>(bodies, p, probe, &other, quad, valid, best);
             k += LANES;
         }
@@ -160,10 +176,7 @@ impl<const D: usize> Cells<D> {
     ) {
         let mut k = from;
         while k < to {
-            let quad: [u32; LANES] = std::array::from_fn(|l| ids[k + l]);
-            let valid = ALL_LANES >> (LANES - (to - k).min(LANES));
-            let b = quad.map(|j| &bodies[j as usize]);
-            let other = Side::gather(b.map(|b| &b.motion), b.map(|b| b.radius));
+            let (quad, valid, other) = quad_at(bodies, ids, k, to);
             Self::offer_quad::<PERIODIC>(bodies, pi, si, &other, quad, valid, bi);
             Self::offer_quad::<PERIODIC>(bodies, pj, sj, &other, quad, valid, bj);
             k += LANES;

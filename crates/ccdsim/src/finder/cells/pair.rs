@@ -56,7 +56,7 @@ use super::Cells;
 use crate::geom::Vector;
 use crate::narrow_lanes::Side;
 use crate::prefetch::prefetch;
-use crate::world::World;
+use crate::world::{Body, World};
 
 impl<const D: usize> Cells<D> {
     /// Recomputes bodies `i` and `j` (both changed, at the same state of the world) as
@@ -156,30 +156,36 @@ impl<const D: usize> Cells<D> {
         }
         let si = Side::splat(&pi.b.motion, pi.b.radius);
         let sj = Side::splat(&pj.b.motion, pj.b.radius);
-        let (ids, n) = (&g.ids, g.n);
+        let ids = &g.ids[..];
+        let parts = (e0, e1, g.n);
         if self.periodic {
-            Self::scan_gathered_both::<true>(
-                bodies,
-                (pi, &si, &mut *bi),
-                (pj, &sj, &mut *bj),
-                ids,
-                0,
-                e0,
-            );
-            Self::scan_gathered::<true>(bodies, pi, &si, ids, e0, e1, bi);
-            Self::scan_gathered::<true>(bodies, pj, &sj, ids, e1, n, bj);
+            Self::scan_pair_parts::<true>(bodies, (pi, &si, bi), (pj, &sj, bj), ids, parts);
         } else {
-            Self::scan_gathered_both::<false>(
-                bodies,
-                (pi, &si, &mut *bi),
-                (pj, &sj, &mut *bj),
-                ids,
-                0,
-                e0,
-            );
-            Self::scan_gathered::<false>(bodies, pi, &si, ids, e0, e1, bi);
-            Self::scan_gathered::<false>(bodies, pj, &sj, ids, e1, n, bj);
+            Self::scan_pair_parts::<false>(bodies, (pi, &si, bi), (pj, &sj, bj), ids, parts);
         }
         true
+    }
+
+    /// Offers `pi` and `pj` their pairs with the gathered candidates `ids`: those below
+    /// `parts.0` (the shared cells') to both, then those up to `parts.1` to `pi` and those up
+    /// to `parts.2` to `pj`.
+    #[inline(always)]
+    fn scan_pair_parts<const PERIODIC: bool>(
+        bodies: &[Body<D>],
+        (pi, si, bi): (&Probe<D>, &Side<D>, &mut Best),
+        (pj, sj, bj): (&Probe<D>, &Side<D>, &mut Best),
+        ids: &[u32],
+        (e0, e1, n): (usize, usize, usize),
+    ) {
+        Self::scan_gathered_both::<PERIODIC>(
+            bodies,
+            (pi, si, &mut *bi),
+            (pj, sj, &mut *bj),
+            ids,
+            0,
+            e0,
+        );
+        Self::scan_gathered::<PERIODIC>(bodies, pi, si, ids, e0, e1, bi);
+        Self::scan_gathered::<PERIODIC>(bodies, pj, sj, ids, e1, n, bj);
     }
 }
