@@ -1107,3 +1107,40 @@ fn inelastic_collapse_to_huge_times() {
     };
     check_all("inelastic collapse", &scene, 300);
 }
+
+/// A proptest case found in CI: a ball bouncing between two walls with restitution 0.017
+/// slows down by a factor of about 58 per bounce until its next contact time overflows to
+/// infinity. A contact at an infinite time never happens (`finite_event`): every finder
+/// stops there, where resolving it used to give later predictions undefined times.
+#[test]
+fn inelastic_collapse_to_infinite_time() {
+    let e = 0.01733112181355497;
+    let s3 = Scene::<3> {
+        settings: Settings { restitution: e },
+        bodies: vec![BodySpec::new(
+            Vector([2.0, 2.0, 2.0]),
+            Vector([0.0, 0.0, 2.8198125128649347]),
+            0.05,
+        )],
+        walls: box_walls(Vector([4.0, 4.0, 4.0])),
+        ..Scene::default()
+    };
+    let s2 = Scene::<2> {
+        settings: Settings { restitution: e },
+        bodies: vec![BodySpec::new(
+            Vector([2.0, 2.0]),
+            Vector([0.0, 2.8198125128649347]),
+            0.05,
+        )],
+        walls: box_walls(Vector([4.0, 4.0])),
+        ..Scene::default()
+    };
+    let n3 = check_all("collapse to infinity 3D", &s3, 1000);
+    let n2 = check_all("collapse to infinity 2D", &s2, 1000);
+    for n in [n3, n2] {
+        assert!((100..1000).contains(&n), "{n} events: the run must end");
+    }
+    let mut sim = Simulation::new(&s3, "cells").unwrap();
+    assert_eq!(sim.run_events(1000), n3);
+    assert!(sim.time().is_finite() && sim.peek_event().is_none());
+}

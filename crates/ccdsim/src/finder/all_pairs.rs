@@ -1,6 +1,6 @@
 //! The naive all-pairs finder: the reference every other finder is tested against.
 
-use super::{Finder, FinderError};
+use super::{finite_event, Finder, FinderError};
 use crate::event::Event;
 use crate::narrow::{toi_circle_circle, toi_circle_wall};
 use crate::periodic::{toi_box_exit, toi_circle_circle_periodic};
@@ -19,7 +19,8 @@ impl AllPairs {
     }
 }
 
-/// The minimum event over all pairs of `world`: the definition of a correct answer.
+/// The minimum event over all pairs of `world`: the definition of a correct answer (`None`
+/// when there is none, or when it lies at an infinite time, see [`finite_event`]).
 ///
 /// In a periodic world (see [`crate::periodic`]) a pair's time is
 /// [`toi_circle_circle_periodic`], and every body's box exit is an event too (a wall event
@@ -44,7 +45,7 @@ pub fn all_pairs_next_event<const D: usize>(world: &World<D>) -> Option<Event> {
                 best = Event::earliest(best, Some(Event::wall(t, i, faces_from + face)));
             }
         }
-        return best;
+        return finite_event(best);
     }
     for i in 0..n {
         let mi = world.motion(i);
@@ -61,7 +62,7 @@ pub fn all_pairs_next_event<const D: usize>(world: &World<D>) -> Option<Event> {
             }
         }
     }
-    best
+    finite_event(best)
 }
 
 impl<const D: usize> Finder<D> for AllPairs {

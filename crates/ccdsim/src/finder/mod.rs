@@ -9,7 +9,9 @@
 //! [`toi_circle_circle`](crate::narrow::toi_circle_circle) over all body pairs and
 //! [`toi_circle_wall`](crate::narrow::toi_circle_wall) over all (body, wall) pairs, evaluated
 //! on the world's stored states: what [`AllPairs`] computes. Any internal bookkeeping (cell
-//! crossings, rebuilt trees) stays inside the finder.
+//! crossings, rebuilt trees) stays inside the finder. When that minimum lies at an infinite
+//! time there is no next event ([`finite_event`]): a contact at an infinite time never
+//! happens.
 //!
 //! In a periodic world ([`World::periodic`]) the pair function is
 //! [`toi_circle_circle_periodic`](crate::periodic::toi_circle_circle_periodic) and each body's
@@ -24,6 +26,18 @@ mod cells;
 mod sedgewick;
 
 pub use all_pairs::{all_pairs_next_event, AllPairs};
+
+/// `e`, unless its time is infinite (or undefined): a contact at an infinite time never
+/// happens. Times of impact overflow to infinity only in degenerate runs, when speeds have
+/// decayed to near the smallest normal number (an inelastic collapse between two walls);
+/// resolving such an event would put every later state at an infinite time, and the next
+/// predictions at undefined ones. Every finder applies this to the minimum it finds, so
+/// they still agree bit for bit.
+#[must_use]
+#[inline]
+pub fn finite_event(e: Option<Event>) -> Option<Event> {
+    e.filter(|e| e.time < f64::INFINITY)
+}
 pub use bvh::BvhFinder;
 pub use cells::{check_options as check_cells_options, Cells, CellsStats};
 pub use sedgewick::{Sedgewick, SedgewickStats};

@@ -23,7 +23,7 @@
 //! with its walls, named like the oracle names it (wall `walls.len() + face`): it depends on
 //! the body's state alone, like a wall event.
 
-use super::{Finder, FinderError, FinderMemory};
+use super::{finite_event, Finder, FinderError, FinderMemory};
 use crate::event::{Event, EventKind};
 use crate::narrow::{toi_circle_circle, toi_circle_wall};
 use crate::periodic::{toi_box_exit, toi_circle_circle_periodic};
@@ -225,7 +225,7 @@ impl<const D: usize> Finder<D> for Sedgewick {
     fn next_event(&mut self, world: &World<D>) -> Option<Event> {
         while let Some(Reverse(top)) = self.heap.peek() {
             if top.is_current(world) {
-                return Some(top.event());
+                return finite_event(Some(top.event()));
             }
             self.heap.pop();
             self.stats.discarded += 1;

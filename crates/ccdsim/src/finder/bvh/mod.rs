@@ -103,7 +103,7 @@ mod tests;
 
 pub use validate::InvalidTree;
 
-use super::{DebugBox, Finder, FinderError, FinderOptions};
+use super::{finite_event, DebugBox, Finder, FinderError, FinderOptions};
 use crate::event::Event;
 use crate::narrow::toi_circle_circle;
 use crate::periodic::toi_circle_circle_periodic;
@@ -298,7 +298,7 @@ impl<const D: usize> Finder<D> for BvhFinder<D> {
                 return answer;
             }
         }
-        let answer = self.search(world, self.walls.earliest());
+        let answer = finite_event(self.search(world, self.walls.earliest()));
         self.last = Some(answer);
         answer
     }

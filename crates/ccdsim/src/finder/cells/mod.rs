@@ -79,7 +79,9 @@
 //! (far below the margin); at `t` the two bodies are `σ ≤ σ_max` apart (a body is within `r`
 //! of its wall; a body leaving the box is on a face of it, and only border cells reach the
 //! faces: every other cell is at least one whole cell away from them), and cells that are not neighbours are at least one cell, `σ_max (1 + MARGIN)`,
-//! apart. So the top *is* `E`, ties included, since keys order exactly like events.
+//! apart. So the top *is* `E`, ties included, since keys order exactly like events. When the
+//! top key lies at an infinite time, `E` is at an infinite time too (or there is none), and
+//! `next_event` answers `None`, as the oracle does (see [`finite_event`](super::finite_event)).
 //!
 //! Outer cells of an open world extend to infinity, so bodies that leave the initial bounding
 //! box are still filed; two outer cells that are not neighbours still have a whole inner cell
@@ -718,6 +720,11 @@ impl<const D: usize> Finder<D> for Cells<D> {
         loop {
             let i = self.queue.top()?;
             let key = self.queue.top_key();
+            if key.seconds() == f64::INFINITY {
+                // Every key is a lower bound of what it stands for (see above), so every
+                // event left lies at an infinite time, which never comes (`finite_event`).
+                return None;
+            }
             if key.is_crossing() {
                 if self.lists.is_some() {
                     self.exit_shell(world, i, key.seconds());
@@ -725,9 +732,6 @@ impl<const D: usize> Finder<D> for Cells<D> {
                     self.cross(world, i, key.seconds());
                 }
                 continue;
-            }
-            if key.is_never() {
-                return None;
             }
             if !self.is_live(world, i) {
                 self.stats.stale += 1;
