@@ -34,6 +34,7 @@ pub mod resolve;
 pub mod scene;
 pub mod sim;
 pub mod verify;
+pub mod wall;
 pub mod world;
 
 pub use event::{Event, EventKind};
@@ -41,6 +42,7 @@ pub use finder::{make_finder, AllPairs, Finder, FinderError, FinderOptions, FIND
 pub use geom::{Aabb, Vector};
 pub use narrow::Motion;
 pub use observables::Observables;
-pub use scene::{AnyScene, BodySpec, Scene, SceneError, Settings, Wall};
+pub use scene::{AnyScene, BodySpec, Scene, SceneError, Settings};
 pub use sim::{Collision, SimError, Simulation, Stats};
+pub use wall::Wall;
 pub use world::{Body, World};

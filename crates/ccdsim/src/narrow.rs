@@ -5,7 +5,7 @@
 //! rounding left overlapping while approaching collides at once; a receding pair never does.
 
 use crate::geom::Vector;
-use crate::scene::Wall;
+use crate::wall::Wall;
 
 /// A body's stored linear motion: at time `time` it is at `pos`, moving with `vel`.
 #[derive(Clone, Copy, Debug, PartialEq)]

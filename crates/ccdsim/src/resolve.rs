@@ -76,7 +76,7 @@ pub fn resolve_body_wall<const D: usize>(world: &mut World<D>, i: usize, w: usiz
             v2 = v - n * ((1.0 + world.restitution()) * vn);
         }
     }
-    let clearance = crate::scene::wall_clearance(&wall, p);
+    let clearance = crate::wall::wall_clearance(&wall, p);
     world.set_state(i, p, v2, t);
     ((r - clearance) / r).max(0.0)
 }

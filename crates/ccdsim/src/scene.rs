@@ -4,8 +4,9 @@
 //! dimension; [`Scene::validate`] checks everything the simulator relies on.
 
 use crate::geom::{ball_volume, Vector};
+use crate::wall::{closed_segments, inside_even_odd};
+pub use crate::wall::{wall_clearance, Wall};
 use serde::{Deserialize, Serialize};
-use std::collections::HashMap;
 use std::fmt;
 
 /// One body as written in a scene: a circle (2D) or sphere (3D).
@@ -44,28 +45,6 @@ impl<const D: usize> BodySpec<D> {
     pub fn effective_mass(&self) -> f64 {
         self.mass.unwrap_or_else(|| ball_volume::<D>(self.radius))
     }
-}
-
-/// A static wall. Walls never move and have infinite mass.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(untagged)]
-pub enum Wall<const D: usize> {
-    /// A segment from `a` to `b` (the usual 2D wall). A body can touch it from either side or
-    /// at its end points.
-    Segment {
-        /// First end point.
-        a: Vector<D>,
-        /// Second end point.
-        b: Vector<D>,
-    },
-    /// A one-sided plane (the usual 3D wall; a line in 2D) through `point`. Bodies live on the
-    /// side `normal` points to; the normal need not be of unit length.
-    Plane {
-        /// Any point of the plane.
-        point: Vector<D>,
-        /// Direction towards the bodies' side.
-        normal: Vector<D>,
-    },
 }
 
 /// Global settings of a scene.
@@ -574,19 +553,6 @@ fn validate_wall<const D: usize>(w: usize, wall: &Wall<D>) -> Result<(), SceneEr
     Ok(())
 }
 
-/// Distance from `p` to the wall (signed for planes: negative behind it).
-#[must_use]
-pub fn wall_clearance<const D: usize>(wall: &Wall<D>, p: Vector<D>) -> f64 {
-    match *wall {
-        Wall::Segment { a, b } => {
-            let u = b - a;
-            let s = ((p - a).dot(u) / u.norm_sq()).clamp(0.0, 1.0);
-            (p - (a + u * s)).norm()
-        }
-        Wall::Plane { point, normal } => (p - point).dot(normal) / normal.norm(),
-    }
-}
-
 /// The first overlapping pair `(i, j)`, `i < j`, in lexicographic order, with its depth;
 /// in a periodic box of sides `period`, distances are between nearest images.
 fn first_overlap<const D: usize>(
@@ -665,41 +631,6 @@ fn first_overlap<const D: usize>(
         }
     }
     None
-}
-
-/// Segments both of whose end points are shared with exactly one other segment end: the
-/// edges of closed polygons.
-fn closed_segments<const D: usize>(walls: &[Wall<D>]) -> Vec<(Vector<D>, Vector<D>)> {
-    let segs: Vec<(Vector<D>, Vector<D>)> = walls
-        .iter()
-        .filter_map(|w| match *w {
-            Wall::Segment { a, b } => Some((a, b)),
-            Wall::Plane { .. } => None,
-        })
-        .collect();
-    let bits = |v: Vector<D>| v.0.map(f64::to_bits);
-    let mut degree: HashMap<[u64; D], usize> = HashMap::new();
-    for (a, b) in &segs {
-        *degree.entry(bits(*a)).or_default() += 1;
-        *degree.entry(bits(*b)).or_default() += 1;
-    }
-    segs.into_iter()
-        .filter(|(a, b)| degree[&bits(*a)] == 2 && degree[&bits(*b)] == 2)
-        .collect()
-}
-
-fn inside_even_odd<const D: usize>(segs: &[(Vector<D>, Vector<D>)], x: f64, y: f64) -> bool {
-    let mut inside = false;
-    for (a, b) in segs {
-        let (ax, ay, bx, by) = (a[0], a[1], b[0], b[1]);
-        if (ay > y) != (by > y) {
-            let cross_x = ax + (y - ay) * (bx - ax) / (by - ay);
-            if x < cross_x {
-                inside = !inside;
-            }
-        }
-    }
-    inside
 }
 
 #[cfg(test)]

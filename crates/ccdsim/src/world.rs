@@ -11,7 +11,8 @@
 
 use crate::geom::Vector;
 use crate::narrow::Motion;
-use crate::scene::{Scene, SceneError, Wall};
+use crate::scene::{Scene, SceneError};
+use crate::wall::Wall;
 
 /// The hot part of one body's state: its stored motion, radius, mass and change count.
 ///

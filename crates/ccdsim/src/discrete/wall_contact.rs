@@ -10,7 +10,7 @@
 //! contact. Segments outside 2D have no side and stay thin (a capsule of the body's radius).
 
 use crate::geom::Vector;
-use crate::scene::Wall;
+use crate::wall::Wall;
 
 /// The side of a segment's line where `p` lies: `+1` left of `a → b`, `-1` right, `0` on the
 /// line or for segments outside 2D (which have no solid side).

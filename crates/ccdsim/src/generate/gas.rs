@@ -344,7 +344,7 @@ mod tests {
         b.validate().unwrap();
         assert_eq!(b.walls.len(), 6);
         let covered: f64 = a.bodies.iter().map(|b| ball_volume::<2>(b.radius)).sum();
-        let crate::scene::Wall::Segment { b: corner, .. } = a.walls[0] else {
+        let crate::wall::Wall::Segment { b: corner, .. } = a.walls[0] else {
             panic!()
         };
         assert!((covered / (corner[0] * corner[0]) - 0.3).abs() < 1e-9);

@@ -13,7 +13,7 @@ pub use rack::{rack, RackConfig};
 pub use thesis::{thesis, ThesisConfig, THESIS_DURATION, THESIS_TABLE_5_1, THESIS_TABLE_5_2};
 
 use crate::geom::Vector;
-use crate::scene::Wall;
+use crate::wall::Wall;
 use rand::Rng;
 
 /// Why a scene could not be generated.

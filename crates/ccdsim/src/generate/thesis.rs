@@ -9,7 +9,8 @@
 use super::place::place_balls;
 use super::{box_walls, random_direction, GenerateError};
 use crate::geom::Vector;
-use crate::scene::{BodySpec, Scene, Wall};
+use crate::scene::{BodySpec, Scene};
+use crate::wall::Wall;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 

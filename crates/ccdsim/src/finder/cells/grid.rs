@@ -23,7 +23,7 @@ use super::key::NONE;
 use crate::geom::Vector;
 use crate::narrow::Motion;
 use crate::prefetch::prefetch;
-use crate::scene::Wall;
+use crate::wall::Wall;
 
 /// Bodies kept in a cell's record; the others overflow (see the module docs).
 pub(super) const CELL_SLOTS: usize = 4;

@@ -218,7 +218,7 @@ use super::{DebugBox, Finder, FinderError, FinderMemory, FinderOptions};
 use crate::event::Event;
 use crate::geom::{Aabb, Vector};
 use crate::prefetch::prefetch;
-use crate::scene::Wall;
+use crate::wall::Wall;
 use crate::world::World;
 use grid::{Grid, MARGIN};
 use key::{Key, MAX_INDEX};

@@ -1,0 +1,85 @@
+//! Static walls: segments and one-sided planes, and their geometry (clearance, closed
+//! polygons).
+//!
+//! Kept apart from the scene format so that the narrow phase, the periodic box and the
+//! scene's validation can all use walls without importing one another.
+
+use crate::geom::Vector;
+use serde::{Deserialize, Serialize};
+use std::collections::HashMap;
+
+/// A static wall. Walls never move and have infinite mass.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(untagged)]
+pub enum Wall<const D: usize> {
+    /// A segment from `a` to `b` (the usual 2D wall). A body can touch it from either side or
+    /// at its end points.
+    Segment {
+        /// First end point.
+        a: Vector<D>,
+        /// Second end point.
+        b: Vector<D>,
+    },
+    /// A one-sided plane (the usual 3D wall; a line in 2D) through `point`. Bodies live on the
+    /// side `normal` points to; the normal need not be of unit length.
+    Plane {
+        /// Any point of the plane.
+        point: Vector<D>,
+        /// Direction towards the bodies' side.
+        normal: Vector<D>,
+    },
+}
+
+/// Distance from `p` to the wall (signed for planes: negative behind it).
+#[must_use]
+pub fn wall_clearance<const D: usize>(wall: &Wall<D>, p: Vector<D>) -> f64 {
+    match *wall {
+        Wall::Segment { a, b } => {
+            let u = b - a;
+            let s = ((p - a).dot(u) / u.norm_sq()).clamp(0.0, 1.0);
+            (p - (a + u * s)).norm()
+        }
+        Wall::Plane { point, normal } => (p - point).dot(normal) / normal.norm(),
+    }
+}
+
+/// Segments both of whose end points are shared with exactly one other segment end: the
+/// edges of closed polygons.
+pub(crate) fn closed_segments<const D: usize>(walls: &[Wall<D>]) -> Vec<(Vector<D>, Vector<D>)> {
+    let segs: Vec<(Vector<D>, Vector<D>)> = walls
+        .iter()
+        .filter_map(|w| match *w {
+            Wall::Segment { a, b } => Some((a, b)),
+            Wall::Plane { .. } => None,
+        })
+        .collect();
+    let bits = |v: Vector<D>| v.0.map(f64::to_bits);
+    let mut degree: HashMap<[u64; D], usize> = HashMap::new();
+    for (a, b) in &segs {
+        *degree.entry(bits(*a)).or_default() += 1;
+        *degree.entry(bits(*b)).or_default() += 1;
+    }
+    segs.into_iter()
+        .filter(|(a, b)| degree[&bits(*a)] == 2 && degree[&bits(*b)] == 2)
+        .collect()
+}
+
+/// True when the point `(x, y)` lies inside the polygons formed by `segs`, by the even–odd
+/// rule.
+pub(crate) fn inside_even_odd<const D: usize>(
+    segs: &[(Vector<D>, Vector<D>)],
+    x: f64,
+    y: f64,
+) -> bool {
+    let mut inside = false;
+    for (a, b) in segs {
+        let (ax, ay, bx, by) = (a[0], a[1], b[0], b[1]);
+        if (ay > y) != (by > y) {
+            let cross_x = ax + (y - ay) * (bx - ax) / (by - ay);
+            if x < cross_x {
+                inside = !inside;
+            }
+        }
+    }
+    inside
+}
