@@ -160,7 +160,7 @@ fn builtin_break_prints_a_readable_summary() {
 
 #[test]
 fn json_summary_has_the_interface_fields() {
-    let out = run_ok(ccdsim().args(["run", "--json", "--until", "3"]));
+    let out = run_ok(ccdsim().args(["run", "--json", "--until", "3", "--finder", "all-pairs"]));
     let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     for key in [
         "events",

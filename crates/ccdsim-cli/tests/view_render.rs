@@ -82,6 +82,9 @@ fn render_refuses_bad_options_with_one_line_and_no_file() {
             "unknown finder `nope`",
         ),
         (vec!["--at", "0.5", "--colour", "pink"], "--colour"),
+        // Past the end, or before the start, of the recorded run (the run covers 0 … 1 s).
+        (vec!["--at", "5"], "outside the run"),
+        (vec!["--at", "-1"], "outside the run"),
     ] {
         let out = ccdsim()
             .arg("render")

@@ -3,12 +3,21 @@
 #
 # Needs Debian's chromium (apt-get install -y chromium) and Node.js with npm. Builds the
 # `ccdsim` binary, installs playwright-core from package-lock.json, then runs node's test
-# runner; screenshots land in e2e/out/.
+# runner; screenshots land in e2e/out/. `run.sh --which-bin` prints the binary's path and
+# exits.
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
 root="$(cd "$here/../../.." && pwd)"
 cd "$root"
+# Ask cargo where it puts the binary: CARGO_TARGET_DIR or a config may move the target
+# directory away from ./target.
+bin="$("$root/scripts/target-dir")/debug/ccdsim"
+if [ "${1:-}" = "--which-bin" ]; then
+  echo "$bin"
+  exit 0
+fi
 cargo build --locked -p ccdsim-cli
+[ -x "$bin" ] || { echo "e2e: no ccdsim binary at $bin" >&2; exit 1; }
 cd "$here"
 npm ci --no-audit --no-fund
-CCDSIM_BIN="$root/target/debug/ccdsim" node --test viewer.test.mjs viewer3d.test.mjs
+CCDSIM_BIN="$bin" node --test viewer.test.mjs viewer3d.test.mjs

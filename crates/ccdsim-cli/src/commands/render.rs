@@ -13,7 +13,7 @@ pub struct Args {
     /// The run file.
     run: PathBuf,
     /// Draw one frame at this simulated time, seconds (with --out).
-    #[arg(long, requires = "out")]
+    #[arg(long, requires = "out", allow_negative_numbers = true)]
     at: Option<f64>,
     /// The PNG file --at writes.
     #[arg(long)]
@@ -28,10 +28,10 @@ pub struct Args {
     #[arg(long, default_value_t = 1.0)]
     speed: f64,
     /// GIF start, simulated seconds [default: the run's start].
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     from: Option<f64>,
     /// GIF end, simulated seconds [default: the run's end].
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true)]
     to: Option<f64>,
     /// Draw the finder's boxes (swept leaves and inner nodes by depth).
     #[arg(long)]

@@ -16,10 +16,10 @@ pub struct Args {
     /// Scene file (JSON). Without it, the built-in billiard break is run.
     scene: Option<PathBuf>,
     /// Next-event finder (broad phase).
-    #[arg(long, default_value = "all-pairs")]
+    #[arg(long, default_value = "cells")]
     finder: String,
     /// Simulate until this time, seconds (default 10 when --events is not given).
-    #[arg(long, conflicts_with = "events")]
+    #[arg(long, conflicts_with = "events", allow_negative_numbers = true)]
     until: Option<f64>,
     /// Simulate this many events.
     #[arg(long)]
@@ -131,6 +131,13 @@ pub fn run(args: Args) -> Result<ExitCode> {
 }
 
 fn simulate<const D: usize>(scene: &Scene<D>, args: &Args) -> Result<Summary> {
+    if let Some(t) = args.until {
+        anyhow::ensure!(
+            t >= scene.start_time,
+            "--until {t} lies before the scene's start time {} s",
+            scene.start_time
+        );
+    }
     let finder = make_finder::<D>(&args.finder, &args.finder_options.options()?)?;
     let mut sim = Simulation::with_finder(scene, finder)?;
     let momentum_start = sim.world().momentum().0.to_vec();

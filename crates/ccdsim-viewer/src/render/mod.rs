@@ -183,6 +183,15 @@ pub fn png_bytes<const D: usize>(
     if !at.is_finite() {
         return Err(ViewerError::param("at", "is not a finite time"));
     }
+    // Outside the recorded span nothing is known of the bodies: an empty table would be a
+    // picture of nothing that looks like an answer.
+    let (start, end) = (p.start_time(), p.end_time());
+    if at < start || at > end {
+        return Err(ViewerError::param(
+            "at",
+            format!("{at} s lies outside the run, which covers {start} … {end} s"),
+        ));
+    }
     let cam = camera(p, o)?;
     let snap = p.snapshot_at(at)?;
     let boxes = boxes_for(p, &snap, o)?;
