@@ -34,12 +34,14 @@ impl<const D: usize> Motion<D> {
 ///
 /// A relative speed so small that `a = |dv|²` falls below 2⁻⁶⁰⁰ (speeds under about 10⁻⁹⁰, as
 /// an inelastic collapse reaches) would lose `a`, `b²` or `ac` to underflow, and with them
-/// the geometry: a pair that misses could be given a contact far in the future. Such a `dv`
-/// is multiplied by 2⁶⁰⁰ first and the time by 2⁶⁰⁰ after: multiplying by a power of two
-/// commutes with every rounding while nothing underflows or overflows, so this is the
-/// formula's time on exact inputs. Below 2⁻⁹⁰⁰ even that underflows and the pair is given no
-/// contact (a lost contact is consistent for every finder; an invented one is not), as is a
-/// time beyond the largest float. (A `b` that underflowed to zero likewise loses a contact.)
+/// the geometry: a pair that misses could be given a contact far in the future, and a pair
+/// that meets could be given none. Such a `dv` is multiplied by 2⁶⁰⁰ first, and by 2⁶⁰⁰
+/// again when that is not enough (down to the smallest subnormal speed, 2⁻¹⁰⁷⁴), and the time
+/// by the same powers after: multiplying by a power of two commutes with every rounding while
+/// nothing underflows or overflows, so this is the formula's time on exact inputs. A contact
+/// whose time exceeds the largest float is not representable and is given as `None` here;
+/// [`contact_beyond_range`] tells that case apart from a miss, so that a run can say why it
+/// stopped.
 #[must_use]
 #[inline(always)]
 pub fn first_contact<const D: usize>(dp: Vector<D>, dv: Vector<D>, sigma: f64) -> Option<f64> {
@@ -61,20 +63,48 @@ pub fn first_contact<const D: usize>(dp: Vector<D>, dv: Vector<D>, sigma: f64) -
     }
     // Inline rather than a call: a call in the finders' scan loops costs them their
     // registers (callgrind, 2D gas: +300 instructions per collision).
-    let dv = dv * SPEED_SCALE;
+    scaled_contact(dp, dv, c).filter(|t| t.is_finite())
+}
+
+/// The rare path of [`first_contact`] for a tiny `dv` (`|dv|² < 2⁻⁶⁰⁰`) and `c > 0`: the
+/// time offset of the contact, `+∞` when it exists but exceeds the largest float, or `None`
+/// when the pair never touches (or `dv` is zero).
+#[inline(always)]
+fn scaled_contact<const D: usize>(dp: Vector<D>, dv: Vector<D>, c: f64) -> Option<f64> {
+    // Once scaled, |dv| ≥ 2⁻³⁰⁰; twice (|dv| < 2⁻⁶⁰⁰ after once), it stays below 2⁰ and the
+    // smallest subnormal (2⁻¹⁰⁷⁴) becomes 2¹²⁶: exact, and nothing overflows.
+    let (dv, steps) = scaled_velocity(dv);
     let (b, a) = (dp.dot(dv), dv.norm_sq());
-    if a < MIN_UNSCALED_A || b >= 0.0 {
+    if a == 0.0 || b >= 0.0 {
         return None;
     }
     let disc = b * b - a * c;
     if disc < 0.0 {
         return None;
     }
-    Some(c / (-b + disc.sqrt()) * SPEED_SCALE).filter(|t| t.is_finite())
+    Some(unscaled_time(c / (-b + disc.sqrt()), steps))
+}
+
+/// True when the point at offset `dp`, moving at `dv`, approaches and would come within
+/// `sigma` of the origin, but only after more seconds than the largest float holds: a
+/// contact that [`first_contact`] cannot give a time. Only relative speeds far below 10⁻²⁵⁰
+/// get there.
+#[must_use]
+pub fn contact_beyond_range<const D: usize>(dp: Vector<D>, dv: Vector<D>, sigma: f64) -> bool {
+    let c = dp.norm_sq() - sigma * sigma;
+    if dp.dot(dv) >= 0.0 || c <= 0.0 || dv.norm_sq() >= MIN_UNSCALED_A {
+        // Unscaled times are below c / |b| ≤ |dp|² / |dp|·2⁻³⁰⁰: finite for any finite dp
+        // the scene validation allows.
+        return false;
+    }
+    scaled_contact(dp, dv, c) == Some(f64::INFINITY)
 }
 
 /// Below this `|dv|²` [`first_contact`] scales the relative velocity first.
 pub(crate) const MIN_UNSCALED_A: f64 = 2.409_919_865_102_884e-181; // 2⁻⁶⁰⁰
+
+/// Below this normal speed [`toi_circle_plane`] scales the velocity first (2⁻³⁰⁰).
+const MIN_UNSCALED_SPEED: f64 = 4.909_093_465_297_727e-91;
 
 /// The power of two by which [`first_contact`] scales a tiny relative velocity.
 const SPEED_SCALE: f64 = 4.149_515_568_880_993e180; // 2⁶⁰⁰
@@ -124,19 +154,41 @@ pub fn toi_circle_segment<const D: usize>(
     let u = b - a;
     let l2 = u.norm_sq();
     let w = m.pos - a;
+    // A tiny velocity is scaled by powers of two first (exactly), so that projecting it on
+    // the segment does not underflow; times are scaled back at the end.
+    let (vel, steps) = scaled_velocity(m.vel);
     let w_perp = w - u * (w.dot(u) / l2);
-    let v_perp = m.vel - u * (m.vel.dot(u) / l2);
+    let v_perp = vel - u * (vel.dot(u) / l2);
     let interior = first_contact(w_perp, v_perp, r).filter(|&dt| {
-        let s = (w + m.vel * dt).dot(u) / l2;
+        let s = (w + vel * dt).dot(u) / l2;
         (0.0..=1.0).contains(&s)
     });
-    let end_a = first_contact(w, m.vel, r);
-    let end_b = first_contact(m.pos - b, m.vel, r);
+    let end_a = first_contact(w, vel, r);
+    let end_b = first_contact(m.pos - b, vel, r);
     [interior, end_a, end_b]
         .into_iter()
         .flatten()
         .reduce(f64::min)
-        .map(|dt| m.time + dt)
+        .map(|dt| m.time + unscaled_time(dt, steps))
+}
+
+/// `(v · 2⁶⁰⁰ᵏ, k)` with `k ∈ {0, 1, 2}` the number of times `v` was multiplied by 2⁶⁰⁰ to lift
+/// it out of the range where its products underflow; `k = 0` for every speed above 2⁻³⁰⁰.
+#[inline]
+fn scaled_velocity<const D: usize>(v: Vector<D>) -> (Vector<D>, u32) {
+    let (mut v, mut steps) = (v, 0);
+    while steps < 2 && v.norm_sq() < MIN_UNSCALED_A {
+        v = v * SPEED_SCALE;
+        steps += 1;
+    }
+    (v, steps)
+}
+
+/// A time computed with a velocity scaled `steps` times by 2⁶⁰⁰, in real seconds: multiplied
+/// back one power at a time (2¹²⁰⁰ itself is no float); `+∞` when it exceeds the largest one.
+#[inline]
+fn unscaled_time(t: f64, steps: u32) -> f64 {
+    (0..steps).fold(t, |t, _| t * SPEED_SCALE)
 }
 
 /// Time of impact of a ball (radius `r`) with the one-sided plane through `point` whose
@@ -150,7 +202,15 @@ pub fn toi_circle_plane<const D: usize>(
     normal: Vector<D>,
 ) -> Option<f64> {
     let len = normal.norm();
-    let vn = m.vel.dot(normal) / len;
+    let mut vn = m.vel.dot(normal) / len;
+    let mut steps = 0;
+    if vn.abs() < MIN_UNSCALED_SPEED {
+        // A tiny normal speed loses bits, or all of them, to underflow in the dot product:
+        // scale the velocity by powers of two (exactly) as `first_contact` does.
+        let vel;
+        (vel, steps) = scaled_velocity(m.vel);
+        vn = vel.dot(normal) / len;
+    }
     if vn >= 0.0 {
         return None;
     }
@@ -158,7 +218,9 @@ pub fn toi_circle_plane<const D: usize>(
     if gap <= 0.0 {
         return Some(m.time);
     }
-    Some(m.time + gap / -vn)
+    // An infinite time (beyond the largest float) stays infinite: no finder ever returns it
+    // (`finite_event`), and the simulation says why the run stopped.
+    Some(m.time + unscaled_time(gap / -vn, steps))
 }
 
 /// Time of impact of a ball (radius `r`) with a wall of either kind.
@@ -288,15 +350,24 @@ mod tests {
         // Head-on at 10⁻²⁰⁰: contact after 2·10²⁰⁰, to the last bits of the exact value.
         let t = first_contact(Vector([0.0, 3.0]), Vector([0.0, -1e-200]), 1.0).unwrap();
         assert!((t / 2e200 - 1.0).abs() < 1e-15, "{t:e}");
-        // Speeds whose squares underflow even after scaling: no contact (never an invented
-        // one).
-        assert_eq!(
-            first_contact(Vector([0.0, 3.0]), Vector([0.0, -1e-305]), 1.0),
-            None
-        );
-        assert_eq!(
-            first_contact(Vector([0.0, 3.0]), Vector([0.0, -1e-320]), 1.0),
-            None
+        // Speeds whose squares underflow even after one scaling: scaled twice, the contact
+        // is found (issue 20: at 10⁻²⁸⁰ pairs used to pass through each other).
+        let t = first_contact(Vector([0.0, 3.0]), Vector([0.0, -1e-280]), 1.0).unwrap();
+        assert!((t / 2e280 - 1.0).abs() < 1e-15, "{t:e}");
+        let t = first_contact(Vector([0.0, 3.0]), Vector([0.0, -1e-305]), 1.0).unwrap();
+        assert!((t / 2e305 - 1.0).abs() < 1e-15, "{t:e}");
+        // The smallest subnormal speed, on a gap that keeps the time representable.
+        let t = first_contact(Vector([0.0, 1.0 + 1e-300]), Vector([0.0, -5e-324]), 1.0);
+        assert!(t.is_some_and(f64::is_finite), "{t:?}");
+        // Beyond the largest float: no time, but known to be a contact, not a miss.
+        let (dp, dv) = (Vector([0.0, 3.0]), Vector([0.0, -1e-320]));
+        assert_eq!(first_contact(dp, dv, 1.0), None);
+        assert!(contact_beyond_range(dp, dv, 1.0));
+        assert!(!contact_beyond_range(Vector([2.0, 3.0]), dv, 1.0), "a miss");
+        assert!(!contact_beyond_range(dp, -dv, 1.0), "receding");
+        assert!(
+            !contact_beyond_range(dp, Vector([0.0, -1.0]), 1.0),
+            "finite"
         );
     }
 
