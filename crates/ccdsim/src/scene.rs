@@ -4,6 +4,7 @@
 //! dimension; [`Scene::validate`] checks everything the simulator relies on.
 
 use crate::geom::{ball_volume, Vector};
+use crate::resolution::{resolution_error, resolves, ulp, RESOLUTION_LIMIT};
 use crate::wall::{closed_segments, inside_even_odd};
 pub use crate::wall::{wall_clearance, Wall};
 use serde::{Deserialize, Serialize};
@@ -184,6 +185,15 @@ pub enum SceneError {
         /// What is wrong.
         why: String,
     },
+    /// `f64` cannot resolve a body's contacts: its start time or coordinates are so large
+    /// that their rounding is a sizeable part of its radius (see [`crate::resolution`]).
+    #[error("{body}: {why}")]
+    Resolution {
+        /// The body.
+        body: BodyName,
+        /// What is too coarse, with the numbers and a remedy.
+        why: String,
+    },
     /// Reading the file failed.
     #[error("{0}")]
     Io(String),
@@ -296,6 +306,7 @@ impl<const D: usize> Scene<D> {
                 return Err(SceneError::NonPositive(f("mass")));
             }
         }
+        self.validate_resolution()?;
         if let Some((first, second)) = self.first_duplicate_id() {
             return Err(SceneError::DuplicateId {
                 id: self.id_of(second),
@@ -338,6 +349,39 @@ impl<const D: usize> Scene<D> {
 }
 
 impl<const D: usize> Scene<D> {
+    /// Every body resolved at the start time (see [`crate::resolution`]).
+    fn validate_resolution(&self) -> Result<(), SceneError> {
+        let t = self.start_time;
+        for (i, b) in self.bodies.iter().enumerate() {
+            if resolves(t, b.pos, b.vel, b.radius) {
+                continue;
+            }
+            let limit = RESOLUTION_LIMIT * b.radius;
+            let why = if resolves(0.0, b.pos, b.vel, b.radius) {
+                format!(
+                    "at start_time {t:e} s the clock resolves only {:.2e} s, so its position \
+                     at speed {:.2e} m/s is uncertain by more than {limit:.2e} m ({RESOLUTION_LIMIT:e} \
+                     of its radius): give start_time a value near 0",
+                    ulp(t),
+                    b.vel.norm()
+                )
+            } else {
+                format!(
+                    "its coordinates ({:.2e} m) are resolved only to {:.2e} m, more than {limit:.2e} m \
+                     ({RESOLUTION_LIMIT:e} of its radius): move the origin closer or change \
+                     the unit of length",
+                    b.pos.0.iter().fold(0.0f64, |m, c| m.max(c.abs())),
+                    resolution_error(0.0, b.pos, Vector::ZERO)
+                )
+            };
+            return Err(SceneError::Resolution {
+                body: self.name(i),
+                why,
+            });
+        }
+        Ok(())
+    }
+
     /// The first body (in index order) whose id an earlier body already has, with that
     /// earlier body: `(first, second)`. Sorting keeps this at 16 bytes per body, so that
     /// validating a million bodies stays cheap in memory.

@@ -3,6 +3,7 @@
 use crate::event::{Event, EventKind};
 use crate::finder::{make_finder, Finder, FinderError, FinderOptions};
 use crate::geom::Vector;
+use crate::halt::{check_exhausted, unresolved, Halt};
 use crate::observables::{observables, Observables};
 use crate::periodic::wrap_point;
 use crate::resolve::{resolve_body_body_contact, resolve_body_wall, resolve_exit};
@@ -90,6 +91,7 @@ pub struct Simulation<const D: usize> {
     world: World<D>,
     finder: Box<dyn Finder<D>>,
     pending: Option<Option<Event>>,
+    halt: Option<Halt>,
     stats: Stats,
     start_time: f64,
 }
@@ -118,6 +120,7 @@ impl<const D: usize> Simulation<D> {
             world,
             finder,
             pending: None,
+            halt: None,
             stats,
         })
     }
@@ -179,10 +182,35 @@ impl<const D: usize> Simulation<D> {
         }
     }
 
-    /// The finder's next event: a collision or, in periodic worlds, a box exit.
+    /// Why the simulation stopped while events remained, if it did: a contact beyond the
+    /// largest time, or an event at which `f64` no longer resolves a body (see
+    /// [`crate::halt`]). Once halted, no event is returned until an edit
+    /// ([`Simulation::set_velocity`]) changes the world.
+    #[must_use]
+    pub fn halt(&self) -> Option<Halt> {
+        self.halt
+    }
+
+    /// The finder's next event: a collision or, in periodic worlds, a box exit; `None` also
+    /// when the simulation halts (see [`Simulation::halt`]).
     fn next_raw(&mut self) -> Option<Event> {
         if self.pending.is_none() {
-            self.pending = Some(self.finder.next_event(&self.world));
+            let answer = match check_exhausted(&self.world, self.finder.next_event(&self.world)) {
+                Ok(answer) => answer,
+                Err(halt) => {
+                    self.halt = Some(halt);
+                    None
+                }
+            };
+            if let Some(e) = answer {
+                let bodies = [e.a as usize, e.b as usize];
+                let involved = match e.kind {
+                    EventKind::Body => &bodies[..],
+                    EventKind::Wall => &bodies[..1],
+                };
+                self.halt = unresolved(&self.world, e.time, involved);
+            }
+            self.pending = Some(answer.filter(|_| self.halt.is_none()));
         }
         self.pending.flatten()
     }
@@ -298,7 +326,8 @@ impl<const D: usize> Simulation<D> {
             on_event(&c);
             count += 1;
         }
-        if t > self.world.now() {
+        // A halted run stays where it stopped: the events before `t` were not all resolved.
+        if t > self.world.now() && self.halt.is_none() {
             self.world.set_now(t);
         }
         count
@@ -353,6 +382,7 @@ impl<const D: usize> Simulation<D> {
         self.world.set_state(i, p, vel, t);
         self.finder.update(&self.world, &[i]);
         self.pending = None;
+        self.halt = None;
         Ok(())
     }
 }

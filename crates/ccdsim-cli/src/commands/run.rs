@@ -1,10 +1,11 @@
 //! `ccdsim run`: simulate a scene, optionally recording a run file, and print a summary.
 
+use super::finder_args::FinderArgs;
 use crate::progress::Progress;
 use anyhow::{Context, Result};
 use ccdsim::generate::{rack, RackConfig};
 use ccdsim::record::RunWriter;
-use ccdsim::{make_finder, AnyScene, FinderOptions, Scene, Simulation};
+use ccdsim::{make_finder, AnyScene, Scene, Simulation};
 use serde::Serialize;
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -37,46 +38,6 @@ pub struct Args {
     finder_options: FinderArgs,
 }
 
-/// Options of the finders, shared by the commands that run simulations.
-#[derive(clap::Args, Clone)]
-pub struct FinderArgs {
-    /// bvh: factor by which the time step grows while no event is found.
-    #[arg(long, default_value_t = FinderOptions::default().bvh_grow)]
-    pub bvh_grow: f64,
-    /// bvh: factor by which the time step shrinks after an event.
-    #[arg(long, default_value_t = FinderOptions::default().bvh_shrink)]
-    pub bvh_shrink: f64,
-    /// bvh: the first time step, seconds.
-    #[arg(long, default_value_t = FinderOptions::default().bvh_initial_dt)]
-    pub bvh_initial_dt: f64,
-    /// cells: skin of the neighbour lists (periodic worlds), relative to the largest contact
-    /// distance; 0 turns the lists off (cell crossings), else in [0.001, 1]. Default:
-    /// automatic (no lists in 2D, 0.4 in 3D).
-    #[arg(long)]
-    pub cells_skin: Option<f64>,
-}
-
-impl FinderArgs {
-    /// The library's options, checked; a bad one is named by its flag (`--bvh-grow`).
-    pub fn options(&self) -> Result<FinderOptions> {
-        let options = FinderOptions {
-            bvh_grow: self.bvh_grow,
-            bvh_shrink: self.bvh_shrink,
-            bvh_initial_dt: self.bvh_initial_dt,
-            cells_skin: self.cells_skin,
-        };
-        let checked = ccdsim::finder::bvh::check_options(&options)
-            .and_then(|()| ccdsim::finder::check_cells_options(&options));
-        match checked {
-            Err(ccdsim::FinderError::Option { option, why }) => {
-                anyhow::bail!("--{}: {why}", option.replace('_', "-"))
-            }
-            Err(e) => Err(e.into()),
-            Ok(()) => Ok(options),
-        }
-    }
-}
-
 /// The `--json` summary; field names are an interface (DESIGN.md): extend, never rename.
 #[derive(Serialize)]
 struct Summary {
@@ -107,6 +68,9 @@ struct Summary {
     /// The finder's internal work (e.g. `cells`: crossings, stale predictions, rescans), by
     /// name; empty for finders that keep no counters.
     finder_counters: std::collections::BTreeMap<String, u64>,
+    /// Why the run stopped before `--until`/`--events` while events remained (a contact
+    /// beyond the largest time, or f64 no longer resolving a body), or null.
+    halt: Option<String>,
 }
 
 /// Runs the command.
@@ -193,6 +157,9 @@ fn simulate<const D: usize>(scene: &Scene<D>, args: &Args) -> Result<Summary> {
     if let Some(w) = sink.writer {
         w.finish(sim.time())?;
     }
+    if let Some(halt) = sim.halt() {
+        eprintln!("warning: {halt}");
+    }
     let stats = *sim.stats();
     let observables = sim.observables();
     let ke_end = sim.world().kinetic_energy();
@@ -233,6 +200,7 @@ fn simulate<const D: usize>(scene: &Scene<D>, args: &Args) -> Result<Summary> {
             .into_iter()
             .map(|(name, count)| (name.to_string(), count))
             .collect(),
+        halt: sim.halt().map(|h| h.to_string()),
     })
 }
 
