@@ -2,6 +2,7 @@
 
 pub mod bench;
 pub mod export;
+pub mod finder_args;
 pub mod gen;
 pub mod render;
 pub mod run;

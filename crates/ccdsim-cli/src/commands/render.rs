@@ -1,6 +1,6 @@
 //! `ccdsim render`: draw a run without a browser, as a PNG frame or an animated GIF.
 
-use super::run::FinderArgs;
+use super::finder_args::FinderArgs;
 use anyhow::{bail, Result};
 use ccdsim_viewer::{render_gif, render_png, ColourBy, GifOptions, RenderOptions};
 use std::path::PathBuf;

@@ -1,6 +1,6 @@
 //! `ccdsim view`: serve a run file to the browser viewer on 127.0.0.1.
 
-use super::run::FinderArgs;
+use super::finder_args::FinderArgs;
 use anyhow::Result;
 use ccdsim_viewer::{serve, ServeOptions, ViewerError};
 use std::io::Write;

@@ -23,9 +23,11 @@
 mod all_pairs;
 pub mod bvh;
 mod cells;
+mod options;
 mod sedgewick;
 
 pub use all_pairs::{all_pairs_next_event, AllPairs};
+pub use options::{auto_cells_skin, finder_options, FinderOption, FinderOptions};
 
 /// `e`, unless its time is infinite (or undefined): a contact at an infinite time never
 /// happens. Times of impact overflow to infinity only in degenerate runs, when speeds have
@@ -129,46 +131,6 @@ pub enum FinderError {
         /// Why.
         why: String,
     },
-}
-
-/// Options of all finders; each finder reads its own.
-#[derive(Clone, Debug, PartialEq)]
-pub struct FinderOptions {
-    /// `bvh`: factor by which the time step Δ grows while no event is found (> 1; thesis: 2).
-    pub bvh_grow: f64,
-    /// `bvh`: factor by which Δ shrinks after an event is found (in (0, 1]; thesis: 1/2).
-    pub bvh_shrink: f64,
-    /// `bvh`: the first Δ, seconds (> 0).
-    pub bvh_initial_dt: f64,
-    /// `cells`: the skin of the neighbour lists, relative to the largest contact distance
-    /// (0: no lists, cell crossings; else in `[0.001, 1]`); `None`: automatic
-    /// ([`auto_cells_skin`]). Lists are used in periodic worlds only; other worlds always use
-    /// cell crossings.
-    pub cells_skin: Option<f64>,
-}
-
-impl Default for FinderOptions {
-    fn default() -> Self {
-        FinderOptions {
-            bvh_grow: 2.0,
-            bvh_shrink: 0.5,
-            bvh_initial_dt: 1e-3,
-            cells_skin: None,
-        }
-    }
-}
-
-/// The skin the `cells` finder uses in `D` dimensions when [`FinderOptions::cells_skin`] is
-/// `None`: lists pay in 3D (about 23 candidates per cell scan against 9 in a list at packing
-/// 0.45), not in 2D (5.7 candidates per scan, few to save, and list rebuilds cost more than
-/// cell crossings): see the README's measurements.
-#[must_use]
-pub fn auto_cells_skin(dim: usize) -> f64 {
-    if dim >= 3 {
-        0.4
-    } else {
-        0.0
-    }
 }
 
 /// Names of every finder [`make_finder`] knows.

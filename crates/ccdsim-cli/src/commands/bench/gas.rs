@@ -3,7 +3,7 @@
 //! and collision rate against the Henderson (2D) and Carnahan–Starling (3D) equations of state.
 
 use super::write_file;
-use crate::commands::run::FinderArgs;
+use crate::commands::finder_args::FinderArgs;
 use crate::progress::Progress;
 use anyhow::{anyhow, Result};
 use ccdsim::bench::{gas_bench, GasBenchConfig, GasBenchReport};

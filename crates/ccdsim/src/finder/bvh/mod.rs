@@ -92,6 +92,7 @@
 //! (a repeated query), the last answer is returned without searching.
 
 mod build;
+mod options;
 mod refit;
 mod traverse;
 mod tree;
@@ -101,6 +102,7 @@ mod walls;
 #[cfg(test)]
 mod tests;
 
+pub use options::OPTIONS;
 pub use validate::InvalidTree;
 
 use super::{finite_event, DebugBox, Finder, FinderError, FinderOptions};

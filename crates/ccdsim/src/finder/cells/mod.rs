@@ -209,6 +209,7 @@ mod gather;
 mod grid;
 mod key;
 mod lists;
+mod options;
 mod pair;
 mod predict;
 mod slots;
@@ -223,6 +224,7 @@ use crate::world::World;
 use grid::{Grid, MARGIN};
 use key::{Key, MAX_INDEX};
 use lists::{shell_exit_time, Lists, MAX_LIST_BODIES};
+pub use options::OPTIONS;
 use predict::{Cached, Probe, UNKNOWN_CHANGES};
 use tournament::TournamentQueue;
 
