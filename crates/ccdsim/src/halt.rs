@@ -9,7 +9,7 @@
 //!   finder has no event left, [`beyond_range`] looks for one and names it.
 //! * **Resolution.** Before each event the simulation checks that every involved body is
 //!   still resolved ([`crate::resolution`]): the clock's rounding times its speed, and its
-//!   coordinates' rounding, stay within `1e-10` of its radius. Past that, contact times and
+//!   coordinates' rounding, stay within `5e-10` of its radius. Past that, contact times and
 //!   positions are noise, so the event is not resolved.
 //!
 //! Either check depends only on the world's stored states and the event, never on the finder,
@@ -62,7 +62,7 @@ pub enum Halt {
     /// clock times its speed, plus that of its coordinates, is `error` metres, more than
     /// [`RESOLUTION_LIMIT`](crate::resolution::RESOLUTION_LIMIT) of its radius.
     #[error(
-        "at t = {time:e} s the rounding of time and position ({error:.2e} m) exceeds 1e-10 of the \
+        "at t = {time:e} s the rounding of time and position ({error:.2e} m) exceeds 5e-10 of the \
          radius of body {body}: f64 can no longer resolve its contacts, so the run stops \
          before this event (start nearer t = 0, or nearer the origin)"
     )]

@@ -10,16 +10,20 @@
 //! The rule: the resolution error `|v|∞ · ulp(t) + ulp(|p|∞)` of a body must stay within
 //! [`RESOLUTION_LIMIT`] of its radius. [`Scene::validate`](crate::Scene::validate) refuses a
 //! scene whose bodies break it at the start time, and the simulation stops, saying why, before
-//! an event at which an involved body breaks it (see [`Halt`](crate::halt::Halt)). The limit
-//! is ten times tighter than the verifier's overlap tolerance (`1e-9` of a contact distance),
-//! which a handful of roundings of that size cannot reach. Ordinary runs are far from it: a
-//! gas of unit-diameter discs at kT = 1 reaches it after about 10⁴ time units, and a ball of
-//! radius `r` at about `4·10⁵ r` from the origin (1 cm balls: 4 km).
+//! an event at which an involved body breaks it (see [`Halt`](crate::halt::Halt)).
+//!
+//! Why `5·10⁻¹⁰`: a gap between two bodies is off by the sum of their position errors, at
+//! most `5·10⁻¹⁰ (r_i + r_j)` under the rule, half of the `10⁻⁹` of a contact distance that
+//! the numerical rules (and `verify`) allow; and a rounding errs by half an ulp where the
+//! resolution error counts a whole one. Ordinary runs are far from the limit: a gas of
+//! unit-diameter discs at kT = 1 reaches it after about 10⁵ time units, a billiard ball at
+//! 2 m/s after about 8 hours, and a ball of radius `r` is resolved up to about `2·10⁶ r`
+//! from the origin (1 cm balls: 20 km).
 
 use crate::geom::Vector;
 
 /// Largest resolution error allowed, relative to a body's radius.
-pub const RESOLUTION_LIMIT: f64 = 1e-10;
+pub const RESOLUTION_LIMIT: f64 = 5e-10;
 
 /// The gap between `|x|` and the next larger `f64`: the resolution of numbers near `x`
 /// (`0` gives the smallest subnormal; an infinite or NaN `x` gives infinity).
@@ -73,12 +77,12 @@ mod tests {
         let v = Vector([1.0, -2.0]);
         // A billiard ball (radius 28 mm) at 2 m/s on a table near the origin, an hour into a
         // run; ten hours in, the clock's steps (7.3·10⁻¹² s) move it by 1.5·10⁻¹¹ m, more
-        // than 10⁻¹⁰ of its radius.
+        // than 5·10⁻¹⁰ of its radius.
         assert!(resolves(3_600.0, Vector([1.2, 0.6]), v, 0.028));
         assert!(!resolves(36_000.0, Vector([1.2, 0.6]), v, 0.028));
         // Start time 10¹⁷ s: the clock moves in steps of 16 s.
         assert!(!resolves(1e17, Vector([1.0, 1.0]), v, 0.5));
-        // Coordinates near 10⁶ m resolve to 1.2·10⁻¹⁰ m, a tenth of a millionth of 1 mm.
+        // Coordinates near 10⁶ m resolve to 1.2·10⁻¹⁰ m: a 1 mm ball needs 5·10⁻¹³ m.
         assert!(!resolves(0.0, Vector([1e6, 0.0]), Vector([0.0, 0.0]), 1e-3));
         // At rest, a huge time does not matter.
         assert!(resolves(1e300, Vector([1.0, 1.0]), Vector([0.0, 0.0]), 0.5));

@@ -270,9 +270,9 @@ fn runs_stop_where_time_no_longer_resolves_the_bodies() {
         start_time: 2f64.powi(30),
         ..Scene::default()
     };
-    // At 2³⁰ s the clock resolves 2⁻²² s: at 3 m/s that is 7·10⁻⁷ m, far beyond 10⁻¹⁰ of a
+    // At 2³⁰ s the clock resolves 2⁻²² s: at 3 m/s that is 7·10⁻⁷ m, far beyond 5·10⁻¹⁰ of a
     // radius, so the scene is refused. Started at 0 instead, the run reaches the same limit
-    // on its own (near 2¹⁵ s, where the clock resolves 2⁻³⁷ s) and must stop there.
+    // on its own (near 2¹⁸ s, where the clock resolves 2⁻³⁴ s) and must stop there.
     assert!(matches!(
         scene.validate(),
         Err(SceneError::Resolution { .. })
@@ -286,7 +286,7 @@ fn runs_stop_where_time_no_longer_resolves_the_bodies() {
     let Some(Halt::Resolution { time, body, error }) = sim.halt() else {
         panic!("expected a resolution halt, got {:?}", sim.halt());
     };
-    assert!(error > 1e-10 * scene.bodies[body].radius);
+    assert!(error > ccdsim::resolution::RESOLUTION_LIMIT * scene.bodies[body].radius);
     assert!(time > 1e3 && time < 1e9, "{time}");
     assert!(sim.time() < time, "the unresolved event is not resolved");
     let events = sim.stats().events;
