@@ -18,7 +18,6 @@
 #![deny(missing_docs)]
 #![forbid(unsafe_code)]
 
-pub mod bench;
 pub mod discrete;
 pub mod event;
 pub mod finder;

@@ -4,8 +4,8 @@
 use super::{parse_list, write_file, SceneRuns};
 use crate::progress::Progress;
 use anyhow::{anyhow, Result};
-use ccdsim::bench::{run_discrete_bench, DiscreteBenchConfig};
 use ccdsim::FINDER_NAMES;
+use ccdsim_bench::{run_discrete_bench, DiscreteBenchConfig};
 use std::process::ExitCode;
 
 /// Arguments of `ccdsim bench discrete`.

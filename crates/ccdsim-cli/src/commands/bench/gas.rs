@@ -6,7 +6,7 @@ use super::write_file;
 use crate::commands::finder_args::FinderArgs;
 use crate::progress::Progress;
 use anyhow::{anyhow, Result};
-use ccdsim::bench::{gas_bench, GasBenchConfig, GasBenchReport};
+use ccdsim_bench::{gas_bench, GasBenchConfig, GasBenchReport};
 use serde::Serialize;
 use std::path::PathBuf;
 use std::process::ExitCode;

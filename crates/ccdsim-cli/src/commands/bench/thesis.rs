@@ -4,9 +4,9 @@ use super::plot::{plot_times, Series};
 use super::{parse_list, write_file, SceneRuns};
 use crate::progress::Progress;
 use anyhow::{anyhow, Result};
-use ccdsim::bench::{run_thesis_bench, CellStatus, ThesisBenchConfig};
 use ccdsim::generate::THESIS_TABLE_5_1;
 use ccdsim::FINDER_NAMES;
+use ccdsim_bench::{run_thesis_bench, CellStatus, ThesisBenchConfig};
 use std::process::ExitCode;
 
 /// Arguments of `ccdsim bench thesis`.

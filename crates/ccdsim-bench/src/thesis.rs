@@ -2,10 +2,10 @@
 //! seconds, every finder, several seeds, mean collisions and mean running times.
 
 use super::budget::{CellStatus, Planner};
-use crate::finder::{make_finder, FinderOptions};
-use crate::generate::{thesis, ThesisConfig, THESIS_DURATION, THESIS_TABLE_5_1};
-use crate::sim::Simulation;
-use crate::FINDER_NAMES;
+use ccdsim::finder::{make_finder, FinderOptions};
+use ccdsim::generate::{thesis, ThesisConfig, THESIS_DURATION, THESIS_TABLE_5_1};
+use ccdsim::sim::Simulation;
+use ccdsim::FINDER_NAMES;
 use serde::Serialize;
 use std::fmt::Write as _;
 use std::time::Instant;

@@ -2,11 +2,11 @@
 //! finder and by the discrete-time stepper at several time steps, with the stepper's misses.
 
 use super::thesis::fmt_seconds;
-use crate::discrete::DiscreteStepper;
-use crate::finder::{make_finder, FinderOptions};
-use crate::generate::{thesis, ThesisConfig, THESIS_DURATION, THESIS_TABLE_5_2};
-use crate::scene::Scene;
-use crate::sim::Simulation;
+use ccdsim::discrete::DiscreteStepper;
+use ccdsim::finder::{make_finder, FinderOptions};
+use ccdsim::generate::{thesis, ThesisConfig, THESIS_DURATION, THESIS_TABLE_5_2};
+use ccdsim::scene::Scene;
+use ccdsim::sim::Simulation;
 use serde::Serialize;
 use std::fmt::Write as _;
 use std::time::Instant;

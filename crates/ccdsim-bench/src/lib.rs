@@ -3,6 +3,12 @@
 //! discrete-time stepper and the collisions it misses) and the gas workload (collisions per
 //! second and the equation of state of hard discs and spheres). They print tables and return data; the
 //! command-line tool adds the files and plots.
+//!
+//! A crate of its own, apart from the library: these drivers time and report, and a program
+//! that simulates has no use for them.
+
+#![deny(missing_docs)]
+#![forbid(unsafe_code)]
 
 mod budget;
 mod discrete;

@@ -12,12 +12,12 @@
 //! Peak memory is the caller's business (the library has no portable way to read it); to keep
 //! it low the scene is dropped as soon as the world is built, before the finder allocates.
 
-use crate::finder::{make_finder, FinderMemory, FinderOptions};
-use crate::generate::{gas, GasConfig, GenerateError, Lattice};
-use crate::geom::ball_volume;
-use crate::observables::{observables, temperature};
-use crate::sim::{SimError, Simulation};
-use crate::world::World;
+use ccdsim::finder::{make_finder, FinderMemory, FinderOptions};
+use ccdsim::generate::{gas, GasConfig, GenerateError, Lattice};
+use ccdsim::geom::ball_volume;
+use ccdsim::observables::{observables, temperature};
+use ccdsim::sim::{SimError, Simulation};
+use ccdsim::world::World;
 use std::time::Instant;
 
 /// Parameters of [`gas_bench`].
@@ -104,7 +104,7 @@ pub struct GasBenchReport {
     /// Box exits applied during the measurement (not collisions).
     pub exits: u64,
     /// The finder's internal work during the measurement (see
-    /// [`Finder::counters`](crate::Finder::counters)): name and count.
+    /// [`Finder::counters`](ccdsim::Finder::counters)): name and count.
     pub finder_counters: std::collections::BTreeMap<String, u64>,
 }
 
