@@ -15,9 +15,10 @@
 //! Either check depends only on the world's stored states and the event, never on the finder,
 //! so every finder halts at the same event with the same reason.
 
-use crate::finder::finite_event;
+use crate::event::{Event, EventKind};
 use crate::geom::Vector;
 use crate::narrow::{contact_beyond_range, toi_circle_wall};
+use crate::resolution::RESOLUTION_LIMIT;
 use crate::world::World;
 
 /// What a contact beyond the largest time is with.
@@ -76,22 +77,125 @@ pub enum Halt {
     },
 }
 
-/// The first involved body of an event at `time` that is not resolved, as a [`Halt`].
+/// The simulation's per-event resolution check, with a fast path: up to a time `fast_until`
+/// computed from bounds on every body's speed and coordinates, every body is resolved, and an
+/// event there needs one comparison; past it (or without such bounds) each event's bodies are
+/// checked ([`event_resolved`]). The answer is the same either way.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct ResolutionGuard {
+    /// `|t|` up to which every body is resolved (`-∞`: no fast path).
+    fast_until: f64,
+    /// What the clock's rounding may cost the fastest body, metres: the resolution limit of
+    /// the smallest radius less the coordinates' rounding (`≤ 0`: no fast path).
+    budget: f64,
+    /// The smallest mass, kilograms.
+    m_min: f64,
+    /// An upper bound of the kinetic energy, joules.
+    kinetic: f64,
+}
+
+impl ResolutionGuard {
+    /// The guard for `world`'s current states. Valid while kinetic energy does not grow
+    /// (collisions with restitution ≤ 1 never make it grow; an edit reports what it adds
+    /// through [`ResolutionGuard::add_energy`]).
+    ///
+    /// Speeds are bounded by `√(2K / m_min)` (one body holding all the kinetic energy `K`).
+    /// Coordinates are bounded in a periodic box (positions stay within a box length of it) and
+    /// inside closed polygons of segments (validation keeps every body inside them); other
+    /// worlds get no fast path.
+    pub(crate) fn new<const D: usize>(world: &World<D>) -> Self {
+        let coordinate_bound = if let Some(size) = world.periodic() {
+            Some(2.0 * size.0.iter().fold(0.0f64, |m, &l| m.max(l)))
+        } else {
+            let loops = crate::wall::closed_segments(world.walls());
+            (D == 2 && !loops.is_empty()).then(|| {
+                loops
+                    .iter()
+                    .flat_map(|(a, b)| a.0.into_iter().chain(b.0))
+                    .fold(0.0f64, |m, c| m.max(c.abs()))
+            })
+        };
+        let (mut m_min, mut r_min) = (f64::INFINITY, f64::INFINITY);
+        for i in 0..world.len() {
+            m_min = m_min.min(world.mass(i));
+            r_min = r_min.min(world.radius(i));
+        }
+        let budget = coordinate_bound.map_or(f64::NEG_INFINITY, |c| {
+            RESOLUTION_LIMIT * r_min - crate::resolution::ulp(c)
+        });
+        let mut guard = ResolutionGuard {
+            fast_until: f64::NEG_INFINITY,
+            budget,
+            m_min,
+            // 1 % over the sum covers its rounding.
+            kinetic: world.kinetic_energy() * 1.01,
+        };
+        guard.refresh();
+        guard
+    }
+
+    /// Body edits (a new velocity) may add up to `energy` joules of kinetic energy.
+    pub(crate) fn add_energy(&mut self, energy: f64) {
+        self.kinetic += energy.max(0.0) * 1.01;
+        self.refresh();
+    }
+
+    fn refresh(&mut self) {
+        let speed_bound = (2.0 * self.kinetic / self.m_min).sqrt();
+        self.fast_until = if !(self.budget > 0.0 && speed_bound.is_finite()) {
+            f64::NEG_INFINITY
+        } else if speed_bound == 0.0 {
+            f64::INFINITY
+        } else {
+            // The largest power of two whose ulp keeps `speed · ulp` within the budget: every
+            // |t| below it has an ulp no larger.
+            let exponent = (self.budget / speed_bound).log2().floor() as i32 + 52;
+            2f64.powi(exponent.clamp(-1000, 1023))
+        };
+    }
+
+    /// True when every body involved in `e` is resolved at its time.
+    #[inline(always)]
+    pub(crate) fn resolved<const D: usize>(&self, world: &World<D>, e: &Event) -> bool {
+        e.time.abs() < self.fast_until || event_resolved(world, e)
+    }
+}
+
+/// True when every body involved in `e` is resolved at its time (see
+/// [`crate::resolution`]): the check the simulation makes before each event, kept to a few
+/// instructions per body.
 #[must_use]
 #[inline]
-pub fn unresolved<const D: usize>(world: &World<D>, time: f64, bodies: &[usize]) -> Option<Halt> {
-    for &i in bodies {
-        let m = world.motion(i);
-        let pos = m.at(time);
-        if !crate::resolution::resolves(time, pos, m.vel, world.radius(i)) {
-            return Some(Halt::Resolution {
-                time,
-                body: i,
-                error: crate::resolution::resolution_error(time, pos, m.vel),
-            });
-        }
-    }
-    None
+pub fn event_resolved<const D: usize>(world: &World<D>, e: &Event) -> bool {
+    let clock = crate::resolution::ulp_of_finite(e.time);
+    let body = |i: u32| {
+        let b = &world.bodies()[i as usize];
+        crate::resolution::resolution_error_at(clock, b.motion.at(e.time), b.motion.vel)
+            <= crate::resolution::RESOLUTION_LIMIT * b.radius
+    };
+    body(e.a) && (e.kind == EventKind::Wall || body(e.b))
+}
+
+/// The first body involved in `e` that is not resolved at its time, as a [`Halt`]; `None`
+/// when all are.
+#[cold]
+#[must_use]
+pub fn unresolved<const D: usize>(world: &World<D>, e: &Event) -> Option<Halt> {
+    let involved = match e.kind {
+        EventKind::Body => &[e.a, e.b][..],
+        EventKind::Wall => &[e.a][..],
+    };
+    involved.iter().find_map(|&i| {
+        let m = world.motion(i as usize);
+        let pos = m.at(e.time);
+        (!crate::resolution::resolves(e.time, pos, m.vel, world.radius(i as usize))).then(|| {
+            Halt::Resolution {
+                time: e.time,
+                body: i as usize,
+                error: crate::resolution::resolution_error(e.time, pos, m.vel),
+            }
+        })
+    })
 }
 
 /// A contact of the world's stored states that lies beyond the largest time, if there is one;
@@ -104,6 +208,7 @@ pub fn unresolved<const D: usize>(world: &World<D>, time: f64, bodies: &[usize])
 /// of the bodies plus their largest diameter), so pairs are looked for only among bodies whose
 /// velocities agree exactly in every component above `2⁵³` times that: `O(n log n)` plus the
 /// pairs within such groups.
+#[cold]
 #[must_use]
 pub fn beyond_range<const D: usize>(world: &World<D>) -> Option<Halt> {
     let time = world.now();
@@ -199,17 +304,40 @@ fn pair_beyond_range<const D: usize>(world: &World<D>) -> Option<(usize, usize)>
     best
 }
 
-/// `finder_answer` unless it is `None` and a contact lies beyond the largest time, in which
-/// case that halt: a helper for [`Simulation`](crate::Simulation).
-pub(crate) fn check_exhausted<const D: usize>(
-    world: &World<D>,
-    finder_answer: Option<crate::Event>,
-) -> Result<Option<crate::Event>, Halt> {
-    match finite_event(finder_answer) {
-        Some(e) => Ok(Some(e)),
-        None => match beyond_range(world) {
-            Some(halt) => Err(halt),
-            None => Ok(None),
-        },
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::generate::{gas, GasConfig};
+    use crate::resolution::resolves;
+
+    /// Below the guard's `fast_until`, every body is resolved by the exact rule, at times as
+    /// late as the guard allows, even with all the energy in one body.
+    #[test]
+    fn the_fast_path_never_accepts_what_the_exact_check_refuses() {
+        for (periodic, seed) in [(true, 1), (false, 2), (true, 3)] {
+            let scene = gas::<2>(&GasConfig {
+                n: 200,
+                packing: 0.3,
+                periodic,
+                seed,
+                ..GasConfig::default()
+            })
+            .unwrap();
+            let world = World::from_scene(&scene).unwrap();
+            let guard = ResolutionGuard::new(&world);
+            assert!(guard.fast_until > 1.0, "{guard:?}");
+            let t = guard.fast_until * (1.0 - f64::EPSILON);
+            let k = world.kinetic_energy();
+            for i in 0..world.len() {
+                // The fastest this body can go: all the kinetic energy in it.
+                let speed = (2.0 * k / world.mass(i)).sqrt();
+                let m = world.motion(i);
+                let dir = m.vel * (1.0 / m.vel.norm().max(f64::MIN_POSITIVE));
+                assert!(
+                    resolves(t, m.pos, dir * speed, world.radius(i)),
+                    "body {i} at t = {t}"
+                );
+            }
+        }
     }
 }

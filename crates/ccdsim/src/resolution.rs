@@ -37,8 +37,28 @@ pub fn ulp(x: f64) -> f64 {
     f64::from_bits(x.to_bits() + 1) - x
 }
 
+/// [`ulp`] of a finite `x`, without the branch for infinities: the simulation's per-event
+/// check. An infinite or NaN `x` gives NaN, which no comparison accepts.
+#[must_use]
+#[inline(always)]
+pub(crate) fn ulp_of_finite(x: f64) -> f64 {
+    let x = x.abs();
+    f64::from_bits(x.to_bits() + 1) - x
+}
+
+/// [`resolution_error`] with the clock's [`ulp`] already known (one per event).
+#[must_use]
+#[inline(always)]
+pub(crate) fn resolution_error_at<const D: usize>(
+    clock_ulp: f64,
+    pos: Vector<D>,
+    vel: Vector<D>,
+) -> f64 {
+    max_abs(vel) * clock_ulp + ulp_of_finite(max_abs(pos))
+}
+
 /// The largest absolute component of `v`.
-#[inline]
+#[inline(always)]
 fn max_abs<const D: usize>(v: Vector<D>) -> f64 {
     v.0.iter().fold(0.0, |m, c| m.max(c.abs()))
 }
@@ -48,7 +68,7 @@ fn max_abs<const D: usize>(v: Vector<D>) -> f64 {
 #[must_use]
 #[inline]
 pub fn resolution_error<const D: usize>(t: f64, pos: Vector<D>, vel: Vector<D>) -> f64 {
-    max_abs(vel) * ulp(t) + ulp(max_abs(pos))
+    resolution_error_at(ulp(t), pos, vel)
 }
 
 /// True when a body of radius `radius` at `pos`, moving at `vel` at time `t`, is resolved:

@@ -3,7 +3,7 @@
 use crate::event::{Event, EventKind};
 use crate::finder::{make_finder, Finder, FinderError, FinderOptions};
 use crate::geom::Vector;
-use crate::halt::{check_exhausted, unresolved, Halt};
+use crate::halt::{beyond_range, unresolved, Halt, ResolutionGuard};
 use crate::observables::{observables, Observables};
 use crate::periodic::wrap_point;
 use crate::resolve::{resolve_body_body_contact, resolve_body_wall, resolve_exit};
@@ -92,6 +92,7 @@ pub struct Simulation<const D: usize> {
     finder: Box<dyn Finder<D>>,
     pending: Option<Option<Event>>,
     halt: Option<Halt>,
+    guard: ResolutionGuard,
     stats: Stats,
     start_time: f64,
 }
@@ -117,6 +118,7 @@ impl<const D: usize> Simulation<D> {
         };
         Ok(Simulation {
             start_time: world.now(),
+            guard: ResolutionGuard::new(&world),
             world,
             finder,
             pending: None,
@@ -195,22 +197,20 @@ impl<const D: usize> Simulation<D> {
     /// when the simulation halts (see [`Simulation::halt`]).
     fn next_raw(&mut self) -> Option<Event> {
         if self.pending.is_none() {
-            let answer = match check_exhausted(&self.world, self.finder.next_event(&self.world)) {
-                Ok(answer) => answer,
-                Err(halt) => {
-                    self.halt = Some(halt);
+            // Finders return finite events only (`finite_event`); the two halts are the cold
+            // paths.
+            let answer = match self.finder.next_event(&self.world) {
+                Some(e) if self.guard.resolved(&self.world, &e) => Some(e),
+                Some(e) => {
+                    self.halt = unresolved(&self.world, &e);
+                    None
+                }
+                None => {
+                    self.halt = beyond_range(&self.world);
                     None
                 }
             };
-            if let Some(e) = answer {
-                let bodies = [e.a as usize, e.b as usize];
-                let involved = match e.kind {
-                    EventKind::Body => &bodies[..],
-                    EventKind::Wall => &bodies[..1],
-                };
-                self.halt = unresolved(&self.world, e.time, involved);
-            }
-            self.pending = Some(answer.filter(|_| self.halt.is_none()));
+            self.pending = Some(answer);
         }
         self.pending.flatten()
     }
@@ -377,6 +377,9 @@ impl<const D: usize> Simulation<D> {
                 "velocity of body {i} is not finite"
             )));
         }
+        // The kinetic energy may grow: the guard's speed bound with it.
+        let added = 0.5 * self.world.mass(i) * (vel.norm_sq() - self.world.velocity(i).norm_sq());
+        self.guard.add_energy(added);
         let t = self.world.now();
         let p = self.position(i);
         self.world.set_state(i, p, vel, t);
