@@ -66,3 +66,84 @@ fn scripts_find_binaries_in_a_moved_target_directory() {
         moved
     );
 }
+
+/// Records the built-in break for one second and returns the run file's bytes.
+fn recorded_break(dir: &Path) -> Vec<u8> {
+    let run = dir.join("break.ccd");
+    run_ok(
+        ccdsim()
+            .args(["run", "--until", "1", "--quiet", "--record"])
+            .arg(&run),
+    );
+    std::fs::read(&run).unwrap()
+}
+
+/// Runs `verify` and `export` on `bytes` written to a file, returning each one's exit code
+/// and standard error.
+fn verify_and_export(dir: &Path, name: &str, bytes: &[u8]) -> [(Option<i32>, String); 2] {
+    let path = dir.join(name);
+    std::fs::write(&path, bytes).unwrap();
+    let out_file = dir.join(format!("{name}.jsonl"));
+    let _ = std::fs::remove_file(&out_file);
+    let verify = ccdsim().arg("verify").arg(&path).output().unwrap();
+    let export = ccdsim()
+        .arg("export")
+        .arg(&path)
+        .arg("--out")
+        .arg(&out_file)
+        .output()
+        .unwrap();
+    if !export.status.success() {
+        assert!(!out_file.exists(), "{name}: a failed export leaves no file");
+    }
+    [verify, export].map(|o| {
+        (
+            o.status.code(),
+            String::from_utf8_lossy(&o.stderr).into_owned(),
+        )
+    })
+}
+
+#[test]
+fn a_corrupt_header_length_is_an_error_not_an_allocation_failure() {
+    let dir = common::scratch_dir("hard-inputs", "header-length");
+    let mut bytes = recorded_break(&dir);
+    bytes[16..24].copy_from_slice(&(1u64 << 36).to_le_bytes());
+    for (code, err) in verify_and_export(&dir, "long-header.ccd", &bytes) {
+        // An abort would end the process by a signal, with no exit code.
+        assert_eq!(code, Some(2), "{err}");
+        assert!(err.contains("header length 68719476736"), "{err}");
+        assert_eq!(err.trim_end().lines().count(), 1, "{err}");
+    }
+}
+
+#[test]
+fn export_reports_a_truncated_run_file_as_verify_does() {
+    let dir = common::scratch_dir("hard-inputs", "truncated");
+    let mut bytes = recorded_break(&dir);
+    bytes.truncate(bytes.len() - 30);
+    for (code, err) in verify_and_export(&dir, "cut.ccd", &bytes) {
+        assert_eq!(code, Some(0), "{err}");
+        assert!(
+            err.contains("warning") && err.contains("incomplete record"),
+            "{err}"
+        );
+    }
+}
+
+#[test]
+fn bytes_after_the_end_record_are_refused() {
+    let dir = common::scratch_dir("hard-inputs", "trailing");
+    let mut bytes = recorded_break(&dir);
+    let end = bytes.len();
+    bytes.extend_from_slice(b"appended");
+    for (code, err) in verify_and_export(&dir, "trailing.ccd", &bytes) {
+        assert_ne!(code, Some(0), "{err}");
+        assert!(
+            err.contains(&format!(
+                "trailing data after the end record, at byte {end}"
+            )),
+            "{err}"
+        );
+    }
+}

@@ -26,8 +26,16 @@ pub struct Args {
     out: Option<PathBuf>,
 }
 
-/// Runs the command.
+/// Runs the command. A failed export leaves no partial output file.
 pub fn run(args: Args) -> Result<ExitCode> {
+    let result = export(&args);
+    if let (Err(_), Some(path)) = (&result, &args.out) {
+        let _ = std::fs::remove_file(path);
+    }
+    result
+}
+
+fn export(args: &Args) -> Result<ExitCode> {
     let Format::Jsonl = args.format;
     let mut reader = open_run(&args.file)?;
     let mut out: Box<dyn Write> = match &args.out {
@@ -37,10 +45,20 @@ pub fn run(args: Args) -> Result<ExitCode> {
         None => Box::new(std::io::stdout().lock()),
     };
     let mut out = BufWriter::new(&mut out);
-    match &mut reader {
-        AnyRunReader::D2(r) => export_jsonl(r, &mut out)?,
-        AnyRunReader::D3(r) => export_jsonl(r, &mut out)?,
+    let tail = match &mut reader {
+        AnyRunReader::D2(r) => {
+            export_jsonl(r, &mut out)?;
+            r.tail()
+        }
+        AnyRunReader::D3(r) => {
+            export_jsonl(r, &mut out)?;
+            r.tail()
+        }
     };
     out.flush()?;
+    // Like verify: a file cut short still exports what it holds, and says so.
+    if let Some(warning) = tail.warning() {
+        eprintln!("warning: {}: {warning}", args.file.display());
+    }
     Ok(ExitCode::SUCCESS)
 }

@@ -2,7 +2,7 @@
 
 use crate::progress::Progress;
 use anyhow::Result;
-use ccdsim::record::{open_run, AnyRunReader, RunReader, RunRecord, Tail};
+use ccdsim::record::{open_run, AnyRunReader, RunReader, RunRecord};
 use ccdsim::verify::Verifier;
 use std::io::Read;
 use std::path::PathBuf;
@@ -55,14 +55,8 @@ fn check<R: Read, const D: usize>(
     progress.finish();
     match verifier.finish(end) {
         Ok(report) => {
-            match reader.tail() {
-                Tail::Truncated { bytes } => {
-                    eprintln!("warning: the run file ends with {bytes} bytes of an incomplete record (ignored)")
-                }
-                Tail::NoEnd => {
-                    eprintln!("warning: the run file has no end record (the run was interrupted)")
-                }
-                _ => {}
+            if let Some(warning) = reader.tail().warning() {
+                eprintln!("warning: {warning}");
             }
             let drift = if report.kinetic_energy_start > 0.0 {
                 (report.kinetic_energy_end - report.kinetic_energy_start)

@@ -83,6 +83,14 @@ pub enum RecordError {
         /// What is wrong.
         why: String,
     },
+    /// Bytes follow the end record.
+    #[error("{path}: trailing data after the end record, at byte {offset}")]
+    TrailingData {
+        /// The file.
+        path: String,
+        /// Offset of the first byte after the end record.
+        offset: u64,
+    },
     /// A record in the middle of the file is damaged.
     #[error("{path}: record {index} is corrupt ({why})")]
     Corrupt {

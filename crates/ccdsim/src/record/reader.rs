@@ -29,6 +29,21 @@ pub enum Tail {
     },
 }
 
+impl Tail {
+    /// A one-line warning for a file that did not end cleanly (`None` for a complete file,
+    /// or one not read to the end): what `verify` and `export` print.
+    #[must_use]
+    pub fn warning(&self) -> Option<String> {
+        match self {
+            Tail::Truncated { bytes } => Some(format!(
+                "the run file ends with {bytes} bytes of an incomplete record (ignored)"
+            )),
+            Tail::NoEnd => Some("the run file has no end record (the run was interrupted)".into()),
+            Tail::Complete | Tail::Unread => None,
+        }
+    }
+}
+
 /// Reads the records of a `D`-dimensional run file in order.
 pub struct RunReader<R: Read, const D: usize> {
     input: R,
@@ -55,8 +70,10 @@ pub fn open_run(path: &Path) -> Result<AnyRunReader, RecordError> {
         path: name.clone(),
         source,
     };
-    let mut file = BufReader::with_capacity(1 << 16, File::open(path).map_err(io)?);
-    let (dim, json) = read_header(&mut file, &name)?;
+    let file = File::open(path).map_err(io)?;
+    let size = file.metadata().map_err(io)?.len();
+    let mut file = BufReader::with_capacity(1 << 16, file);
+    let (dim, json) = read_header(&mut file, &name, Some(size))?;
     let data_start = (PREAMBLE_LEN + json.len()) as u64;
     Ok(match dim {
         2 => AnyRunReader::D2(RunReader::from_parts(file, name, &json, data_start)?),
@@ -70,7 +87,14 @@ pub fn open_run(path: &Path) -> Result<AnyRunReader, RecordError> {
     })
 }
 
-fn read_header<R: Read>(input: &mut R, name: &str) -> Result<(u32, String), RecordError> {
+/// Reads the preamble and the scene JSON. `size`, when the input's length is known, bounds the
+/// header length; either way the header is read as it arrives, never into a buffer of a length
+/// the file claims (a corrupt length of 2³⁶ must be an error, not an allocation failure).
+fn read_header<R: Read>(
+    input: &mut R,
+    name: &str,
+    size: Option<u64>,
+) -> Result<(u32, String), RecordError> {
     let mut pre = [0u8; PREAMBLE_LEN];
     let got = read_full(input, &mut pre).map_err(|source| RecordError::Io {
         path: name.into(),
@@ -95,21 +119,33 @@ fn read_header<R: Read>(input: &mut R, name: &str) -> Result<(u32, String), Reco
     }
     let dim = u32::from_le_bytes(pre[12..16].try_into().expect("4 bytes"));
     let len = u64::from_le_bytes(pre[16..24].try_into().expect("8 bytes"));
-    if len > (1 << 40) {
-        return Err(RecordError::Header {
-            path: name.into(),
-            why: format!("implausible header length {len}"),
-        });
+    if let Some(size) = size {
+        let room = size.saturating_sub(PREAMBLE_LEN as u64);
+        if len > room {
+            return Err(RecordError::Header {
+                path: name.into(),
+                why: format!(
+                    "header length {len} exceeds the {room} bytes the file holds after its \
+                     preamble (corrupt or truncated file)"
+                ),
+            });
+        }
     }
-    let mut json = vec![0u8; len as usize];
-    let got = read_full(input, &mut json).map_err(|source| RecordError::Io {
-        path: name.into(),
-        source,
-    })?;
-    if got < json.len() {
+    let mut json = Vec::new();
+    input
+        .take(len)
+        .read_to_end(&mut json)
+        .map_err(|source| RecordError::Io {
+            path: name.into(),
+            source,
+        })?;
+    if (json.len() as u64) < len {
         return Err(RecordError::Header {
             path: name.into(),
-            why: "file ends inside the scene header".into(),
+            why: format!(
+                "file ends inside the scene header ({} of {len} bytes)",
+                json.len()
+            ),
         });
     }
     let json = String::from_utf8(json).map_err(|_| RecordError::Header {
@@ -135,7 +171,7 @@ fn read_full<R: Read>(input: &mut R, buf: &mut [u8]) -> std::io::Result<usize> {
 impl<R: Read, const D: usize> RunReader<R, D> {
     /// Reads the header of a `D`-dimensional run from `input`; `name` is used in errors.
     pub fn new(mut input: R, name: String) -> Result<Self, RecordError> {
-        let (dim, json) = read_header(&mut input, &name)?;
+        let (dim, json) = read_header(&mut input, &name, None)?;
         if dim as usize != D {
             return Err(RecordError::Header {
                 path: name,
@@ -221,6 +257,21 @@ impl<R: Read, const D: usize> RunReader<R, D> {
                 self.index += 1;
                 if let RunRecord::End(_) = rec {
                     self.tail = Tail::Complete;
+                    // Nothing may follow the end record: bytes there were written by
+                    // something else, or a run file was appended to another.
+                    let mut probe = [0u8; 1];
+                    let more = read_full(&mut self.input, &mut probe).map_err(|source| {
+                        RecordError::Io {
+                            path: self.path.clone(),
+                            source,
+                        }
+                    })?;
+                    if more > 0 {
+                        return Err(RecordError::TrailingData {
+                            path: self.path.clone(),
+                            offset: self.data_start + self.index * record_len(D) as u64,
+                        });
+                    }
                 }
                 Ok(Some(rec))
             }
