@@ -8,13 +8,24 @@
 //! rather than the simulator's narrow phase. In a periodic scene, positions are compared and
 //! distances measured between nearest images, and closest approaches are searched over every
 //! image the relative motion passes.
+//!
+//! The miss check looks at the pairs that its own broad phase ([`proximity`]: a hash grid of
+//! swept boxes in slabs of time, sharing no code with the finders) says may have come close,
+//! so a replay costs about as much per event as the simulation; [`Verifier::all_pairs`]
+//! checks every pair instead, for tests and small runs.
+
+mod closest;
+mod proximity;
 
 use crate::event::EventKind;
 use crate::geom::Vector;
 use crate::narrow::Motion;
 use crate::periodic::min_image;
-use crate::scene::{wall_clearance, Scene, Wall};
+use crate::scene::Scene;
 use crate::sim::Collision;
+use crate::wall::{wall_clearance, Wall};
+use closest::{closest_approach, closest_to_wall};
+use proximity::Proximity;
 
 /// Allowed overlap relative to the contact distance.
 pub const OVERLAP_TOLERANCE: f64 = 1e-9;
@@ -60,6 +71,10 @@ pub struct Verifier<const D: usize> {
     restitution: f64,
     last_time: f64,
     report: VerifyReport,
+    /// The broad phase of the miss check; `None`: every pair is checked.
+    grid: Option<Proximity<D>>,
+    /// Slab length, seconds: a typical body crosses about one cell per slab.
+    slab: f64,
 }
 
 impl<const D: usize> Verifier<D> {
@@ -81,9 +96,25 @@ impl<const D: usize> Verifier<D> {
             .zip(&mass)
             .map(|(m, ms)| 0.5 * ms * m.vel.norm_sq())
             .sum();
+        let radius: Vec<f64> = scene.bodies.iter().map(|b| b.radius).collect();
+        let r_max = radius.iter().fold(0.0f64, |m, &r| m.max(r));
+        let mean_speed =
+            motion.iter().map(|m| m.vel.norm()).sum::<f64>() / motion.len().max(1) as f64;
+        let slab = if mean_speed > 0.0 {
+            2.0 * r_max / mean_speed
+        } else {
+            f64::INFINITY
+        };
+        let mut grid = Proximity::new(&radius, scene.periodic, scene.start_time);
+        grid.start_slab(scene.start_time, scene.start_time + slab);
+        for (i, m) in motion.iter().enumerate() {
+            grid.file(i, m, radius[i], scene.start_time);
+        }
         Verifier {
+            grid: Some(grid),
+            slab,
             motion,
-            radius: scene.bodies.iter().map(|b| b.radius).collect(),
+            radius,
             mass,
             walls: scene.walls.clone(),
             period: scene.periodic,
@@ -94,6 +125,16 @@ impl<const D: usize> Verifier<D> {
                 kinetic_energy_end: ke,
                 ..Default::default()
             },
+        }
+    }
+
+    /// Starts from the run's initial scene, checking every pair of bodies at every event:
+    /// `O(n)` per event, the reference the grid's answers are tested against.
+    #[must_use]
+    pub fn all_pairs(scene: &Scene<D>) -> Self {
+        Verifier {
+            grid: None,
+            ..Self::new(scene)
         }
     }
 
@@ -133,6 +174,7 @@ impl<const D: usize> Verifier<D> {
                 return Err(self.fail(t, format!("body {i} gets a non-finite velocity")));
             }
         }
+        self.advance_slabs(t)?;
         for &i in &ids[..k] {
             self.check_no_miss(i, t)?;
         }
@@ -146,6 +188,9 @@ impl<const D: usize> Verifier<D> {
                 vel: c.vel[s],
                 time: t,
             };
+            if let Some(grid) = &mut self.grid {
+                grid.file(i, &self.motion[i], self.radius[i], t);
+            }
         }
         self.last_time = t;
         self.report.events += 1;
@@ -231,13 +276,13 @@ impl<const D: usize> Verifier<D> {
     /// to it since the later of their reference times.
     fn check_no_miss(&mut self, i: usize, t: f64) -> Result<(), Violation> {
         let mi = self.motion[i];
-        for j in 0..self.motion.len() {
-            if j == i {
+        for j in self.candidates(i) {
+            let mj = self.motion[j];
+            let t0 = self.from(&mi).max(self.from(&mj));
+            let sigma = self.radius[i] + self.radius[j];
+            if self.stay_apart(&mi, &mj, t0, t, sigma) {
                 continue;
             }
-            let mj = self.motion[j];
-            let t0 = mi.time.max(mj.time);
-            let sigma = self.radius[i] + self.radius[j];
             let (d, at) = self.approach(mi.at(t0), mi.vel, mj.at(t0), mj.vel, t - t0);
             let overlap = (sigma - d) / sigma;
             if overlap > OVERLAP_TOLERANCE {
@@ -260,8 +305,16 @@ impl<const D: usize> Verifier<D> {
     /// kinetic energy recomputed from scratch.
     pub fn finish(mut self, end_time: f64) -> Result<VerifyReport, Violation> {
         let end = end_time.max(self.last_time);
+        if self.grid.is_some() {
+            self.advance_slabs(end)?;
+            self.check_pairs_until(end, "after the last event ")?;
+        } else {
+            for i in 0..self.motion.len() {
+                self.check_pairs_upto(i, end)?;
+            }
+        }
         for i in 0..self.motion.len() {
-            self.check_no_miss_upto(i, end)?;
+            self.check_walls_upto(i, end)?;
         }
         self.report.kinetic_energy_end = self
             .motion
@@ -272,19 +325,23 @@ impl<const D: usize> Verifier<D> {
         Ok(self.report)
     }
 
-    fn check_no_miss_upto(&mut self, i: usize, t: f64) -> Result<(), Violation> {
-        // Only pairs (i, j > i) are new here; walls are checked for every body.
+    /// All-pairs mode: pairs `(i, j > i)` from their later reference time to `t`.
+    fn check_pairs_upto(&mut self, i: usize, t: f64) -> Result<(), Violation> {
         let mi = self.motion[i];
         for j in i + 1..self.motion.len() {
-            let mj = self.motion[j];
-            let t0 = mi.time.max(mj.time);
-            let sigma = self.radius[i] + self.radius[j];
-            let (d, at) = self.approach(mi.at(t0), mi.vel, mj.at(t0), mj.vel, t - t0);
-            let overlap = (sigma - d) / sigma;
-            if overlap > OVERLAP_TOLERANCE {
-                return Err(self.fail(t0 + at, format!("bodies {i} and {j} overlap by {overlap:e} after the last event (a missed collision)")));
-            }
+            self.check_pair_span(
+                i,
+                j,
+                mi.time.max(self.motion[j].time),
+                t,
+                "after the last event ",
+            )?;
         }
+        Ok(())
+    }
+
+    fn check_walls_upto(&mut self, i: usize, t: f64) -> Result<(), Violation> {
+        let mi = self.motion[i];
         for (w, wall) in self.walls.iter().enumerate() {
             let (d, at) = closest_to_wall(wall, &mi, t);
             if (self.radius[i] - d) / self.radius[i] > OVERLAP_TOLERANCE {
@@ -296,9 +353,109 @@ impl<const D: usize> Verifier<D> {
         }
         Ok(())
     }
+
+    /// Bodies `i` and `j` did not come too close over `[t0, t1]` (their current motions).
+    fn check_pair_span(
+        &mut self,
+        i: usize,
+        j: usize,
+        t0: f64,
+        t1: f64,
+        when: &str,
+    ) -> Result<(), Violation> {
+        if t1 < t0 {
+            return Ok(());
+        }
+        let (mi, mj) = (self.motion[i], self.motion[j]);
+        let sigma = self.radius[i] + self.radius[j];
+        if self.stay_apart(&mi, &mj, t0, t1, sigma) {
+            return Ok(());
+        }
+        let (d, at) = self.approach(mi.at(t0), mi.vel, mj.at(t0), mj.vel, t1 - t0);
+        let overlap = (sigma - d) / sigma;
+        if overlap > OVERLAP_TOLERANCE {
+            return Err(self.fail(
+                t0 + at,
+                format!(
+                    "bodies {i} and {j} overlap by {overlap:e} of their contact distance \
+                     {when}at t = {} (a missed collision)",
+                    t0 + at
+                ),
+            ));
+        }
+        self.report.max_overlap = self.report.max_overlap.max(overlap);
+        Ok(())
+    }
+
+    /// Grid mode: every pair sharing a cell, from the later of its bodies' starts in the slab
+    /// to `t` (at most the slab's end).
+    fn check_pairs_until(&mut self, t: f64, when: &str) -> Result<(), Violation> {
+        let Some(grid) = &self.grid else {
+            return Ok(());
+        };
+        for (i, j) in grid.pairs() {
+            let t0 = self.from(&self.motion[i]).max(self.from(&self.motion[j]));
+            self.check_pair_span(i, j, t0, t, when)?;
+        }
+        Ok(())
+    }
+
+    /// Grid mode: closes slabs until the current one holds `t`. The closed slab's pairs are
+    /// checked to its end, then every body is filed again for the next slab, which lasts
+    /// until about one cell's crossing at the mean speed, and at least until `t`.
+    fn advance_slabs(&mut self, t: f64) -> Result<(), Violation> {
+        let Some(end) = self.grid.as_ref().map(|g| g.end) else {
+            return Ok(());
+        };
+        if t <= end {
+            return Ok(());
+        }
+        self.check_pairs_until(end, "")?;
+        let mean_speed =
+            self.motion.iter().map(|m| m.vel.norm()).sum::<f64>() / self.motion.len().max(1) as f64;
+        let r_max = self.radius.iter().fold(0.0f64, |m, &r| m.max(r));
+        if mean_speed > 0.0 {
+            self.slab = 2.0 * r_max / mean_speed;
+        }
+        let next_end = (end + self.slab).max(t);
+        let grid = self.grid.as_mut().expect("grid mode");
+        grid.start_slab(end, next_end);
+        for (i, m) in self.motion.iter().enumerate() {
+            grid.file(i, m, self.radius[i], m.time.max(end));
+        }
+        Ok(())
+    }
+
+    /// When a motion's unchecked stretch starts: its reference time, or the current slab's
+    /// start if later (what came before was checked when that slab closed).
+    fn from(&self, m: &Motion<D>) -> f64 {
+        match &self.grid {
+            Some(g) => m.time.max(g.start),
+            None => m.time,
+        }
+    }
+
+    /// The bodies the miss check of body `i` looks at: its grid neighbours, or every body.
+    fn candidates(&self, i: usize) -> Vec<usize> {
+        match &self.grid {
+            Some(g) => g.neighbours(i),
+            None => (0..self.motion.len()).filter(|&j| j != i).collect(),
+        }
+    }
 }
 
 impl<const D: usize> Verifier<D> {
+    /// True when two bodies moving as `mi` and `mj` cannot come within `sigma` (the
+    /// tolerance included) over `[t0, t1]`: their (nearest-image) distance at `t0` less the
+    /// most their relative motion can close it exceeds `sigma`. A cheap test before the
+    /// image-by-image search; it never skips a pair that comes close (the distance to any
+    /// image changes no faster than the relative speed).
+    fn stay_apart(&self, mi: &Motion<D>, mj: &Motion<D>, t0: f64, t1: f64, sigma: f64) -> bool {
+        let d0 = self.image(mj.at(t0) - mi.at(t0)).norm();
+        let travel = (mj.vel - mi.vel).norm() * (t1 - t0).max(0.0);
+        d0 - travel > sigma * (1.0 + 1e-6)
+    }
+
     /// The displacement `dp` itself, or its nearest image in a periodic scene.
     fn image(&self, dp: Vector<D>) -> Vector<D> {
         match self.period {
@@ -346,65 +503,4 @@ impl<const D: usize> Verifier<D> {
         }
         best
     }
-}
-
-/// Smallest distance between two points moving linearly over `[0, span]` from `pa`, `pb`,
-/// and the time offset where it occurs.
-fn closest_approach<const D: usize>(
-    pa: Vector<D>,
-    va: Vector<D>,
-    pb: Vector<D>,
-    vb: Vector<D>,
-    span: f64,
-) -> (f64, f64) {
-    let dp = pb - pa;
-    let dv = vb - va;
-    let a = dv.norm_sq();
-    let s = if a > 0.0 {
-        (-dp.dot(dv) / a).clamp(0.0, span.max(0.0))
-    } else {
-        0.0
-    };
-    ((dp + dv * s).norm(), s)
-}
-
-/// Smallest clearance between a body moving linearly from its reference time to `t` and a
-/// wall, and the time where it occurs. The clearance is convex in time for a segment (the
-/// distance to a convex set) and linear for a plane, so a golden-section search finds it.
-fn closest_to_wall<const D: usize>(wall: &Wall<D>, m: &Motion<D>, t: f64) -> (f64, f64) {
-    let f = |s: f64| wall_clearance(wall, m.at(s));
-    let (mut lo, mut hi) = (m.time, t.max(m.time));
-    if let Wall::Plane { .. } = wall {
-        let (a, b) = (f(lo), f(hi));
-        return if a <= b { (a, lo) } else { (b, hi) };
-    }
-    const INV_PHI: f64 = 0.618_033_988_749_894_9;
-    let mut x1 = hi - INV_PHI * (hi - lo);
-    let mut x2 = lo + INV_PHI * (hi - lo);
-    let (mut f1, mut f2) = (f(x1), f(x2));
-    for _ in 0..80 {
-        if f1 <= f2 {
-            hi = x2;
-            x2 = x1;
-            f2 = f1;
-            x1 = hi - INV_PHI * (hi - lo);
-            f1 = f(x1);
-        } else {
-            lo = x1;
-            x1 = x2;
-            f1 = f2;
-            x2 = lo + INV_PHI * (hi - lo);
-            f2 = f(x2);
-        }
-    }
-    let candidates = [
-        (f(m.time), m.time),
-        (f(t.max(m.time)), t.max(m.time)),
-        (f1, x1),
-        (f2, x2),
-    ];
-    candidates.into_iter().fold(
-        (f64::INFINITY, m.time),
-        |best, c| if c.0 < best.0 { c } else { best },
-    )
 }
