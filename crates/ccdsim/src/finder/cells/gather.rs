@@ -25,18 +25,10 @@
 //! the order of offers of distinct keys (see `pair`): the records equal those of the scalar
 //! scan's.
 //!
-//! *Figures* (session 9; callgrind, instructions and branch mispredictions per collision,
-//! against linked cell lists walked body by body with the scalar function): 2D gas,
-//! N = 10⁴ at packing 0.5, `step_event` 3,174 and 27.3 → 3,259 and 17.0; thesis scene
-//! (dilute, walls), `step_event_until` 4,904 and 29.8 → 5,107 and 21.8 (19.4 in a build
-//! whose only difference was the pair scan returning its records by value: the simulated
-//! predictor moves with code layout). A few per cent more instructions, a third fewer
-//! mispredictions, and faster on the clock in alternated runs at 2D N = 10⁴ (every round),
-//! even at 2D N = 10⁶; peak memory at 2D N = 10⁶ 165 → 190 bytes per body (a cell record
-//! is 20 bytes, a word of links per body stays). Tried and dropped: a probe's own cell
-//! gathered less the probe by a fixed four-slot pass instead of dropping probes from the
-//! gathered run (+56 instructions); a float prefilter of hits against the threshold before
-//! the offer loop (+60 instructions, −0.1 mispredictions).
+//! *Why.* The cell walks' loop exits and the scalar narrow phase's coin flips were most of the
+//! 2D mispredicted branches: this costs a few per cent more instructions but a third fewer
+//! mispredictions, and was faster on the clock at 2D N = 10⁴ and 10⁶, for 25 more bytes per
+//! body (figures and what was tried: `bench/results/amd-epyc-2vcpu/cells-history.md`).
 
 use super::grid::{CellBodies, Grid, CELL_SLOTS};
 use super::key::{ordered, Key};

@@ -10,16 +10,9 @@
 //! only against that block's owner, and the pair `(i, j)` itself is evaluated once and
 //! offered to both. A union with a cell that overflows its slots is left to two `recompute`s.
 //!
-//! Callgrind, 2D N = 10⁴ at packing 0.5, instructions and branch mispredictions per
-//! collision (`step_event`): linked cell lists walked body by body with the scalar function
-//! (session 8's main) 3,174 and 27.3; slots gathered and evaluated four at a time 3,259 and
-//! 17.0: the walks' exits and the scalar function's coin flips (receding, missing) were
-//! most of the mispredictions (see `gather` for the other figures). Earlier, on the linked lists (session 6): two separate scans
-//! 3,196 and 36.9, this union walk 3,308 and 34.6; tried then: a plain union walk with
-//! branches, 3,562 and 38.9; the time of each probe with itself computed and dropped
-//! instead of stepping over it, 3,666 and 33.4; a two-lane SIMD kernel for the shared
-//! cells, `i` and `j` in the lanes, 3,636 and 41.6 (shared cells hold about two other
-//! bodies per scan).
+//! Why one pass: the union is 9 to 14 cells where two scans visit 18, and gathering it without
+//! a branch per cell removed most of the scans' mispredictions (figures and what was tried:
+//! `bench/results/amd-epyc-2vcpu/cells-history.md`).
 //!
 //! # Why the records are those of two `recompute`s, bit for bit
 //!

@@ -19,93 +19,16 @@
 //! ([`Key::holders`]): the body of a crossing or wall event, or either body of a body–body
 //! event (both may hold the same key; the lower index is taken then).
 //!
-//! Against the calendar queue it replaced there is nothing to tune (no bucket width that fits
-//! one time scale and not another), and an update is a few comparisons per level: most keys
-//! are not their octet's smallest, before or after, and stop there; only the body just popped
-//! (the root's owner) walks to the top, `1 + ⌈log₄(n/8)⌉` levels of one cache line each.
-//! Measured (callgrind, instructions per event in `step_event`) against the calendar queue:
-//! thesis n = 2048 −10 %, 2D gas N = 10⁴ −6 %, 3D gas −3 %. Binary and 8-ary trees with
-//! one key per leaf took 3.5 % and 4.4 % more instructions than 4-ary ones on the thesis
-//! workload; eight keys per leaf take about as many instructions as one and keep the part
-//! above the keys small (`16·(1/8)·(4/3) ≈ 2.7` bytes per body, 2.7 MB at 10⁶ bodies, where
-//! one key per leaf needs 5.3 MB), so a walk misses the cache less. The whole queue takes
-//! about 18.7 bytes per body.
-//!
-//! Nearly every update is a walk to the root: the body just popped (a crossing, a stale
-//! event, the first body of a collision) held the root's key; its partner's update mostly
-//! stops in its octet. A walk costs about 40 instructions per level (three wide compares,
-//! eight loads, the index arithmetic). Tried again in session 3 and measured worse
-//! (callgrind, thesis n = 2048): a binary tree with one key per leaf and the sibling compare
-//! (about 22 instructions per binary level, twice the levels: 366 instructions per update
-//! against 231), and octet and node updates that skip the minimum of the children when the
-//! old value was not the smallest (+80 instructions per event: the extra compare costs the
-//! walks to the root more than it saves elsewhere). Comparing the time word alone with a
-//! body index in the nodes saves no instruction (the index needs its own select).
-//!
-//! A calendar front in the layout of Paul (2007) and Smallenburg's EDMD code was measured
-//! against this tree in session 4 (branch `calendar`: keys bucketed by time with the width
-//! fitted and retuned to two keys per bucket, the current bucket in a binary heap of whole
-//! keys, later buckets in a ring of intrusive lists with four slots per body, an overflow
-//! list). Callgrind, instructions per collision or event: 2D gas N = 10⁴ 3,297 → 3,208
-//! (−2.7 %), 3D gas N = 10,976 6,697 → 6,620 (−1.1 %), thesis n = 2048 5,016 → 4,979
-//! (−0.7 %); at 2D N = 10⁶ no wall-clock difference through the noise, and 36 bytes per body
-//! against 18.7 (peak 181.6 against 163.9 bytes per body, of the 200 allowed). The popped
-//! body's new key mostly goes into a ring slot without a comparison, but taking keys out of
-//! the heap (about 60 instructions) and heaping the next bucket (about 270 every 2–3 pops)
-//! win back most of the walk. Not worth twice the memory and code: the tree stays.
-//!
-//! A binary heap with lazy invalidation, the first queue issue 5 names, was measured against
-//! this tree in session 9 (kept on branch `heap9`, not merged: `finder/cells/heap.rs`
-//! behind a cargo feature `heap-queue`): `std`'s `BinaryHeap` of whole 128-bit keys with
-//! each body's current key beside it; setting a key pushes it, an entry is live while a holder of its key
-//! ([`Key::holders`]) still has it (the key is its own sequence number, so an entry needs no
-//! body index: 16 bytes), the top pops dead entries, the body just popped replaces its own
-//! entry in place, and past `2n + 64` entries the heap is rebuilt from the current keys by a
-//! linear heapify (48 bytes per body against 18.7). Same events bit for bit (run files
-//! byte-identical to main's on `g2p`, `g3p` and `th`, `cells_vs_oracle` green with it).
-//! Callgrind, `step_event` instructions and mispredicts per collision or event: 2D gas
-//! N = 10⁴ 3,174 → 3,560 (+12 %), 27.3 → 33.0; 3D gas N = 10,976 5,415 → 5,614 (+3.7 %),
-//! 36.7 → 42.1; thesis n = 2048 4,904 → 5,375 (+9.6 %), 29.8 → 37.8 (without the in-place
-//! replacement: 3,569, 5,588, 5,450 instructions: it saves the dead entry's pop but sinks
-//! with two compares a level where a pop's walk to the bottom takes one; a hand-written
-//! heap whose pop and replacement walk the hole to the bottom and let the key climb back,
-//! Floyd's way, took 3,809 on 2D gas, its walks never stopping early and its indices
-//! checked). On the clock (CPU collisions per second, six runs alternated
-//! with main's binary on a busy machine, medians): 2D N = 10⁴ 2.10e6 → 1.64e6 (−22 %), 3D
-//! 1.29e6 → 0.99e6 (−23 %), thesis n = 2048 median seconds 0.158–0.159 → 0.181–0.189
-//! (+16 %, two runs of `bench thesis --runs 3` each), 2D N = 10⁶ 6.8–7.0e5 → 3.0e5 (−56 %,
-//! two runs each; peak 191–193 bytes per body against 165). Counted in a scratch build
-//! (2D gas, per collision): 1.67 replacements of the top, 1.00 pushes, 0.97 dead entries
-//! popped, no rebuild (the heap ended at 1.96 n entries); thesis, per event: 4.3, 0.94,
-//! 0.94; 2D N = 10⁶: 1.8, 1.0, 0.7, the heap at 1.6 n. The popped body's new key sinks
-//! from the root through about `log₂ 2n` levels at two compares each, and a partner's key
-//! costs a push and, later, a pop through as many, where the tree stops most partners' sets
-//! in their octet and walks the popped body through `1 + ⌈log₄(n/8)⌉` lines whose upper
-//! levels stay cached; at 10⁶ bodies each of the heap's lower levels is a cache miss. The
-//! tree stays.
-//!
-//! Session 8 measured where the walks go (counters in a scratch build; callgrind,
-//! instructions per event or collision on main: thesis n = 2048 4,680, 2D gas N = 10⁴
-//! 3,104, 3D gas N = 10,976 5,803). Nearly all of the queue's work is walks forced to the
-//! root by the body just popped: thesis 4.2 per event (the collision's popped body and 3.2
-//! crossings), each through its octet and 1 + 3 nodes' children; 2D gas 1.7 per collision,
-//! 1 + 4.2. A collision's partner does not hold the root's key: both bodies hold it in
-//! fewer than 10,000 of 320,000 collisions (2D gas) and of 244,350 events (thesis), since
-//! the key was computed by the body that changed last, on a state that its partner's cached
-//! prediction predates (only a crossing of the partner into that body's neighbourhood
-//! offers it the same key). The partner's walk is an ordinary one: it leaves its octet
-//! 0.23 times per collision and then goes 1.45 levels. So a batched walk of the two
-//! bodies, merging where their paths meet, has nothing to merge. Tried all the same
-//! (commit 718e583, reverted): the keys' slots permuted into the Z-order of the bodies'
-//! cells at `init` (4 bytes per body) and the first body of a collision walked without
-//! forcing, to stop where its path meets its partner's: thesis 4,690, 2D gas 3,111, 3D
-//! gas 5,823 (the slot lookup costs, the stop hardly ever comes). Not built: the four
-//! time words of a group apart from its four tie words (a whole-key compare is already
-//! `cmp`, `sbb` and two `cmov`, what a scalar compare of two words in order needs; lanes
-//! need the intrinsics that `forbid(unsafe_code)` keeps out, and a lane reduction over both
-//! words counts about 22 instructions against the scalar 23). Built and read in the
-//! generated code only: the walk written on the node's place (`c → c / 4 − 1`), 37
-//! instructions per forced level against 38.
+//! Why this queue: against the calendar queue it replaced there is nothing to tune (no bucket
+//! width that fits one time scale and not another), and an update is a few comparisons per
+//! level: most keys are not their octet's smallest and stop there; only the body just popped
+//! walks to the top, `1 + ⌈log₄(n/8)⌉` levels of one cache line each. Against the calendar
+//! queue it took 3–10 % fewer instructions per event; a calendar front (Paul 2007, as in
+//! Smallenburg's code) and a binary heap with lazy invalidation were measured against it and
+//! lost (the heap by 3.7–12 % instructions and up to 56 % on the clock at 10⁶ bodies), and
+//! binary or 8-ary trees took 3.5–4.4 % more instructions. The whole queue takes about 18.7
+//! bytes per body. The measurements, and what else was tried, are in
+//! `bench/results/amd-epyc-2vcpu/cells-history.md`.
 
 use super::key::Key;
 
