@@ -204,7 +204,17 @@
 //! velocity set after peeking). `update` then undoes, latest first, every crossing processed
 //! after the change's time (moving the body back and recomputing it), so cells again match
 //! positions at that time.
+//!
+//! # Modules
+//!
+//! The two modes live in their own modules, chosen once by `init` ([`Mode`]): [`crossings`]
+//! (the crossing, its undo log, the crossing-mode `recompute`, `schedule`, `update` and
+//! `validate`) and [`lists`] (the lists, shells and their rebuilds, the list-mode
+//! `recompute`, `schedule`, `update` and `validate`). What both use stays here and in
+//! `predict` (cached predictions, walls, box exits), `grid`, `slots`, `gather`, `pair` (the
+//! crossing mode's collision pair scan), `key` and `tournament` (the queue).
 
+mod crossings;
 mod gather;
 mod grid;
 mod key;
@@ -223,7 +233,7 @@ use crate::wall::Wall;
 use crate::world::World;
 use grid::{Grid, MARGIN};
 use key::{Key, MAX_INDEX};
-use lists::{shell_exit_time, Lists, MAX_LIST_BODIES};
+use lists::{Lists, MAX_LIST_BODIES};
 pub use options::OPTIONS;
 use predict::{Cached, Probe, UNKNOWN_CHANGES};
 use tournament::TournamentQueue;
@@ -254,6 +264,22 @@ pub struct CellsStats {
     pub undone: u64,
     /// Shell exits processed (list mode; internal, never returned).
     pub rebuilds: u64,
+}
+
+/// The finder's mode, chosen once by `init` (see the module docs). Each has its own module:
+/// [`crossings`] (cells crossed as bodies move, every world) and [`lists`] (Verlet
+/// neighbour lists with a skin, periodic worlds); the code shared by both (the grid, the
+/// cached predictions, the queue, walls and box exits) stays in this module and `predict`,
+/// and dispatches on the mode once per entry point.
+// One per finder: its size does not matter, and boxing the lists would add an indirection to
+// every list scan.
+#[allow(clippy::large_enum_variant)]
+#[derive(Clone, Debug)]
+enum Mode<const D: usize> {
+    /// Cell crossings.
+    Crossings,
+    /// Neighbour lists, with their structures.
+    Lists(Lists<D>),
 }
 
 /// Largest `cells_skin` (relative to the largest contact distance).
@@ -301,8 +327,8 @@ pub struct Cells<const D: usize> {
     peak_bytes: usize,
     /// The skin of the list mode relative to the largest contact distance (0: crossings).
     skin: f64,
-    /// The list mode's structures, when it is on (see `init`).
-    lists: Option<Lists<D>>,
+    /// The mode `init` chose, with its structures.
+    mode: Mode<D>,
     /// Prefetch hints are on: the working set is larger than a core's cache (see `init`).
     hints: bool,
 }
@@ -329,7 +355,7 @@ impl<const D: usize> Cells<D> {
             stats: CellsStats::default(),
             peak_bytes: 0,
             skin: 0.0,
-            lists: None,
+            mode: Mode::Crossings,
             hints: false,
         }
     }
@@ -347,7 +373,7 @@ impl<const D: usize> Cells<D> {
     /// True when the finder runs in list mode (set by `init`).
     #[must_use]
     pub fn uses_lists(&self) -> bool {
-        self.lists.is_some()
+        matches!(self.mode, Mode::Lists(_))
     }
 
     /// Counters since the last `init`.
@@ -367,7 +393,10 @@ impl<const D: usize> Cells<D> {
             + self.queue.bytes()
             + std::mem::size_of::<Cached<D>>() * self.cached.capacity()
             + std::mem::size_of::<(u32, u8, f64)>() * self.log.capacity()
-            + self.lists.as_ref().map_or(0, Lists::bytes)
+            + match &self.mode {
+                Mode::Crossings => 0,
+                Mode::Lists(lists) => lists.bytes(),
+            }
     }
 
     /// Checks the structures against `world`: the cell lists, the queue, every key being the
@@ -377,40 +406,10 @@ impl<const D: usize> Cells<D> {
     pub fn validate(&self, world: &World<D>) -> Result<(), String> {
         self.grid.validate(|i| self.cached[i].coords)?;
         self.queue.validate()?;
-        if self.lists.is_some() {
-            return self.validate_list_mode(world);
+        match self.mode {
+            Mode::Crossings => self.validate_crossing_mode(world),
+            Mode::Lists(_) => self.validate_list_mode(world),
         }
-        let clock = self.clock;
-        for i in 0..world.len() {
-            let m = world.motion(i);
-            let k = self.cached[i].coords;
-            let crossing = self
-                .grid
-                .next_crossing(&k, &m)
-                .map_or(Key::NEVER, |(t, _)| Key::crossing(t, i));
-            let key = self.queue.key(i);
-            if key != crossing.min(self.cached[i].best) {
-                return Err(format!("body {i}: queue key is not min(event, crossing)"));
-            }
-            if key.is_crossing() != (self.cached[i].cross & KEY_IS_CROSSING != 0) {
-                return Err(format!(
-                    "body {i}: crossing flag does not match its queue key"
-                ));
-            }
-            self.validate_cached(world, i)?;
-            let p = m.at(clock);
-            let (lo, hi) = self.grid.cell_box(&k.map(|x| x as usize));
-            for d in 0..D {
-                let tol = 1e-9 * (1.0 + p[d].abs() + m.vel[d].abs() * (clock - m.time).abs());
-                if p[d] < lo[d] - tol || p[d] > hi[d] + tol {
-                    return Err(format!(
-                        "body {i} at {:?} (t = {clock}) is outside its cell {:?}..{:?}",
-                        p.0, lo.0, hi.0
-                    ));
-                }
-            }
-        }
-        Ok(())
     }
 
     /// Checks body `i`'s cached records, in either mode: no cached event that never happens,
@@ -453,59 +452,6 @@ impl<const D: usize> Cells<D> {
         Ok(())
     }
 
-    /// `validate` in list mode: the queue keys (minimum of the cached event and the shell
-    /// exit), the cached events, and the lists (see `validate_lists`).
-    fn validate_list_mode(&self, world: &World<D>) -> Result<(), String> {
-        let lists = self.lists.as_ref().expect("list mode");
-        for i in 0..world.len() {
-            let exit = lists.exit[i];
-            let exit_key = if exit == f64::INFINITY {
-                Key::NEVER
-            } else {
-                Key::crossing(exit, i)
-            };
-            let key = self.queue.key(i);
-            if key != exit_key.min(self.cached[i].best) {
-                return Err(format!("body {i}: queue key is not min(event, shell exit)"));
-            }
-            if key.is_crossing() != (self.cached[i].cross & KEY_IS_CROSSING != 0) {
-                return Err(format!("body {i}: exit flag does not match its queue key"));
-            }
-            self.validate_cached(world, i)?;
-            let m = world.motion(i);
-            let again = shell_exit_time(&m, &lists.centre[i], lists.half, m.time.max(self.clock));
-            let tol = 1e-9 * (1.0 + again.abs());
-            if exit != again && (exit - again).abs() > tol {
-                return Err(format!(
-                    "body {i}: shell exit at {exit}, its motion leaves at {again}"
-                ));
-            }
-        }
-        self.validate_lists(world)
-    }
-
-    /// Processes body `i`'s crossing, due at `time`: the body moves to the next cell and is
-    /// offered the layer of cells that became its neighbours, and its new cell's walls.
-    fn cross(&mut self, world: &World<D>, i: usize, time: f64) {
-        self.stats.crossings += 1;
-        self.clock = self.clock.max(time);
-        let code = self.cached[i].cross & !KEY_IS_CROSSING;
-        let (axis, up) = ((code >> 1) as usize, code & 1 == 1);
-        let from = self.grid.cell_at(&self.cached[i].coords);
-        let from_border = self.grid.is_border(&self.cached[i].coords);
-        self.grid.step(i, &mut self.cached[i].coords, axis, up);
-        self.log.push((i as u32, code, time));
-        let p = Probe::of(world, i);
-        let mut best = self.records(i);
-        self.scan_entered_layer(world, &p, axis, up, &mut best);
-        self.scan_entered_walls(world, &p, from, &mut best);
-        if self.periodic && !from_border {
-            self.scan_exit(world, &p, &mut best);
-        }
-        self.store(world, i, &best, false);
-        self.schedule(i, &p.b.motion);
-    }
-
     /// Hints the lines the caller of `next_event` needs next, for the event of `key`: it
     /// changes the event's bodies, then asks for their neighbourhoods and sets their keys
     /// (see the module docs).
@@ -515,9 +461,9 @@ impl<const D: usize> Cells<D> {
         let partner = key.partner(a);
         for i in std::iter::once(a).chain(partner) {
             self.queue.prefetch_path(i);
-            match &self.lists {
-                Some(lists) => lists.prefetch_list(i),
-                None => self.grid.prefetch_block(&self.cached[i].coords),
+            match &self.mode {
+                Mode::Crossings => self.grid.prefetch_block(&self.cached[i].coords),
+                Mode::Lists(lists) => lists.prefetch_list(i),
             }
         }
         self.hint_runner_up(world);
@@ -536,22 +482,6 @@ impl<const D: usize> Cells<D> {
                 prefetch(&world.bodies()[i]);
             }
         }
-    }
-
-    /// Undoes the crossings processed after time `t`, latest first.
-    fn undo_crossings_after(&mut self, world: &World<D>, t: f64) {
-        while let Some(&(i, code, time)) = self.log.last() {
-            if time <= t {
-                break;
-            }
-            self.log.pop();
-            self.stats.undone += 1;
-            let i = i as usize;
-            let (axis, up) = ((code >> 1) as usize, code & 1 == 1);
-            self.grid.step(i, &mut self.cached[i].coords, axis, !up);
-            self.recompute(world, i);
-        }
-        self.log.clear();
     }
 }
 
@@ -635,14 +565,22 @@ impl<const D: usize> Finder<D> for Cells<D> {
             sigma_max * (1.0 + MARGIN)
         };
         self.grid = Grid::new(n, width, lo, hi, period);
-        self.lists = list_mode
-            .then(|| Lists::new(n, skin, sigma_max + skin + slack, self.grid.cell_count()));
+        self.mode = if list_mode {
+            Mode::Lists(Lists::new(
+                n,
+                skin,
+                sigma_max + skin + slack,
+                self.grid.cell_count(),
+            ))
+        } else {
+            Mode::Crossings
+        };
         self.cached = vec![Cached::NONE; n];
         for i in 0..n {
             let p = world.position_at(i, now);
             let k = self.grid.coords_of_point(&p);
             self.cached[i].coords = self.grid.insert(i, k);
-            if let Some(lists) = &mut self.lists {
+            if let Mode::Lists(lists) = &mut self.mode {
                 lists.centre[i] = p;
                 let c = self.grid.cell_at(&self.cached[i].coords);
                 lists.slots.insert(i, c, &p);
@@ -653,14 +591,14 @@ impl<const D: usize> Finder<D> for Cells<D> {
         self.shifts = (0..3usize.pow(D as u32))
             .map(|code| self.grid.shift_of(code as u8))
             .collect();
-        if let Some(lists) = &mut self.lists {
+        if let Mode::Lists(lists) = &mut self.mode {
             lists.set_shifts(&self.shifts);
         }
         self.queue = TournamentQueue::new(n);
         self.log = Vec::new();
         self.clock = now;
         self.stats = CellsStats::default();
-        if self.lists.is_some() {
+        if let Mode::Lists(_) = self.mode {
             self.build_all_lists(n);
         }
         for i in 0..n {
@@ -681,40 +619,9 @@ impl<const D: usize> Finder<D> for Cells<D> {
         else {
             return;
         };
-        if self.lists.is_some() {
-            self.clock = t;
-            self.redo_rebuilds_after(world, t, changed);
-            for &i in changed {
-                if self.outside_shell(world, i) {
-                    self.relist(world, i, world.time(i), None);
-                }
-            }
-            for &i in changed {
-                self.recompute(world, i);
-            }
-            return;
-        }
-        self.undo_crossings_after(world, t);
-        self.clock = t;
-        for &i in changed {
-            // A body still in its cell (the two of a collision: every crossing before it has
-            // been processed) stays filed there, even on a face shared with the next cell: it
-            // lies in its cell, as the module docs ask.
-            let p = world.position(i);
-            if !self.grid.holds(&self.cached[i].coords, &p) {
-                let k = self.grid.coords_of_point(&p);
-                self.grid.relocate(i, &mut self.cached[i].coords, k);
-            }
-        }
-        // The two bodies of a collision: one scan of their neighbourhoods when it applies
-        // (see `pair`), the same records as two recomputes.
-        if let [i, j] = *changed {
-            if self.recompute_pair(world, i, j) {
-                return;
-            }
-        }
-        for &i in changed {
-            self.recompute(world, i);
+        match self.mode {
+            Mode::Crossings => self.update_crossing_mode(world, t, changed),
+            Mode::Lists(_) => self.update_list_mode(world, t, changed),
         }
     }
 
@@ -728,10 +635,9 @@ impl<const D: usize> Finder<D> for Cells<D> {
                 return None;
             }
             if key.is_crossing() {
-                if self.lists.is_some() {
-                    self.exit_shell(world, i, key.seconds());
-                } else {
-                    self.cross(world, i, key.seconds());
+                match self.mode {
+                    Mode::Crossings => self.cross(world, i, key.seconds()),
+                    Mode::Lists(_) => self.exit_shell(world, i, key.seconds()),
                 }
                 continue;
             }

@@ -45,7 +45,7 @@ use super::gather::{Gathered, GATHER_2D, GATHER_3D};
 use super::grid::Grid;
 use super::key::Key;
 use super::predict::{Best, Probe};
-use super::Cells;
+use super::{Cells, Mode};
 use crate::geom::Vector;
 use crate::narrow_lanes::Side;
 use crate::prefetch::prefetch;
@@ -57,7 +57,7 @@ impl<const D: usize> Cells<D> {
     /// that applies: crossing mode, two distinct bodies filed in interior cells that are the
     /// same or neighbours. Returns false, having done nothing, otherwise.
     pub(super) fn recompute_pair(&mut self, world: &World<D>, i: usize, j: usize) -> bool {
-        if self.lists.is_some() || i == j {
+        if matches!(self.mode, Mode::Lists(_)) || i == j {
             return false;
         }
         let (pi, pj) = (Probe::of(world, i), Probe::of(world, j));

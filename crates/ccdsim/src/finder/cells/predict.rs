@@ -5,8 +5,7 @@
 use super::gather::{Gathered, GATHER_2D, GATHER_3D};
 use super::grid::Grid;
 use super::key::{ordered, Key};
-use super::lists::shell_exit_time;
-use super::{Cells, KEY_IS_CROSSING, NO_CROSSING, SECOND_KNOWN};
+use super::{Cells, Mode, NO_CROSSING, SECOND_KNOWN};
 use crate::geom::Vector;
 use crate::narrow::{toi_circle_circle, toi_circle_circle_shifted, toi_circle_wall, Motion};
 use crate::narrow_lanes::Side;
@@ -442,46 +441,10 @@ impl<const D: usize> Cells<D> {
     pub(super) fn recompute(&mut self, world: &World<D>, i: usize) {
         self.stats.recomputes += 1;
         let p = Probe::of(world, i);
-        if self.lists.is_some() {
-            self.recompute_listed(world, &p);
-            return;
+        match self.mode {
+            Mode::Crossings => self.recompute_in_cells(world, &p),
+            Mode::Lists(_) => self.recompute_listed(world, &p),
         }
-        let mut best = Best::NONE;
-        self.scan_neighbours(world, &p, &mut best);
-        self.scan_walls(world, &p, &mut best);
-        self.scan_exit(world, &p, &mut best);
-        self.store(world, i, &best, true);
-        self.schedule(i, &p.b.motion);
-    }
-
-    /// `recompute` in list mode: the neighbour list instead of the cells, and the shell exit.
-    #[inline(never)]
-    fn recompute_listed(&mut self, world: &World<D>, p: &Probe<D>) {
-        let i = p.i;
-        let mut best = Best::NONE;
-        self.scan_neighbour_list(world, p, &mut best);
-        self.scan_walls(world, p, &mut best);
-        self.scan_exit(world, p, &mut best);
-        self.store(world, i, &best, true);
-        let t_ref = p.b.motion.time.max(self.clock);
-        let lists = self.lists.as_mut().expect("list mode");
-        lists.exit[i] = shell_exit_time(&p.b.motion, &lists.centre[i], lists.half, t_ref);
-        self.schedule_listed(i);
-    }
-
-    /// `schedule` in list mode: the shell exit plays the crossing's part (never for a body
-    /// at rest).
-    #[inline(never)]
-    pub(super) fn schedule_listed(&mut self, i: usize) {
-        let exit = self.lists.as_ref().expect("list mode").exit[i];
-        let key = if exit != f64::INFINITY && Key::crossing(exit, i) < self.cached[i].best {
-            self.cached[i].cross = KEY_IS_CROSSING;
-            Key::crossing(exit, i)
-        } else {
-            self.cached[i].cross = 0;
-            self.cached[i].best
-        };
-        self.queue.set(i, key);
     }
 
     /// Body `i`'s records.
@@ -533,27 +496,9 @@ impl<const D: usize> Cells<D> {
 
     /// Sets body `i`'s queue key: its next crossing or its cached event, whichever is first.
     pub(super) fn schedule(&mut self, i: usize, mi: &Motion<D>) {
-        if self.lists.is_some() {
-            self.schedule_listed(i);
-            return;
+        match self.mode {
+            Mode::Crossings => self.schedule_crossing(i, mi),
+            Mode::Lists(_) => self.schedule_listed(i),
         }
-        let k = self.cached[i].coords;
-        let key = match self.grid.next_crossing(&k, mi) {
-            Some((t, code)) => {
-                let crossing = Key::crossing(t, i);
-                if crossing < self.cached[i].best {
-                    self.cached[i].cross = code | KEY_IS_CROSSING;
-                    crossing
-                } else {
-                    self.cached[i].cross = code;
-                    self.cached[i].best
-                }
-            }
-            None => {
-                self.cached[i].cross = NO_CROSSING;
-                self.cached[i].best
-            }
-        };
-        self.queue.set(i, key);
     }
 }

@@ -210,7 +210,7 @@ fn list_mode_with_overflowing_cells() {
         let world = World::from_scene(&scene).unwrap();
         let mut finder = with_skin::<3>(0.4);
         finder.init(&world).unwrap();
-        let lists = finder.lists.as_ref().expect("list mode");
+        let lists = finder.lists();
         assert!(lists.slots.overflowing() > 0, "no cell overflows");
         let stats = validated_run_with::<3>(&scene, 1500, 0.4);
         assert!(stats.rebuilds > 0, "{stats:?}");
