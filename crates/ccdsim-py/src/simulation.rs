@@ -1,0 +1,230 @@
+//! `ccdsim._ccdsim.Simulation`: one `ccdsim::Simulation` of either dimension.
+
+use ccdsim::{AnyScene, Collision, Simulation, Vector};
+use numpy::{PyArray1, PyArray2, PyArrayMethods};
+use pyo3::exceptions::{PyIndexError, PyValueError};
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+
+/// A simulation of either dimension.
+enum AnySim {
+    D2(Simulation<2>),
+    D3(Simulation<3>),
+}
+
+/// Runs `$body` with `$s` bound to the simulation, whatever its dimension (`D` the dimension).
+macro_rules! with_sim {
+    ($self:expr, $s:ident, $body:expr) => {
+        match &mut *$self.sim.lock().unwrap_or_else(|e| e.into_inner()) {
+            AnySim::D2($s) => {
+                #[allow(dead_code)]
+                const D: usize = 2;
+                $body
+            }
+            AnySim::D3($s) => {
+                #[allow(dead_code)]
+                const D: usize = 3;
+                $body
+            }
+        }
+    };
+}
+
+/// The exact event-driven simulation of a scene (see the Python class `ccdsim.Simulation`).
+#[pyclass(name = "Simulation", module = "ccdsim._ccdsim")]
+pub struct PySimulation {
+    // A mutex makes the class shareable between Python threads (PyO3 asks for `Sync`); the
+    // GIL already serialises the calls, so it is never contended.
+    sim: std::sync::Mutex<AnySim>,
+}
+
+fn value_error(e: impl std::fmt::Display) -> PyErr {
+    PyValueError::new_err(e.to_string())
+}
+
+/// `n` numbers as the vector of dimension `D`.
+fn vector<const D: usize>(v: &[f64]) -> PyResult<Vector<D>> {
+    let a: [f64; D] = v.try_into().map_err(|_| {
+        value_error(format!(
+            "a vector of {D} numbers is needed, not {}",
+            v.len()
+        ))
+    })?;
+    Ok(Vector(a))
+}
+
+/// An N×D array of vectors.
+fn matrix<'py, const D: usize>(
+    py: Python<'py>,
+    rows: impl Iterator<Item = Vector<D>>,
+) -> PyResult<Bound<'py, PyArray2<f64>>> {
+    let flat: Vec<f64> = rows.flat_map(|v| v.0).collect();
+    let n = flat.len() / D;
+    PyArray1::from_vec(py, flat).reshape([n, D])
+}
+
+impl PySimulation {
+    fn check_index(&mut self, i: usize) -> PyResult<()> {
+        let n = with_sim!(self, s, s.world().len());
+        if i >= n {
+            return Err(PyIndexError::new_err(format!(
+                "body {i} does not exist ({n} bodies)"
+            )));
+        }
+        Ok(())
+    }
+}
+
+#[pymethods]
+impl PySimulation {
+    /// A simulation of the scene `scene_json` (the scene-file format) with finder `finder`.
+    #[new]
+    #[pyo3(signature = (scene_json, finder="cells"))]
+    fn new(scene_json: &str, finder: &str) -> PyResult<Self> {
+        let scene = AnyScene::from_json(scene_json).map_err(value_error)?;
+        let sim = match scene {
+            AnyScene::D2(s) => AnySim::D2(Simulation::new(&s, finder).map_err(value_error)?),
+            AnyScene::D3(s) => AnySim::D3(Simulation::new(&s, finder).map_err(value_error)?),
+        };
+        Ok(PySimulation {
+            sim: std::sync::Mutex::new(sim),
+        })
+    }
+
+    /// 2 or 3.
+    #[getter]
+    fn dim(&mut self) -> usize {
+        with_sim!(self, _s, D)
+    }
+
+    /// Number of bodies.
+    fn __len__(&mut self) -> usize {
+        with_sim!(self, s, s.world().len())
+    }
+
+    /// The finder's name.
+    #[getter]
+    fn finder(&mut self) -> &'static str {
+        with_sim!(self, s, s.finder_name())
+    }
+
+    /// Current simulated time, seconds.
+    #[getter]
+    fn time(&mut self) -> f64 {
+        with_sim!(self, s, s.time())
+    }
+
+    /// Positions at the current time (inside the box in periodic worlds), N×D, metres.
+    #[getter]
+    fn positions<'py>(&mut self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        with_sim!(self, s, {
+            let n = s.world().len();
+            matrix::<D>(py, (0..n).map(|i| s.position(i)))
+        })
+    }
+
+    /// Velocities, N×D, metres per second.
+    #[getter]
+    fn velocities<'py>(&mut self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        with_sim!(self, s, matrix::<D>(py, s.world().velocities()))
+    }
+
+    /// Radii, metres.
+    #[getter]
+    fn radii<'py>(&mut self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        with_sim!(self, s, PyArray1::from_vec(py, s.world().radii().collect()))
+    }
+
+    /// Masses, kilograms.
+    #[getter]
+    fn masses<'py>(&mut self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
+        with_sim!(
+            self,
+            s,
+            PyArray1::from_vec(py, s.world().masses().collect())
+        )
+    }
+
+    /// Why the run stopped while events remained (see the README), or None.
+    #[getter]
+    fn halt(&mut self) -> Option<String> {
+        with_sim!(self, s, s.halt().map(|h| h.to_string()))
+    }
+
+    /// Resolves the next event; its arrays (see `read_run`) hold one event, or none when no
+    /// event will ever happen.
+    fn step<'py>(&mut self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        with_sim!(self, s, {
+            let c: Vec<Collision<D>> = s.step_event().into_iter().collect();
+            crate::events_dict(py, &c)
+        })
+    }
+
+    /// Resolves every event up to time `t` and moves the clock there; the number of events.
+    /// Runs without the GIL.
+    fn run_until(&mut self, py: Python<'_>, t: f64) -> PyResult<u64> {
+        if t.is_nan() {
+            return Err(value_error("t is NaN"));
+        }
+        Ok(with_sim!(self, s, py.detach(|| s.run_until(t))))
+    }
+
+    /// Resolves up to `n` events (fewer when none is left); the number resolved. Runs without
+    /// the GIL.
+    fn run_events(&mut self, py: Python<'_>, n: u64) -> u64 {
+        with_sim!(self, s, py.detach(|| s.run_events(n)))
+    }
+
+    /// Advances the clock by `dt` seconds (one frame) and returns the frame's events as
+    /// arrays (see `read_run`).
+    fn advance<'py>(&mut self, py: Python<'py>, dt: f64) -> PyResult<Bound<'py, PyDict>> {
+        if dt.is_nan() || dt < 0.0 {
+            return Err(value_error(format!("dt must be ≥ 0, not {dt}")));
+        }
+        with_sim!(self, s, {
+            let events = s.advance(dt);
+            crate::events_dict(py, &events)
+        })
+    }
+
+    /// Gives body `i` a new velocity from the current time on.
+    fn set_velocity(&mut self, i: usize, v: Vec<f64>) -> PyResult<()> {
+        self.check_index(i)?;
+        with_sim!(self, s, {
+            let v = vector::<D>(&v)?;
+            s.set_velocity(i, v).map_err(value_error)
+        })
+    }
+
+    /// Counters of the run: events, body and wall collisions, largest overlap, kinetic energy
+    /// at the start, the collision virial.
+    fn stats<'py>(&mut self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let st = with_sim!(self, s, *s.stats());
+        let d = PyDict::new(py);
+        d.set_item("events", st.events)?;
+        d.set_item("body_collisions", st.body_collisions)?;
+        d.set_item("wall_collisions", st.wall_collisions)?;
+        d.set_item("max_overlap", st.max_overlap)?;
+        d.set_item("kinetic_energy_start", st.kinetic_energy_start)?;
+        d.set_item("virial", st.virial)?;
+        Ok(d)
+    }
+
+    /// Kinetic energy now, joules.
+    fn kinetic_energy(&mut self) -> f64 {
+        with_sim!(self, s, s.world().kinetic_energy())
+    }
+
+    /// Temperature, collision rate, volume, pressure and compressibility factor over the run
+    /// so far (None where the world has no volume).
+    fn observables<'py>(&mut self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let o = with_sim!(self, s, s.observables());
+        let d = PyDict::new(py);
+        d.set_item("temperature", o.temperature)?;
+        d.set_item("collision_rate", o.collision_rate)?;
+        d.set_item("volume", o.volume)?;
+        d.set_item("pressure", o.pressure)?;
+        d.set_item("compressibility", o.compressibility)?;
+        Ok(d)
+    }
+}

@@ -1,0 +1,226 @@
+"""Exact event-driven simulation of hard discs (2D) and hard spheres (3D).
+
+Python bindings of the Rust library ccdsim. Bodies move in straight lines between events; the
+next contact is found exactly (every finder returns, bit for bit, the event the all-pairs
+search would), resolved by an impulse, and the loop goes on. Units are the scene's (metres,
+seconds, kilograms; Boltzmann's constant is 1).
+
+Example::
+
+    import ccdsim
+    scene = ccdsim.generate.gas(n=400, packing=0.3, periodic=True, lattice=True,
+                                temperature=1.0, seed=1)
+    sim = ccdsim.Simulation(scene)
+    sim.run_events(10_000)              # in Rust, without the GIL
+    print(sim.time, sim.observables()["compressibility"])
+    x = sim.positions                   # N x D NumPy array
+"""
+
+from __future__ import annotations
+
+import json
+from typing import Any, Mapping, Optional, Sequence, Union
+
+import numpy as np
+
+from . import _ccdsim
+from . import generate
+
+__all__ = ["Simulation", "read_run", "events_array", "EVENT_DTYPE", "FINDER_NAMES", "generate"]
+
+#: Names of the finders (broad phases); all give the same events bit for bit.
+FINDER_NAMES: list[str] = list(_ccdsim.FINDER_NAMES)
+
+#: Kinds in the ``kind`` field of an event.
+BODY, WALL = 0, 1
+
+
+def EVENT_DTYPE(dim: int) -> np.dtype:
+    """The NumPy structured dtype of events in ``dim`` dimensions.
+
+    Fields: ``t`` (time, s), ``kind`` (0 body-body, 1 body-wall), ``a``, ``b`` (body indices, or
+    body and wall index), ``pos`` (2 x dim: the bodies' positions at ``t``; the second zero for a
+    wall event) and ``vel`` (2 x dim: their velocities after the event).
+    """
+    return np.dtype(
+        [
+            ("t", "f8"),
+            ("kind", "u1"),
+            ("a", "u4"),
+            ("b", "u4"),
+            ("pos", "f8", (2, dim)),
+            ("vel", "f8", (2, dim)),
+        ]
+    )
+
+
+def events_array(arrays: Mapping[str, np.ndarray], dim: int) -> np.ndarray:
+    """Events as a structured array (see :func:`EVENT_DTYPE`) from the extension's arrays."""
+    out = np.zeros(len(arrays["t"]), dtype=EVENT_DTYPE(dim))
+    for name in ("t", "kind", "a", "b", "pos", "vel"):
+        out[name] = arrays[name]
+    return out
+
+
+SceneLike = Union[str, Mapping[str, Any]]
+
+
+def _scene_json(scene: SceneLike) -> str:
+    if isinstance(scene, str):
+        return scene
+    return json.dumps(scene)
+
+
+class Simulation:
+    """An exact event-driven simulation of a scene.
+
+    ``scene`` is a scene in the scene-file format (see the README): a dict, or its JSON text.
+    ``finder`` names the broad phase (default ``"cells"``, the fast one). Bad input raises
+    ``ValueError`` with a one-line message naming the field or body.
+    """
+
+    def __init__(self, scene: SceneLike, finder: str = "cells") -> None:
+        self._sim = _ccdsim.Simulation(_scene_json(scene), finder)
+
+    @classmethod
+    def from_arrays(
+        cls,
+        positions: Sequence[Sequence[float]],
+        velocities: Sequence[Sequence[float]],
+        radii: Sequence[float],
+        masses: Optional[Sequence[float]] = None,
+        walls: Optional[Sequence[Mapping[str, Any]]] = None,
+        periodic: Optional[Sequence[float]] = None,
+        restitution: float = 1.0,
+        start_time: float = 0.0,
+        finder: str = "cells",
+    ) -> "Simulation":
+        """A simulation of bodies given as arrays: positions and velocities N x D, radii (and
+        masses, default unit density) of length N; walls as in the scene format; a periodic
+        box as its D side lengths."""
+        pos = np.asarray(positions, dtype=float)
+        vel = np.asarray(velocities, dtype=float)
+        rad = np.asarray(radii, dtype=float)
+        if pos.ndim != 2 or pos.shape[1] not in (2, 3):
+            raise ValueError(f"positions must be N x 2 or N x 3, not {pos.shape}")
+        if vel.shape != pos.shape or rad.shape != (pos.shape[0],):
+            raise ValueError(
+                f"velocities {vel.shape} and radii {rad.shape} must match positions {pos.shape}"
+            )
+        bodies = []
+        for i in range(pos.shape[0]):
+            body: dict[str, Any] = {
+                "pos": pos[i].tolist(),
+                "vel": vel[i].tolist(),
+                "radius": float(rad[i]),
+            }
+            if masses is not None:
+                body["mass"] = float(masses[i])
+            bodies.append(body)
+        scene: dict[str, Any] = {
+            "dim": int(pos.shape[1]),
+            "settings": {"restitution": float(restitution)},
+            "start_time": float(start_time),
+            "bodies": bodies,
+            "walls": list(walls or []),
+        }
+        if periodic is not None:
+            scene["periodic"] = [float(x) for x in periodic]
+        return cls(scene, finder)
+
+    @property
+    def dim(self) -> int:
+        """2 or 3."""
+        return self._sim.dim
+
+    def __len__(self) -> int:
+        return len(self._sim)
+
+    @property
+    def finder(self) -> str:
+        """The finder's name."""
+        return self._sim.finder
+
+    @property
+    def time(self) -> float:
+        """Current simulated time, s."""
+        return self._sim.time
+
+    @property
+    def positions(self) -> np.ndarray:
+        """Positions at the current time, N x D (inside the box in periodic worlds), m."""
+        return self._sim.positions
+
+    @property
+    def velocities(self) -> np.ndarray:
+        """Velocities, N x D, m/s."""
+        return self._sim.velocities
+
+    @property
+    def radii(self) -> np.ndarray:
+        """Radii, m."""
+        return self._sim.radii
+
+    @property
+    def masses(self) -> np.ndarray:
+        """Masses, kg."""
+        return self._sim.masses
+
+    @property
+    def halt(self) -> Optional[str]:
+        """Why the run stopped while events remained (a contact beyond the largest time, or
+        time no longer resolving a body), or None."""
+        return self._sim.halt
+
+    def step(self) -> Optional[np.void]:
+        """Resolves the next event and returns it (a record of :func:`EVENT_DTYPE`), or None
+        when no event will ever happen."""
+        ev = events_array(self._sim.step(), self.dim)
+        return ev[0] if len(ev) else None
+
+    def run_until(self, t: float) -> int:
+        """Resolves every event up to time ``t`` and moves the clock to ``t``; returns the number
+        of events. The loop runs in Rust without the GIL."""
+        return self._sim.run_until(float(t))
+
+    def run_events(self, n: int) -> int:
+        """Resolves up to ``n`` events; returns the number resolved (fewer when none is left)."""
+        return self._sim.run_events(int(n))
+
+    def advance(self, dt: float) -> np.ndarray:
+        """Advances the clock by ``dt`` seconds (one game frame) and returns the frame's events
+        as a structured array, in order."""
+        return events_array(self._sim.advance(float(dt)), self.dim)
+
+    def set_velocity(self, i: int, v: Sequence[float]) -> None:
+        """Gives body ``i`` velocity ``v`` from the current time on."""
+        self._sim.set_velocity(int(i), [float(x) for x in v])
+
+    def stats(self) -> dict:
+        """Counters: ``events``, ``body_collisions``, ``wall_collisions``, ``max_overlap``,
+        ``kinetic_energy_start`` (J) and the collision ``virial``."""
+        return self._sim.stats()
+
+    def kinetic_energy(self) -> float:
+        """Total kinetic energy now, J."""
+        return self._sim.kinetic_energy()
+
+    def observables(self) -> dict:
+        """Over the run so far: ``temperature`` (kT), ``collision_rate`` (per body per unit
+        time), ``volume``, ``pressure`` and ``compressibility`` (Z = PV/NkT; None without a
+        volume)."""
+        return self._sim.observables()
+
+
+def read_run(path: str) -> dict:
+    """Reads a run file written by ``ccdsim run --record``: a dict with ``scene`` (the initial
+    scene, a dict), ``events`` (a structured array, see :func:`EVENT_DTYPE`), ``end`` (the time
+    the run stopped at, or None) and ``complete`` (False for a run cut short)."""
+    raw = _ccdsim.read_run(str(path))
+    scene = json.loads(raw["scene"])
+    return {
+        "scene": scene,
+        "events": events_array(raw, int(scene["dim"])),
+        "end": raw["end"],
+        "complete": raw["complete"],
+    }
