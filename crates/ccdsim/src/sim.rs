@@ -326,8 +326,11 @@ impl<const D: usize> Simulation<D> {
             on_event(&c);
             count += 1;
         }
-        // A halted run stays where it stopped: the events before `t` were not all resolved.
-        if t > self.world.now() && self.halt.is_none() {
+        // The clock moves to `t` unless an event at or before `t` could not be resolved: a
+        // run halted there stays where it stopped. (A contact beyond the largest time, or an
+        // unresolved event after `t`, leaves nothing unresolved before `t`.)
+        let blocked = matches!(self.halt, Some(Halt::Resolution { time, .. }) if time <= t);
+        if t > self.world.now() && !blocked {
             self.world.set_now(t);
         }
         count

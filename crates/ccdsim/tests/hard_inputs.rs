@@ -295,3 +295,40 @@ fn runs_stop_where_time_no_longer_resolves_the_bodies() {
     assert_eq!(runs[0].1.len() as u64, events);
     assert_eq!(runs[0].2, sim.halt());
 }
+
+/// A halt ahead of the clock does not keep `run_until` from reaching a time before it: the
+/// frames of a game loop go on up to the unresolved event, and stop there.
+#[test]
+fn run_until_reaches_times_before_the_unresolved_event() {
+    let scene = Scene::<2> {
+        bodies: vec![
+            ball([1.0, 1.0], [3.0, 1.0], 0.2),
+            ball([3.0, 1.5], [-2.0, 1.5], 0.3),
+        ],
+        walls: square_table(4.0),
+        ..Scene::default()
+    };
+    let mut probe = Simulation::new(&scene, "cells").unwrap();
+    probe.run_until(1e9);
+    let Some(Halt::Resolution { time: stop, .. }) = probe.halt() else {
+        panic!("expected a resolution halt, got {:?}", probe.halt());
+    };
+    let mut sim = Simulation::new(&scene, "cells").unwrap();
+    let before = stop * (1.0 - 1e-12);
+    sim.run_until(before);
+    assert!(sim.halt().is_some(), "the next event is the unresolved one");
+    assert_eq!(sim.time(), before, "the clock reaches the time asked for");
+    sim.run_until(stop * 2.0);
+    assert!(sim.time() < stop, "but not past the unresolved event");
+    // Bodies flying apart for ever in an open world: nothing is left, no halt, the clock moves.
+    let apart = Scene::<2> {
+        bodies: vec![
+            ball([1.0, 1.0], [-1.0, 0.0], 0.5),
+            ball([3.0, 1.0], [1.0, 0.0], 0.5),
+        ],
+        ..Scene::default()
+    };
+    let mut sim = Simulation::new(&apart, "cells").unwrap();
+    sim.run_until(50.0);
+    assert_eq!((sim.time(), sim.halt()), (50.0, None));
+}
