@@ -95,6 +95,9 @@ pub struct Simulation<const D: usize> {
     guard: ResolutionGuard,
     stats: Stats,
     start_time: f64,
+    /// Periodic worlds: per body, the whole periods its stored position has been shifted by
+    /// box exits, so that `stored + images · L` is its unwrapped position. Empty otherwise.
+    images: Vec<[i64; D]>,
 }
 
 impl<const D: usize> Simulation<D> {
@@ -116,7 +119,13 @@ impl<const D: usize> Simulation<D> {
             kinetic_energy_start: world.kinetic_energy(),
             ..Stats::default()
         };
+        let images = if world.periodic().is_some() {
+            vec![[0; D]; world.len()]
+        } else {
+            Vec::new()
+        };
         Ok(Simulation {
+            images,
             start_time: world.now(),
             guard: ResolutionGuard::new(&world),
             world,
@@ -184,6 +193,38 @@ impl<const D: usize> Simulation<D> {
         }
     }
 
+    /// The periodic image of body `i` now: the whole periods `k` such that
+    /// [`Simulation::position`]` + k · L` is its unwrapped position (the path it travelled,
+    /// never folded back into the box). All zeros in a world without a periodic box.
+    #[must_use]
+    pub fn image(&self, i: usize) -> [i64; D] {
+        let Some(size) = self.world.periodic() else {
+            return [0; D];
+        };
+        let raw = self.world.position_at(i, self.world.now());
+        let wrapped = wrap_point(raw, &size);
+        let mut k = self.images[i];
+        for d in 0..D {
+            // `raw − wrapped` is a whole number of periods, up to the rounding of the wrap.
+            k[d] += ((raw[d] - wrapped[d]) / size[d]).round() as i64;
+        }
+        k
+    }
+
+    /// Unwrapped position of body `i` now, metres: its position plus the periods it crossed
+    /// (see [`Simulation::image`]); the position itself in a world without a periodic box.
+    #[must_use]
+    pub fn unwrapped_position(&self, i: usize) -> Vector<D> {
+        let mut p = self.position(i);
+        if let Some(size) = self.world.periodic() {
+            let k = self.image(i);
+            for d in 0..D {
+                p[d] += k[d] as f64 * size[d];
+            }
+        }
+        p
+    }
+
     /// Why the simulation stopped while events remained, if it did: a contact beyond the
     /// largest time, or an event at which `f64` no longer resolves a body (see
     /// [`crate::halt`]). Once halted, no event is returned until an edit
@@ -227,6 +268,9 @@ impl<const D: usize> Simulation<D> {
         self.world.set_now(e.time.max(self.world.now()));
         let face = e.b as usize - self.world.walls().len();
         resolve_exit(&mut self.world, e.a as usize, face, e.time);
+        // `resolve_exit` moved the body back by one period through face `face`.
+        let image = &mut self.images[e.a as usize][face / 2];
+        *image += if face % 2 == 1 { 1 } else { -1 };
         self.finder.update(&self.world, &[e.a as usize]);
         self.stats.exits += 1;
     }
@@ -384,8 +428,13 @@ impl<const D: usize> Simulation<D> {
         let added = 0.5 * self.world.mass(i) * (vel.norm_sq() - self.world.velocity(i).norm_sq());
         self.guard.add_energy(added);
         let t = self.world.now();
+        let image = self.image(i);
         let p = self.position(i);
         self.world.set_state(i, p, vel, t);
+        if !self.images.is_empty() {
+            // The stored position is now the wrapped one: its image is the whole offset.
+            self.images[i] = image;
+        }
         self.finder.update(&self.world, &[i]);
         self.pending = None;
         self.halt = None;

@@ -1,0 +1,136 @@
+//! One sampled instant of a run.
+
+use crate::geom::Vector;
+use crate::sim::Simulation;
+use crate::wall::Wall;
+
+/// The simulation cell a frame lives in.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Cell<const D: usize> {
+    /// A periodic box `[0, L)` per axis, metres.
+    Periodic(Vector<D>),
+    /// The box bounding the walls' points (`lo`, `hi`), metres; not periodic.
+    Walls {
+        /// Lowest corner.
+        lo: Vector<D>,
+        /// Highest corner.
+        hi: Vector<D>,
+    },
+    /// No periodic box and no wall with a finite extent.
+    Open,
+}
+
+impl<const D: usize> Cell<D> {
+    /// Origin (lowest corner) and edge lengths of the cell, if it has any.
+    #[must_use]
+    pub fn origin_and_size(&self) -> Option<(Vector<D>, Vector<D>)> {
+        match *self {
+            Cell::Periodic(size) => Some((Vector([0.0; D]), size)),
+            Cell::Walls { lo, hi } => Some((lo, hi - lo)),
+            Cell::Open => None,
+        }
+    }
+}
+
+/// The bodies at one instant: what a trajectory file stores per frame.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Frame<const D: usize> {
+    /// Simulated time, seconds.
+    pub time: f64,
+    /// The cell (periodic box, walls' bounding box, or none).
+    pub cell: Cell<D>,
+    /// Body ids (the scene's, stable across the run).
+    pub ids: Vec<u64>,
+    /// Positions, metres; inside `[0, L)` in a periodic box.
+    pub positions: Vec<Vector<D>>,
+    /// Periodic images: `positions[i] + images[i] · L` is body `i`'s unwrapped position (all
+    /// zeros without a periodic box).
+    pub images: Vec<[i64; D]>,
+    /// Velocities, metres per second.
+    pub velocities: Vec<Vector<D>>,
+    /// Radii, metres.
+    pub radii: Vec<f64>,
+    /// Masses, kilograms.
+    pub masses: Vec<f64>,
+}
+
+impl<const D: usize> Frame<D> {
+    /// The state of `sim` at its current time.
+    #[must_use]
+    pub fn of(sim: &Simulation<D>) -> Self {
+        let world = sim.world();
+        let n = world.len();
+        let cell = match world.periodic() {
+            Some(size) => Cell::Periodic(size),
+            None => walls_cell(world.walls()),
+        };
+        Frame {
+            time: sim.time(),
+            cell,
+            ids: world.ids().to_vec(),
+            positions: (0..n).map(|i| sim.position(i)).collect(),
+            images: (0..n).map(|i| sim.image(i)).collect(),
+            velocities: world.velocities().collect(),
+            radii: world.radii().collect(),
+            masses: world.masses().collect(),
+        }
+    }
+
+    /// Number of bodies.
+    #[must_use]
+    pub fn len(&self) -> usize {
+        self.positions.len()
+    }
+
+    /// True for a frame without bodies.
+    #[must_use]
+    pub fn is_empty(&self) -> bool {
+        self.positions.is_empty()
+    }
+
+    /// Unwrapped positions (`position + image · L`), metres: the paths the bodies travelled,
+    /// for displacements over many box lengths.
+    #[must_use]
+    pub fn unwrapped_positions(&self) -> Vec<Vector<D>> {
+        let Cell::Periodic(size) = self.cell else {
+            return self.positions.clone();
+        };
+        self.positions
+            .iter()
+            .zip(&self.images)
+            .map(|(p, k)| {
+                let mut u = *p;
+                for d in 0..D {
+                    u[d] += k[d] as f64 * size[d];
+                }
+                u
+            })
+            .collect()
+    }
+}
+
+/// The box bounding the walls' points, if it has a positive volume.
+fn walls_cell<const D: usize>(walls: &[Wall<D>]) -> Cell<D> {
+    let mut lo = Vector([f64::INFINITY; D]);
+    let mut hi = Vector([f64::NEG_INFINITY; D]);
+    let mut grow = |p: &Vector<D>| {
+        for d in 0..D {
+            lo[d] = lo[d].min(p[d]);
+            hi[d] = hi[d].max(p[d]);
+        }
+    };
+    for wall in walls {
+        match wall {
+            Wall::Segment { a, b } => {
+                grow(a);
+                grow(b);
+            }
+            Wall::Plane { point, .. } => grow(point),
+        }
+    }
+    if (0..D).all(|d| (hi[d] - lo[d]).is_finite() && hi[d] > lo[d]) {
+        Cell::Walls { lo, hi }
+    } else {
+        Cell::Open
+    }
+}

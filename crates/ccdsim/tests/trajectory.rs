@@ -1,0 +1,97 @@
+//! Frames sampled from runs: unwrapped positions follow the bodies through a periodic box,
+//! and the files hold every frame.
+
+use ccdsim::trajectory::{Frame, SampleTimes, TrajectoryFormat, TrajectoryWriter};
+use ccdsim::{BodySpec, Scene, Simulation, Vector};
+
+#[test]
+fn a_lone_body_unwraps_across_many_box_lengths() {
+    let scene = Scene::<2> {
+        bodies: vec![BodySpec::new(Vector([1.0, 1.0]), Vector([3.0, -2.0]), 0.25)],
+        periodic: Some(Vector([2.0, 2.0])),
+        ..Scene::default()
+    };
+    let mut sim = Simulation::new(&scene, "cells").unwrap();
+    for t in SampleTimes::new(0.0, 0.5, 10.0).unwrap() {
+        sim.run_until(t);
+        let f = Frame::of(&sim);
+        let u = f.unwrapped_positions()[0];
+        assert!((u[0] - (1.0 + 3.0 * t)).abs() < 1e-12, "{t}: {u:?}");
+        assert!((u[1] - (1.0 - 2.0 * t)).abs() < 1e-12, "{t}: {u:?}");
+        assert!((0.0..2.0).contains(&f.positions[0][0]));
+        assert!((0.0..2.0).contains(&f.positions[0][1]));
+    }
+    // 30 m travelled in x: fifteen box lengths.
+    assert_eq!(sim.image(0)[0], 15);
+}
+
+#[test]
+fn unwrapped_displacements_match_the_velocities_between_collisions() {
+    // A gas: between two frames without a collision for body i, its unwrapped displacement is
+    // its velocity times the interval, whatever box faces it crossed.
+    let scene = ccdsim::generate::gas::<3>(&ccdsim::generate::GasConfig {
+        n: 200,
+        packing: 0.2,
+        periodic: true,
+        seed: 4,
+        ..Default::default()
+    })
+    .unwrap();
+    let mut sim = Simulation::new(&scene, "cells").unwrap();
+    let dt = 0.01;
+    let mut before = Frame::of(&sim);
+    let mut checked = 0;
+    for t in SampleTimes::new(0.0, dt, 3.0).unwrap().skip(1) {
+        let hits = sim.advance(t - sim.time());
+        let after = Frame::of(&sim);
+        let (u0, u1) = (before.unwrapped_positions(), after.unwrapped_positions());
+        for i in 0..after.len() {
+            let touched = hits.iter().any(|c| {
+                c.event.a as usize == i || (c.body_count() == 2 && c.event.b as usize == i)
+            });
+            if !touched {
+                let d = u1[i] - u0[i];
+                let expect = after.velocities[i] * (after.time - before.time);
+                assert!((d - expect).norm() < 1e-9, "body {i} at {t}");
+                checked += 1;
+            }
+        }
+        before = after;
+    }
+    assert!(checked > 10_000, "{checked}");
+}
+
+#[test]
+fn files_of_either_format_are_written_whole() {
+    let dir = std::env::temp_dir().join(format!("ccdsim-traj-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let scene = ccdsim::generate::gas::<2>(&ccdsim::generate::GasConfig {
+        n: 50,
+        packing: 0.3,
+        periodic: true,
+        seed: 2,
+        ..Default::default()
+    })
+    .unwrap();
+    for name in ["t.xyz", "t.gsd"] {
+        let path = dir.join(name);
+        let format = TrajectoryFormat::from_path(&path).unwrap();
+        let mut w = TrajectoryWriter::create(&path, format).unwrap();
+        let mut sim = Simulation::new(&scene, "cells").unwrap();
+        for t in SampleTimes::new(0.0, 0.1, 1.0).unwrap() {
+            sim.run_until(t);
+            w.write(&Frame::of(&sim)).unwrap();
+        }
+        w.finish().unwrap();
+        let bytes = std::fs::read(&path).unwrap();
+        if name.ends_with("xyz") {
+            let text = String::from_utf8(bytes).unwrap();
+            assert_eq!(text.lines().count(), 11 * 52);
+            assert!(text.lines().nth(52 + 1).unwrap().contains("Time=0.1 "));
+        } else {
+            assert_eq!(&bytes[..8], &0x65DF_65DF_65DF_65DFu64.to_le_bytes());
+        }
+    }
+    assert!(TrajectoryFormat::from_path(std::path::Path::new("t.dcd")).is_err());
+    std::fs::remove_dir_all(&dir).unwrap();
+}
