@@ -5,6 +5,7 @@ use crate::progress::Progress;
 use anyhow::{Context, Result};
 use ccdsim::generate::{rack, RackConfig};
 use ccdsim::record::RunWriter;
+use ccdsim::trajectory::{Frame, SampleTimes, TrajectoryFormat, TrajectoryWriter};
 use ccdsim::{make_finder, AnyScene, Scene, Simulation};
 use serde::Serialize;
 use std::path::PathBuf;
@@ -28,6 +29,17 @@ pub struct Args {
     /// Write a run file here.
     #[arg(long)]
     record: Option<PathBuf>,
+    /// Sample a frame every this many seconds of simulated time (with --trajectory).
+    #[arg(
+        long,
+        requires = "trajectory",
+        conflicts_with = "events",
+        allow_negative_numbers = true
+    )]
+    frames: Option<f64>,
+    /// Write the sampled frames here: extended XYZ (.xyz, .extxyz) or GSD (.gsd).
+    #[arg(long, requires = "frames")]
+    trajectory: Option<PathBuf>,
     /// Print one JSON object instead of the readable summary.
     #[arg(long)]
     json: bool,
@@ -57,6 +69,10 @@ struct Summary {
     momentum_end: Vec<f64>,
     max_overlap: f64,
     record: Option<String>,
+    /// The trajectory file written with --frames, or null.
+    trajectory: Option<String>,
+    /// Frames written to it.
+    frames: u64,
     /// Kinetic temperature kT at the end (k = 1, the scene's units).
     temperature: f64,
     /// Body–body collisions per body per unit time.
@@ -104,6 +120,15 @@ fn simulate<const D: usize>(scene: &Scene<D>, args: &Args) -> Result<Summary> {
     }
     let finder = make_finder::<D>(&args.finder, &args.finder_options.options()?)?;
     let mut sim = Simulation::with_finder(scene, finder)?;
+    let mut frames = match (args.frames, &args.trajectory) {
+        (Some(every), Some(path)) => {
+            let format = TrajectoryFormat::from_path(path).map_err(anyhow::Error::msg)?;
+            let times = SampleTimes::new(sim.time(), every, args.until.unwrap_or(10.0))
+                .map_err(|e| anyhow::anyhow!("--frames: {e}"))?;
+            Some((times.peekable(), format, path))
+        }
+        _ => None,
+    };
     let momentum_start = sim.world().momentum().0.to_vec();
     // Everything is validated before the run file is created: bad input leaves no file.
     let mut sink = Sink {
@@ -113,9 +138,23 @@ fn simulate<const D: usize>(scene: &Scene<D>, args: &Args) -> Result<Summary> {
         },
         error: None,
     };
+    let mut trajectory = match &frames {
+        Some((_, format, path)) => match TrajectoryWriter::create(path, *format) {
+            Ok(w) => Some(w),
+            Err(e) => {
+                // No partial output: the run file just created goes too.
+                if let Some(record) = &args.record {
+                    let _ = std::fs::remove_file(record);
+                }
+                return Err(anyhow::Error::new(e).context(format!("{}", path.display())));
+            }
+        },
+        None => None,
+    };
     let start = Instant::now();
     let t0 = sim.time();
     let mut count: u64 = 0;
+    let mut frames_written: u64 = 0;
     match args.events {
         Some(n) => {
             let mut progress = Progress::new(n, "events", args.quiet);
@@ -136,17 +175,37 @@ fn simulate<const D: usize>(scene: &Scene<D>, args: &Args) -> Result<Summary> {
             let mut progress = Progress::new(1000, "simulated time", args.quiet);
             // `step_event_until` never goes past `until`, not even for the box exits of a
             // periodic world.
-            while sink.error.is_none() {
-                let Some(c) = sim.step_event_until(until) else {
-                    break;
+            loop {
+                // The next stop: the next frame's time, or the end.
+                let (stop, is_frame) = match frames.as_mut().and_then(|f| f.0.peek()) {
+                    Some(&t) => (t, true),
+                    None => (until, false),
                 };
-                sink.take(&c);
-                count += 1;
-                if count % 4096 == 0 && span > 0.0 {
-                    progress.set(((sim.time() - t0) / span * 1000.0) as u64);
+                while sink.error.is_none() {
+                    let Some(c) = sim.step_event_until(stop) else {
+                        break;
+                    };
+                    sink.take(&c);
+                    count += 1;
+                    if count % 4096 == 0 && span > 0.0 {
+                        progress.set(((sim.time() - t0) / span * 1000.0) as u64);
+                    }
+                }
+                if sink.error.is_some() {
+                    break;
+                }
+                sim.run_until(stop);
+                // A halted run stands still before `stop`: no frame claims a time it missed.
+                if !is_frame || sim.time() < stop {
+                    break;
+                }
+                if let (Some(w), Some(f)) = (trajectory.as_mut(), frames.as_mut()) {
+                    f.0.next();
+                    frames_written += 1;
+                    w.write(&Frame::of(&sim))
+                        .with_context(|| format!("writing the trajectory {}", f.2.display()))?;
                 }
             }
-            sim.run_until(until);
             progress.finish();
         }
     }
@@ -156,6 +215,9 @@ fn simulate<const D: usize>(scene: &Scene<D>, args: &Args) -> Result<Summary> {
     let wall_seconds = start.elapsed().as_secs_f64();
     if let Some(w) = sink.writer {
         w.finish(sim.time())?;
+    }
+    if let Some(w) = trajectory {
+        w.finish()?;
     }
     if let Some(halt) = sim.halt() {
         eprintln!("warning: {halt}");
@@ -189,6 +251,8 @@ fn simulate<const D: usize>(scene: &Scene<D>, args: &Args) -> Result<Summary> {
         momentum_end: sim.world().momentum().0.to_vec(),
         max_overlap: stats.max_overlap,
         record: args.record.as_ref().map(|p| p.display().to_string()),
+        trajectory: args.trajectory.as_ref().map(|p| p.display().to_string()),
+        frames: frames_written,
         temperature: observables.temperature,
         collision_rate: observables.collision_rate,
         pressure: observables.pressure,
@@ -243,5 +307,8 @@ fn print_summary(s: &Summary, builtin: bool) {
     }
     if let Some(r) = &s.record {
         println!("run file written to {r}");
+    }
+    if let Some(t) = &s.trajectory {
+        println!("{} frames written to {t}", s.frames);
     }
 }
