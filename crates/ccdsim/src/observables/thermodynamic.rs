@@ -1,4 +1,4 @@
-//! Physical observables of a run: kinetic temperature, collision rate, pressure and the
+//! Thermodynamic observables of a run: kinetic temperature, collision rate, pressure and the
 //! compressibility factor, in 2D and 3D.
 //!
 //! Units are the scene's: Boltzmann's constant is 1, so a temperature is an energy (joules
