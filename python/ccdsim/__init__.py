@@ -19,14 +19,25 @@ Example::
 from __future__ import annotations
 
 import json
-from typing import Any, Mapping, Optional, Sequence, Union
+from dataclasses import dataclass
+from typing import Any, Iterator, Mapping, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
 from . import _ccdsim
 from . import generate
+from . import observables
 
-__all__ = ["Simulation", "read_run", "events_array", "EVENT_DTYPE", "FINDER_NAMES", "generate"]
+__all__ = [
+    "Simulation",
+    "Frame",
+    "read_run",
+    "events_array",
+    "EVENT_DTYPE",
+    "FINDER_NAMES",
+    "generate",
+    "observables",
+]
 
 #: Names of the finders (broad phases); all give the same events bit for bit.
 FINDER_NAMES: list[str] = list(_ccdsim.FINDER_NAMES)
@@ -63,6 +74,29 @@ def events_array(arrays: Mapping[str, np.ndarray], dim: int) -> np.ndarray:
 
 
 SceneLike = Union[str, Mapping[str, Any]]
+
+
+@dataclass(frozen=True)
+class Frame:
+    """The bodies at one instant (see :meth:`Simulation.frame`).
+
+    ``positions`` (N x D, m; inside ``[0, L)`` in a periodic box), ``images`` (N x D integers:
+    ``positions + images * box`` are the unwrapped positions), ``velocities`` (N x D, m/s) and
+    the ``time`` (s). ``box`` is the periodic box's sides (None otherwise).
+    """
+
+    time: float
+    positions: np.ndarray
+    images: np.ndarray
+    velocities: np.ndarray
+    box: Optional[np.ndarray]
+
+    @property
+    def unwrapped_positions(self) -> np.ndarray:
+        """Positions plus the periods crossed: the paths travelled, N x D, m."""
+        if self.box is None:
+            return self.positions
+        return self.positions + self.images * self.box
 
 
 def _scene_json(scene: SceneLike) -> str:
@@ -155,6 +189,67 @@ class Simulation:
     def velocities(self) -> np.ndarray:
         """Velocities, N x D, m/s."""
         return self._sim.velocities
+
+    @property
+    def images(self) -> np.ndarray:
+        """Periodic images, N x D integers: ``positions + images * box`` are the unwrapped
+        positions (zeros without a periodic box)."""
+        return self._sim.images
+
+    @property
+    def unwrapped_positions(self) -> np.ndarray:
+        """Unwrapped positions (the paths travelled, never folded into the box), N x D, m."""
+        return self._sim.unwrapped_positions
+
+    def cell(self) -> Tuple[str, Optional[np.ndarray], Optional[np.ndarray]]:
+        """The simulation cell as ``(kind, origin, size)``: kind ``"periodic"`` (the box
+        ``[0, L)``), ``"walls"`` (the walls' bounding box) or ``"open"`` (origin, size None)."""
+        kind, origin, size = self._sim.cell()
+        as_array = lambda v: None if v is None else np.asarray(v)  # noqa: E731
+        return kind, as_array(origin), as_array(size)
+
+    def frame(self) -> Frame:
+        """The bodies now, as a :class:`Frame`."""
+        kind, _, size = self.cell()
+        return Frame(
+            time=self.time,
+            positions=self.positions,
+            images=self.images,
+            velocities=self.velocities,
+            box=size if kind == "periodic" else None,
+        )
+
+    def frames(self, every: float, until: float) -> Iterator[Frame]:
+        """Runs to ``until``, yielding a :class:`Frame` every ``every`` seconds from now (now
+        included). Sample times are ``t0 + k * every``, computed from ``k``. Stops early if the
+        run halts (see :attr:`halt`)."""
+        every, until = float(every), float(until)
+        if not (every > 0.0 and np.isfinite(every)):
+            raise ValueError(f"every must be a positive number of seconds, not {every}")
+        t0 = self.time
+        k = 0
+        while True:
+            t = t0 + k * every
+            if t > until:
+                break
+            self.run_until(t)
+            if self.time < t:
+                break
+            yield self.frame()
+            k += 1
+
+    def write_trajectory(self, path: str, every: float, until: float) -> int:
+        """Runs to ``until``, writing a frame every ``every`` seconds from now (now included) to
+        ``path``: extended XYZ for ``.xyz``/``.extxyz`` (ASE, OVITO; full precision), GSD for
+        ``.gsd`` (the ``gsd`` package, HOOMD, freud; float32, box centred on the origin).
+        Returns the number of frames. Runs in Rust without the GIL."""
+        return self._sim.write_trajectory(str(path), float(every), float(until))
+
+    def run_until_pressure_tensor(self, t: float) -> np.ndarray:
+        """Runs to time ``t`` and returns the pressure tensor (D x D) over that stretch: the
+        time-integrated kinetic tensor (centre-of-mass frame when periodic) plus the collision
+        virial, over the volume. Its trace / D is the scalar pressure of :meth:`observables`."""
+        return self._sim.run_until_pressure_tensor(float(t))
 
     @property
     def radii(self) -> np.ndarray:

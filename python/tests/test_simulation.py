@@ -2,16 +2,13 @@
 the right shapes, clear errors, and agreement with the ccdsim binary."""
 
 import json
-import os
 import subprocess
-from pathlib import Path
 
 import numpy as np
 import pytest
 
 import ccdsim
 
-ROOT = Path(__file__).resolve().parents[2]
 
 
 def two_balls():
@@ -98,20 +95,8 @@ def test_bad_scenes_raise_value_errors_naming_the_culprit():
         ccdsim.Simulation(late)
 
 
-def ccdsim_binary():
-    """The ccdsim binary `scripts/test` built before the Python tests, if any."""
-    target = subprocess.run(
-        [str(ROOT / "scripts/target-dir")], capture_output=True, text=True, check=True
-    ).stdout.strip()
-    for profile in ("release", "debug"):
-        path = Path(target) / profile / "ccdsim"
-        if path.exists():
-            return path
-    pytest.skip("no ccdsim binary built")
-
-
-def test_agrees_with_the_binary_and_reads_its_run_files(tmp_path):
-    binary = ccdsim_binary()
+def test_agrees_with_the_binary_and_reads_its_run_files(tmp_path, ccdsim_binary):
+    binary = ccdsim_binary
     scene = ccdsim.generate.rack()
     scene_file = tmp_path / "rack.json"
     scene_file.write_text(json.dumps(scene))

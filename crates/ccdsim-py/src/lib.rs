@@ -4,6 +4,7 @@
 
 #![forbid(unsafe_code)]
 
+mod observables;
 mod simulation;
 
 use ccdsim::generate::{gas, rack, thesis, GasConfig, Lattice, RackConfig, ThesisConfig};
@@ -166,6 +167,7 @@ fn _ccdsim(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(thesis_json, m)?)?;
     m.add_function(wrap_pyfunction!(rack_json, m)?)?;
     m.add_function(wrap_pyfunction!(read_run, m)?)?;
+    observables::register(m)?;
     m.add("FINDER_NAMES", ccdsim::FINDER_NAMES.to_vec())?;
     Ok(())
 }

@@ -1,5 +1,7 @@
 //! `ccdsim._ccdsim.Simulation`: one `ccdsim::Simulation` of either dimension.
 
+use ccdsim::observables::PressureTensor;
+use ccdsim::trajectory::{Cell, Frame, SampleTimes, TrajectoryFormat, TrajectoryWriter};
 use ccdsim::{AnyScene, Collision, Simulation, Vector};
 use numpy::{PyArray1, PyArray2, PyArrayMethods};
 use pyo3::exceptions::{PyIndexError, PyValueError};
@@ -127,6 +129,99 @@ impl PySimulation {
     #[getter]
     fn velocities<'py>(&mut self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f64>>> {
         with_sim!(self, s, matrix::<D>(py, s.world().velocities()))
+    }
+
+    /// Periodic images, N×D integers: `positions + images · L` are the unwrapped positions
+    /// (zeros without a periodic box).
+    #[getter]
+    fn images<'py>(&mut self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<i64>>> {
+        with_sim!(self, s, {
+            let n = s.world().len();
+            let flat: Vec<i64> = (0..n).flat_map(|i| s.image(i)).collect();
+            PyArray1::from_vec(py, flat).reshape([n, D])
+        })
+    }
+
+    /// Unwrapped positions (the paths travelled, never folded into the box), N×D, metres.
+    #[getter]
+    fn unwrapped_positions<'py>(&mut self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        with_sim!(self, s, {
+            let n = s.world().len();
+            matrix::<D>(py, (0..n).map(|i| s.unwrapped_position(i)))
+        })
+    }
+
+    /// The simulation cell: `(kind, origin, size)` with kind "periodic", "walls" (the walls'
+    /// bounding box) or "open" (origin and size None).
+    #[allow(clippy::type_complexity)]
+    fn cell(&mut self) -> (&'static str, Option<Vec<f64>>, Option<Vec<f64>>) {
+        with_sim!(self, s, {
+            let cell = Frame::of(s).cell;
+            let kind = match cell {
+                Cell::Periodic(_) => "periodic",
+                Cell::Walls { .. } => "walls",
+                Cell::Open => "open",
+            };
+            match cell.origin_and_size() {
+                Some((o, l)) => (kind, Some(o.0.to_vec()), Some(l.0.to_vec())),
+                None => (kind, None, None),
+            }
+        })
+    }
+
+    /// Runs to `until`, writing a frame every `every` seconds from now (now included) to
+    /// `path` (.xyz/.extxyz: extended XYZ; .gsd: GSD); the number of frames. Runs without the
+    /// GIL.
+    fn write_trajectory(
+        &mut self,
+        py: Python<'_>,
+        path: std::path::PathBuf,
+        every: f64,
+        until: f64,
+    ) -> PyResult<u64> {
+        let format = TrajectoryFormat::from_path(&path).map_err(value_error)?;
+        with_sim!(self, s, {
+            let times = SampleTimes::new(s.time(), every, until).map_err(value_error)?;
+            py.detach(|| -> PyResult<u64> {
+                let io = |e: std::io::Error| {
+                    pyo3::exceptions::PyOSError::new_err(format!("{}: {e}", path.display()))
+                };
+                let mut w = TrajectoryWriter::create(&path, format).map_err(io)?;
+                let mut frames = 0;
+                for t in times {
+                    s.run_until(t);
+                    if s.time() < t {
+                        break; // halted: no frame claims a time the run did not reach
+                    }
+                    w.write(&Frame::of(s)).map_err(io)?;
+                    frames += 1;
+                }
+                s.run_until(until);
+                w.finish().map_err(io)?;
+                Ok(frames)
+            })
+        })
+    }
+
+    /// Runs to time `t` and returns the pressure tensor (D×D) over that stretch, from the
+    /// collision virial and the time-integrated kinetic tensor. Runs without the GIL.
+    fn run_until_pressure_tensor<'py>(
+        &mut self,
+        py: Python<'py>,
+        t: f64,
+    ) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        if t.is_nan() {
+            return Err(value_error("t is NaN"));
+        }
+        with_sim!(self, s, {
+            let mut p = PressureTensor::new(s).map_err(value_error)?;
+            let tensor = py.detach(|| {
+                s.run_until_with(t, |c| p.observe(c));
+                p.tensor(s.time())
+            });
+            let flat: Vec<f64> = tensor.iter().flatten().copied().collect();
+            PyArray1::from_vec(py, flat).reshape([D, D])
+        })
     }
 
     /// Radii, metres.

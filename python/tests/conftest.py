@@ -1,0 +1,23 @@
+"""Shared fixtures: the ccdsim binary, built from this checkout when needed."""
+
+import subprocess
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[2]
+
+
+@pytest.fixture(scope="session")
+def ccdsim_binary() -> Path:
+    """The ccdsim CLI of this checkout (debug profile), built by cargo if it is missing or
+    stale (a no-op after `scripts/test`'s Rust suite)."""
+    subprocess.run(
+        ["cargo", "build", "--quiet", "-p", "ccdsim-cli"], cwd=ROOT, check=True
+    )
+    target = subprocess.run(
+        [str(ROOT / "scripts/target-dir")], capture_output=True, text=True, check=True
+    ).stdout.strip()
+    path = Path(target) / "debug" / "ccdsim"
+    assert path.exists(), f"cargo built no binary at {path}"
+    return path
