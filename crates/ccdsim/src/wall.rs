@@ -30,6 +30,32 @@ pub enum Wall<const D: usize> {
     },
 }
 
+/// The box bounding the walls' points (segment ends, plane points) as `(lo, hi)`, metres, if
+/// it has a positive, finite extent along every axis: the volume of a walled scene.
+#[must_use]
+pub fn walls_bounds<const D: usize>(walls: &[Wall<D>]) -> Option<(Vector<D>, Vector<D>)> {
+    let mut lo = Vector([f64::INFINITY; D]);
+    let mut hi = Vector([f64::NEG_INFINITY; D]);
+    let mut grow = |p: &Vector<D>| {
+        for d in 0..D {
+            lo[d] = lo[d].min(p[d]);
+            hi[d] = hi[d].max(p[d]);
+        }
+    };
+    for wall in walls {
+        match wall {
+            Wall::Segment { a, b } => {
+                grow(a);
+                grow(b);
+            }
+            Wall::Plane { point, .. } => grow(point),
+        }
+    }
+    (0..D)
+        .all(|d| (hi[d] - lo[d]).is_finite() && hi[d] > lo[d])
+        .then_some((lo, hi))
+}
+
 /// Distance from `p` to the wall (signed for planes: negative behind it).
 #[must_use]
 pub fn wall_clearance<const D: usize>(wall: &Wall<D>, p: Vector<D>) -> f64 {

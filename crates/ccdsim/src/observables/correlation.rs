@@ -33,31 +33,22 @@ use rustfft::FftPlanner;
 pub fn mean_square_displacement<const D: usize>(
     frames: &[Vec<Vector<D>>],
 ) -> Result<Vec<f64>, String> {
-    let (f, n) = shape(frames)?;
-    let mut total = vec![0.0; f];
-    let mut corr = Autocorrelation::new(f);
-    let mut x = vec![0.0; f];
-    for i in 0..n {
-        for d in 0..D {
-            // Relative to the first frame: displacements are differences, and sums of squares
-            // of coordinates far from the origin would cancel catastrophically.
-            for (k, frame) in frames.iter().enumerate() {
-                x[k] = frame[i][d] - frames[0][i][d];
+    // Displacements are differences: taken relative to frame 0, since sums of squares of
+    // coordinates far from the origin would cancel catastrophically.
+    let mut total = sum_over_series(frames, true, |x, s2, total| {
+        let f = x.len();
+        // S1(m) = Σ_{k=0}^{F−m−1} x(k)² + x(k+m)², by shrinking the sum from both ends.
+        let mut q: f64 = 2.0 * x.iter().map(|v| v * v).sum::<f64>();
+        for m in 0..f {
+            if m > 0 {
+                q -= x[m - 1] * x[m - 1] + x[f - m] * x[f - m];
             }
-            let s2 = corr.of(&x);
-            // S1(m) = Σ_{k=0}^{F−m−1} x(k)² + x(k+m)², by shrinking the sum from both ends.
-            let mut q: f64 = 2.0 * x.iter().map(|v| v * v).sum::<f64>();
-            for m in 0..f {
-                if m > 0 {
-                    q -= x[m - 1] * x[m - 1] + x[f - m] * x[f - m];
-                }
-                total[m] += q - 2.0 * s2[m];
-            }
+            total[m] += q - 2.0 * s2[m];
         }
-    }
+    })?;
     // No displacement at lag 0, by definition; the FFT leaves a rounding there.
     total[0] = 0.0;
-    Ok(average(total, n))
+    Ok(total)
 }
 
 /// Velocity autocorrelation (m²/s²) for lags `0 … F−1` frames; `frames[k][i]` is body `i`'s
@@ -65,21 +56,38 @@ pub fn mean_square_displacement<const D: usize>(
 pub fn velocity_autocorrelation<const D: usize>(
     frames: &[Vec<Vector<D>>],
 ) -> Result<Vec<f64>, String> {
+    sum_over_series(frames, false, |_, s2, total| {
+        for (t, c) in total.iter_mut().zip(s2) {
+            *t += c;
+        }
+    })
+}
+
+/// For every body and axis, the series `x(k)` (relative to frame 0 if `relative`) and its
+/// autocorrelation `S2`, handed to `add(x, S2, totals)`; then each lag's total divided by its
+/// `N (F − m)` terms.
+fn sum_over_series<const D: usize>(
+    frames: &[Vec<Vector<D>>],
+    relative: bool,
+    mut add: impl FnMut(&[f64], &[f64], &mut [f64]),
+) -> Result<Vec<f64>, String> {
     let (f, n) = shape(frames)?;
     let mut total = vec![0.0; f];
     let mut corr = Autocorrelation::new(f);
     let mut x = vec![0.0; f];
     for i in 0..n {
         for d in 0..D {
+            let origin = if relative { frames[0][i][d] } else { 0.0 };
             for (k, frame) in frames.iter().enumerate() {
-                x[k] = frame[i][d];
+                x[k] = frame[i][d] - origin;
             }
-            for (t, c) in total.iter_mut().zip(corr.of(&x)) {
-                *t += c;
-            }
+            add(&x, corr.of(&x), &mut total);
         }
     }
-    Ok(average(total, n))
+    for (m, t) in total.iter_mut().enumerate() {
+        *t /= (n * (f - m)) as f64;
+    }
+    Ok(total)
 }
 
 /// Frames and bodies, checked: at least one frame, the same number of bodies in each.
@@ -98,15 +106,6 @@ fn shape<const D: usize>(frames: &[Vec<Vector<D>>]) -> Result<(usize, usize), St
         ));
     }
     Ok((frames.len(), n))
-}
-
-/// Divides the sum for lag `m` by its `N (F − m)` terms.
-fn average(mut total: Vec<f64>, n: usize) -> Vec<f64> {
-    let f = total.len();
-    for (m, t) in total.iter_mut().enumerate() {
-        *t /= (n * (f - m)) as f64;
-    }
-    total
 }
 
 /// `Σ_{k=0}^{F−m−1} x(k) x(k+m)` for every lag `m`, by FFT; plans and buffers reused.

@@ -20,7 +20,7 @@
 //! result is the bulk virial pressure up to wall corrections of relative order `σ / L`), and
 //! there is none for a world without walls.
 
-use crate::scene::Wall;
+use crate::wall::walls_bounds;
 use crate::world::World;
 
 /// Observables over a stretch of a run; see the module docs.
@@ -44,25 +44,8 @@ pub fn world_volume<const D: usize>(world: &World<D>) -> Option<f64> {
     if let Some(size) = world.periodic() {
         return Some(size.0.iter().product());
     }
-    let mut lo = [f64::INFINITY; D];
-    let mut hi = [f64::NEG_INFINITY; D];
-    let mut grow = |p: &crate::geom::Vector<D>| {
-        for d in 0..D {
-            lo[d] = lo[d].min(p[d]);
-            hi[d] = hi[d].max(p[d]);
-        }
-    };
-    for wall in world.walls() {
-        match wall {
-            Wall::Segment { a, b } => {
-                grow(a);
-                grow(b);
-            }
-            Wall::Plane { point, .. } => grow(point),
-        }
-    }
-    let v: f64 = (0..D).map(|d| hi[d] - lo[d]).product();
-    (v.is_finite() && v > 0.0).then_some(v)
+    let (lo, hi) = walls_bounds(world.walls())?;
+    Some((0..D).map(|d| hi[d] - lo[d]).product())
 }
 
 /// Kinetic temperature `kT` of the world now (centre-of-mass frame in periodic worlds).
@@ -120,6 +103,7 @@ mod tests {
     use crate::geom::Vector;
     use crate::scene::{BodySpec, Scene};
     use crate::sim::Simulation;
+    use crate::wall::Wall;
 
     #[test]
     fn ideal_gas_in_a_periodic_box() {

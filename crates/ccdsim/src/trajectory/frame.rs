@@ -2,7 +2,7 @@
 
 use crate::geom::Vector;
 use crate::sim::Simulation;
-use crate::wall::Wall;
+use crate::wall::walls_bounds;
 
 /// The simulation cell a frame lives in.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -62,7 +62,10 @@ impl<const D: usize> Frame<D> {
         let n = world.len();
         let cell = match world.periodic() {
             Some(size) => Cell::Periodic(size),
-            None => walls_cell(world.walls()),
+            None => match walls_bounds(world.walls()) {
+                Some((lo, hi)) => Cell::Walls { lo, hi },
+                None => Cell::Open,
+            },
         };
         Frame {
             time: sim.time(),
@@ -106,31 +109,5 @@ impl<const D: usize> Frame<D> {
                 u
             })
             .collect()
-    }
-}
-
-/// The box bounding the walls' points, if it has a positive volume.
-fn walls_cell<const D: usize>(walls: &[Wall<D>]) -> Cell<D> {
-    let mut lo = Vector([f64::INFINITY; D]);
-    let mut hi = Vector([f64::NEG_INFINITY; D]);
-    let mut grow = |p: &Vector<D>| {
-        for d in 0..D {
-            lo[d] = lo[d].min(p[d]);
-            hi[d] = hi[d].max(p[d]);
-        }
-    };
-    for wall in walls {
-        match wall {
-            Wall::Segment { a, b } => {
-                grow(a);
-                grow(b);
-            }
-            Wall::Plane { point, .. } => grow(point),
-        }
-    }
-    if (0..D).all(|d| (hi[d] - lo[d]).is_finite() && hi[d] > lo[d]) {
-        Cell::Walls { lo, hi }
-    } else {
-        Cell::Open
     }
 }
