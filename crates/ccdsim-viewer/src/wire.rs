@@ -5,7 +5,7 @@
 //! |---|---|
 //! | `/api/bodies` | `f64` radii (`n`), then `f64` ids (`n`) |
 //! | `/api/state` | `f64` header of [`STATE_HEADER`] values, then `f32` positions at the snapshot time (`n·D`), then `f32` velocities (`n·D`) |
-//! | `/api/events` | per event `4 + 4·D` `f64`s: `t`, kind (0 body, 1 wall), `a`, `b`, position and velocity of slot 0, then of slot 1 |
+//! | `/api/events` | per event `4 + 4·D` `f64`s: `t`, kind (0 body, 1 wall, 2 thermostat reset), `a`, `b`, position and velocity of slot 0, then of slot 1 |
 //! | `/api/boxes` | per box `2 + 2·D` `f32`s: depth, leaf (0/1), min corner, max corner |
 
 use crate::playback::{Playback, Snapshot};
@@ -13,7 +13,7 @@ use ccdsim::finder::DebugBox;
 use ccdsim::{Collision, EventKind, FINDER_NAMES};
 
 /// Number of `f64` values before the arrays of a `/api/state` answer: time, events applied,
-/// bodies, dimension, last event's kind (−1 none, 0 body, 1 wall), time, `a`, `b`.
+/// bodies, dimension, last event's kind (−1 none, 0 body, 1 wall, 2 reset), time, `a`, `b`.
 pub const STATE_HEADER: usize = 8;
 
 fn put_f64(out: &mut Vec<u8>, x: f64) {
@@ -28,6 +28,7 @@ fn kind_code(kind: EventKind) -> f64 {
     match kind {
         EventKind::Body => 0.0,
         EventKind::Wall => 1.0,
+        EventKind::Reset => 2.0,
     }
 }
 

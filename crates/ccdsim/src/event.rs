@@ -2,13 +2,16 @@
 
 use std::cmp::Ordering;
 
-/// What an event is between: two bodies, or a body and a wall.
+/// What an event is between: two bodies, or a body and a wall; or a thermostat reset.
 #[derive(Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Debug)]
 pub enum EventKind {
     /// Two bodies touch. Orders before a wall event at the same time.
     Body = 0,
     /// A body touches a wall.
     Wall = 1,
+    /// The Andersen thermostat gives body `a` a new velocity (`b` is 0); never predicted by a
+    /// finder, see [`crate::thermostat`]. Orders after collisions at the same time.
+    Reset = 2,
 }
 
 /// A collision at absolute simulated time `time` (seconds).
@@ -52,6 +55,17 @@ impl Event {
             kind: EventKind::Wall,
             a: i as u32,
             b: w as u32,
+        }
+    }
+
+    /// The thermostat's velocity reset of body `i` at `time`.
+    #[must_use]
+    pub fn reset(time: f64, i: usize) -> Self {
+        Event {
+            time,
+            kind: EventKind::Reset,
+            a: i as u32,
+            b: 0,
         }
     }
 

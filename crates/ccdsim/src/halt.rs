@@ -173,7 +173,7 @@ pub fn event_resolved<const D: usize>(world: &World<D>, e: &Event) -> bool {
         crate::resolution::resolution_error_at(clock, b.motion.at(e.time), b.motion.vel)
             <= crate::resolution::RESOLUTION_LIMIT * b.radius
     };
-    body(e.a) && (e.kind == EventKind::Wall || body(e.b))
+    body(e.a) && (e.kind != EventKind::Body || body(e.b))
 }
 
 /// The first body involved in `e` that is not resolved at its time, as a [`Halt`]; `None`
@@ -183,7 +183,7 @@ pub fn event_resolved<const D: usize>(world: &World<D>, e: &Event) -> bool {
 pub fn unresolved<const D: usize>(world: &World<D>, e: &Event) -> Option<Halt> {
     let involved = match e.kind {
         EventKind::Body => &[e.a, e.b][..],
-        EventKind::Wall => &[e.a][..],
+        EventKind::Wall | EventKind::Reset => &[e.a][..],
     };
     involved.iter().find_map(|&i| {
         let m = world.motion(i as usize);

@@ -34,6 +34,7 @@ pub mod resolution;
 pub mod resolve;
 pub mod scene;
 pub mod sim;
+pub mod thermostat;
 pub mod trajectory;
 pub mod verify;
 pub mod wall;

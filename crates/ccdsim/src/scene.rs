@@ -5,6 +5,7 @@
 
 use crate::geom::{ball_volume, Vector};
 use crate::resolution::{resolution_error, resolves, ulp, RESOLUTION_LIMIT};
+use crate::thermostat::Thermostat;
 use crate::wall::{closed_segments, inside_even_odd};
 pub use crate::wall::{wall_clearance, Wall};
 use serde::{Deserialize, Serialize};
@@ -55,6 +56,10 @@ pub struct Settings {
     /// Coefficient of restitution in `[0, 1]` for every collision; 1 is elastic.
     #[serde(default = "one")]
     pub restitution: f64,
+    /// The Andersen thermostat (random velocity resets at a temperature), if any; see
+    /// [`crate::thermostat`].
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub thermostat: Option<Thermostat>,
 }
 
 fn one() -> f64 {
@@ -63,7 +68,10 @@ fn one() -> f64 {
 
 impl Default for Settings {
     fn default() -> Self {
-        Settings { restitution: 1.0 }
+        Settings {
+            restitution: 1.0,
+            thermostat: None,
+        }
     }
 }
 
@@ -277,6 +285,19 @@ impl<const D: usize> Scene<D> {
         }
         if !(0.0..=1.0).contains(&r) {
             return Err(SceneError::Restitution(r));
+        }
+        if let Some(th) = &self.settings.thermostat {
+            for (value, field) in [
+                (th.temperature, "settings.thermostat.temperature"),
+                (th.rate, "settings.thermostat.rate"),
+            ] {
+                if !value.is_finite() {
+                    return Err(SceneError::NonFinite(field.into()));
+                }
+                if value <= 0.0 {
+                    return Err(SceneError::NonPositive(field.into()));
+                }
+            }
         }
         if !self.start_time.is_finite() {
             return Err(SceneError::NonFinite("start_time".into()));

@@ -8,6 +8,7 @@ use crate::observables::{observables, Observables};
 use crate::periodic::wrap_point;
 use crate::resolve::{resolve_body_body_contact, resolve_body_wall, resolve_exit};
 use crate::scene::{Scene, SceneError};
+use crate::thermostat::ResetClock;
 use crate::world::World;
 
 /// A resolved collision: the event and the involved bodies' states right after it.
@@ -27,7 +28,7 @@ impl<const D: usize> Collision<D> {
     pub fn body_count(&self) -> usize {
         match self.event.kind {
             EventKind::Body => 2,
-            EventKind::Wall => 1,
+            EventKind::Wall | EventKind::Reset => 1,
         }
     }
 }
@@ -35,7 +36,7 @@ impl<const D: usize> Collision<D> {
 /// Counters kept while running.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Stats {
-    /// Events resolved (body and wall collisions).
+    /// Events resolved: body and wall collisions, and thermostat resets.
     pub events: u64,
     /// Body–body collisions resolved.
     pub body_collisions: u64,
@@ -51,6 +52,8 @@ pub struct Stats {
     /// received, kg·m²/s. Pressure and the compressibility factor follow from it (see
     /// [`crate::observables`]).
     pub virial: f64,
+    /// Thermostat resets applied (see [`crate::thermostat`]); counted in `events` too.
+    pub resets: u64,
     /// Periodic worlds: box exits applied (a body leaving through a face and re-entering
     /// through the opposite one). Not events: never returned, recorded or counted above.
     pub exits: u64,
@@ -98,6 +101,8 @@ pub struct Simulation<const D: usize> {
     /// Periodic worlds: per body, the whole periods its stored position has been shifted by
     /// box exits, so that `stored + images · L` is its unwrapped position. Empty otherwise.
     images: Vec<[i64; D]>,
+    /// The thermostat's reset sequence, if the scene has one.
+    thermostat: Option<ResetClock>,
 }
 
 impl<const D: usize> Simulation<D> {
@@ -124,7 +129,11 @@ impl<const D: usize> Simulation<D> {
         } else {
             Vec::new()
         };
+        let thermostat = world
+            .thermostat()
+            .map(|th| ResetClock::new(th, world.len(), world.now()));
         Ok(Simulation {
+            thermostat,
             images,
             start_time: world.now(),
             guard: ResolutionGuard::new(&world),
@@ -256,6 +265,29 @@ impl<const D: usize> Simulation<D> {
         self.pending.flatten()
     }
 
+    /// The next event of any source: the finder's (collision or box exit) or the thermostat's
+    /// reset, whichever comes first (the collision on a tie). A reset also comes when the
+    /// finder has none, or has halted after the reset's time.
+    fn next_any(&mut self) -> Option<Event> {
+        let found = self.next_raw();
+        let Some(clock) = &self.thermostat else {
+            return found;
+        };
+        let t = clock.next_time();
+        let halted_after = match self.halt {
+            Some(Halt::Resolution { time, .. }) => time > t,
+            Some(Halt::BeyondRange { .. }) => true,
+            None => found.is_none(),
+        };
+        match found {
+            Some(e) if e.time <= t => Some(e),
+            _ if t.is_finite() && (found.is_some() || halted_after) => {
+                Some(Event::reset(t, clock.next_body()))
+            }
+            _ => found,
+        }
+    }
+
     /// True for a box exit (a wall event naming a face after the walls).
     fn is_exit(&self, e: &Event) -> bool {
         e.kind == EventKind::Wall && e.b as usize >= self.world.walls().len()
@@ -284,7 +316,7 @@ impl<const D: usize> Simulation<D> {
         let guard = 1024 + 64 * self.world.len() as u64;
         let mut exits = 0;
         loop {
-            let e = self.next_raw()?;
+            let e = self.next_any()?;
             if !self.is_exit(&e) {
                 return Some(e);
             }
@@ -339,17 +371,47 @@ impl<const D: usize> Simulation<D> {
                     vel: [w.velocity(a), Vector::ZERO],
                 }
             }
+            EventKind::Reset => {
+                overlap = 0.0;
+                self.apply_reset(e.time)
+            }
         };
         self.stats.events += 1;
         self.stats.max_overlap = self.stats.max_overlap.max(overlap);
         out
     }
 
+    /// Applies the thermostat's next reset (at `time`, the current time now).
+    fn apply_reset(&mut self, time: f64) -> Collision<D> {
+        let clock = self
+            .thermostat
+            .as_mut()
+            .expect("resets come from a thermostat");
+        let i = clock.next_body();
+        let reset = clock.take::<D>(self.world.mass(i));
+        debug_assert_eq!((reset.time, reset.body), (time, i));
+        let added = 0.5
+            * self.world.mass(i)
+            * (reset.velocity.norm_sq() - self.world.velocity(i).norm_sq());
+        self.guard.add_energy(added);
+        let p = self.world.position_at(i, time);
+        self.world.set_state(i, p, reset.velocity, time);
+        self.finder.update(&self.world, &[i]);
+        // The world changed: an earlier halt may no longer hold.
+        self.halt = None;
+        self.stats.resets += 1;
+        Collision {
+            event: Event::reset(time, i),
+            pos: [p, Vector::ZERO],
+            vel: [reset.velocity, Vector::ZERO],
+        }
+    }
+
     /// Resolves the next event if it happens at or before `t` and returns it; otherwise
     /// returns `None` and changes nothing after `t` (box exits up to `t` are applied).
     pub fn step_event_until(&mut self, t: f64) -> Option<Collision<D>> {
         loop {
-            let e = self.next_raw()?;
+            let e = self.next_any()?;
             if e.time > t {
                 return None;
             }

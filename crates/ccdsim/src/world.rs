@@ -42,6 +42,7 @@ pub struct World<const D: usize> {
     walls: Vec<Wall<D>>,
     periodic: Option<Vector<D>>,
     restitution: f64,
+    thermostat: Option<crate::thermostat::Thermostat>,
     now: f64,
 }
 
@@ -69,6 +70,7 @@ impl<const D: usize> World<D> {
             walls: scene.walls.clone(),
             periodic: scene.periodic,
             restitution: scene.settings.restitution,
+            thermostat: scene.settings.thermostat,
             now: scene.start_time,
         })
     }
@@ -199,6 +201,12 @@ impl<const D: usize> World<D> {
     #[must_use]
     pub fn restitution(&self) -> f64 {
         self.restitution
+    }
+
+    /// The scene's Andersen thermostat, if any.
+    #[must_use]
+    pub fn thermostat(&self) -> Option<&crate::thermostat::Thermostat> {
+        self.thermostat.as_ref()
     }
 
     /// How many times body `i`'s stored state has been replaced; a cached prediction about

@@ -841,12 +841,18 @@ fn far_from_the_origin_and_late() {
 fn inelastic_dense() {
     for restitution in [0.0, 0.3, 0.9] {
         let s2 = Scene {
-            settings: Settings { restitution },
+            settings: Settings {
+                restitution,
+                ..Settings::default()
+            },
             ..gas_scene::<2>(150, 0.45, (0.5, 0.5), SMALL_SEEDS[2])
         };
         check_all(&format!("inelastic e={restitution} 2D"), &s2, 1500);
         let s3 = Scene {
-            settings: Settings { restitution },
+            settings: Settings {
+                restitution,
+                ..Settings::default()
+            },
             ..gas_scene::<3>(100, 0.3, (0.2, 1.0), SMALL_SEEDS[2])
         };
         check_all(&format!("inelastic e={restitution} 3D"), &s3, 1500);
@@ -902,7 +908,10 @@ fn grid_scene_in<const D: usize>(
         })
         .collect();
     Scene {
-        settings: Settings { restitution },
+        settings: Settings {
+            restitution,
+            ..Settings::default()
+        },
         start_time: 0.0,
         bodies,
         walls: match boundary {
@@ -1103,6 +1112,7 @@ fn inelastic_collapse_to_huge_times() {
     let scene = Scene::<2> {
         settings: Settings {
             restitution: 0.11307834162367694,
+            ..Settings::default()
         },
         bodies: vec![
             body([2.0, 2.0], [0.0, 0.0], 0.05),
@@ -1139,7 +1149,10 @@ fn inelastic_collapse_to_huge_times() {
 fn inelastic_collapse_to_infinite_time() {
     let e = 0.01733112181355497;
     let s3 = Scene::<3> {
-        settings: Settings { restitution: e },
+        settings: Settings {
+            restitution: e,
+            ..Settings::default()
+        },
         bodies: vec![BodySpec::new(
             Vector([2.0, 2.0, 2.0]),
             Vector([0.0, 0.0, 2.8198125128649347]),
@@ -1149,7 +1162,10 @@ fn inelastic_collapse_to_infinite_time() {
         ..Scene::default()
     };
     let s2 = Scene::<2> {
-        settings: Settings { restitution: e },
+        settings: Settings {
+            restitution: e,
+            ..Settings::default()
+        },
         bodies: vec![BodySpec::new(
             Vector([2.0, 2.0]),
             Vector([0.0, 2.8198125128649347]),

@@ -123,7 +123,10 @@ fn inelastic_bounces_continue_until_the_time_is_not_representable() {
     let scene = Scene::<2> {
         bodies: vec![ball([1.0, 1.0], [0.0, 1.0], 0.25)],
         walls: square_table(2.0),
-        settings: Settings { restitution: 0.5 },
+        settings: Settings {
+            restitution: 0.5,
+            ..Settings::default()
+        },
         ..Scene::default()
     };
     let runs = run_every_finder(&scene, 5000);
@@ -152,7 +155,10 @@ fn inelastic_bounces_continue_until_the_time_is_not_representable() {
     let scene = Scene::<3> {
         bodies: vec![ball([1.0, 1.0, 1.0], [0.0, 0.0, 1.0], 0.25)],
         walls: cube(2.0),
-        settings: Settings { restitution: 0.5 },
+        settings: Settings {
+            restitution: 0.5,
+            ..Settings::default()
+        },
         ..Scene::default()
     };
     let runs = run_every_finder(&scene, 5000);

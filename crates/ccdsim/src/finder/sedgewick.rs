@@ -355,6 +355,7 @@ mod tests {
                     crate::resolve::resolve_body_wall(&mut world, a, b, e.time);
                     f.update(&world, &[a]);
                 }
+                EventKind::Reset => panic!("finders never predict thermostat resets"),
             }
         }
         let s = f.stats();

@@ -29,6 +29,9 @@ struct Header<'a, const D: usize> {
     /// Sides of the periodic box, for periodic scenes only.
     #[serde(skip_serializing_if = "Option::is_none")]
     periodic: Option<Vector<D>>,
+    /// The Andersen thermostat, for thermostatted scenes only.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    thermostat: Option<crate::thermostat::Thermostat>,
 }
 
 #[derive(Serialize)]
@@ -59,7 +62,7 @@ pub fn export_jsonl<R: Read, W: Write, const D: usize>(
 ) -> Result<u64, ExportError> {
     let scene = reader.scene().clone();
     let header = Header {
-        version: super::VERSION,
+        version: super::version_for(&scene),
         dim: D,
         bodies: scene
             .bodies
@@ -77,6 +80,7 @@ pub fn export_jsonl<R: Read, W: Write, const D: usize>(
         start_time: scene.start_time,
         restitution: scene.settings.restitution,
         periodic: scene.periodic,
+        thermostat: scene.settings.thermostat,
     };
     serde_json::to_writer(&mut *out, &header).map_err(std::io::Error::from)?;
     out.write_all(b"\n")?;
@@ -87,6 +91,7 @@ pub fn export_jsonl<R: Read, W: Write, const D: usize>(
         let (kind, b) = match c.event.kind {
             EventKind::Body => ("body", scene.id_of(c.event.b as usize)),
             EventKind::Wall => ("wall", u64::from(c.event.b)),
+            EventKind::Reset => ("reset", 0),
         };
         let line = EventOut {
             t: c.event.time,

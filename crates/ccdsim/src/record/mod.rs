@@ -11,7 +11,11 @@
 //! | h | the initial scene as JSON (the scene file format) |
 //! | … | fixed-size records of `21 + 32·D` bytes each |
 //!
-//! A record is: tag `u8` (1 body event, 2 wall event, 3 end of run), `a: u32`, `b: u32`,
+//! Version 2 is version 1 plus records of tag 4, thermostat resets (`a` the body, `b` 0, the
+//! first slot its position at `t` and its new velocity); it is written for scenes with an
+//! Andersen thermostat only, so every other run file stays version 1, byte for byte.
+//!
+//! A record is: tag `u8` (1 body event, 2 wall event, 3 end of run, 4 reset), `a: u32`, `b: u32`,
 //! `t: f64`, then for two body slots the position at `t` and the velocity after the event
 //! (`D` `f64`s each; the second slot is zero for wall events and the end record), then an
 //! FNV-1a checksum (`u32`) of the record's preceding bytes. The end record's `t` is the time
@@ -27,14 +31,28 @@ pub use writer::RunWriter;
 
 /// First 8 bytes of every run file.
 pub const MAGIC: [u8; 8] = *b"CCDSIMRF";
-/// Format version this build writes and reads.
+/// Format version of run files without thermostat resets.
 pub const VERSION: u32 = 1;
+/// Format version of run files of scenes with a thermostat (version 1 plus reset records);
+/// the newest this build reads.
+pub const VERSION_RESETS: u32 = 2;
+
+/// The format version a run of `scene` is written in.
+#[must_use]
+pub fn version_for<const D: usize>(scene: &crate::scene::Scene<D>) -> u32 {
+    if scene.settings.thermostat.is_some() {
+        VERSION_RESETS
+    } else {
+        VERSION
+    }
+}
 /// Bytes before the header JSON.
 pub const PREAMBLE_LEN: usize = 24;
 
 pub(crate) const TAG_BODY: u8 = 1;
 pub(crate) const TAG_WALL: u8 = 2;
 pub(crate) const TAG_END: u8 = 3;
+pub(crate) const TAG_RESET: u8 = 4;
 
 /// Size in bytes of one record in a `D`-dimensional run file.
 #[must_use]
@@ -66,7 +84,7 @@ pub enum RecordError {
     #[error("{0}: not a ccdsim run file (bad magic value)")]
     NotARunFile(String),
     /// The file was written by another format version.
-    #[error("{path}: run file format version {found}, this build reads version {supported}")]
+    #[error("{path}: run file format version {found}, this build reads versions 1 to {supported}")]
     Version {
         /// The file.
         path: String,

@@ -1,8 +1,8 @@
 //! Reading run files, tolerating a truncated tail.
 
 use super::{
-    fnv1a, record_len, RecordError, RunRecord, MAGIC, PREAMBLE_LEN, TAG_BODY, TAG_END, TAG_WALL,
-    VERSION,
+    fnv1a, record_len, RecordError, RunRecord, MAGIC, PREAMBLE_LEN, TAG_BODY, TAG_END, TAG_RESET,
+    TAG_WALL, VERSION, VERSION_RESETS,
 };
 use crate::event::Event;
 use crate::geom::Vector;
@@ -110,11 +110,11 @@ fn read_header<R: Read>(
         });
     }
     let version = u32::from_le_bytes(pre[8..12].try_into().expect("4 bytes"));
-    if version != VERSION {
+    if !(VERSION..=VERSION_RESETS).contains(&version) {
         return Err(RecordError::Version {
             path: name.into(),
             found: version,
-            supported: VERSION,
+            supported: VERSION_RESETS,
         });
     }
     let dim = u32::from_le_bytes(pre[12..16].try_into().expect("4 bytes"));
@@ -306,6 +306,12 @@ impl<R: Read, const D: usize> RunReader<R, D> {
             let limit_b = match c.event.kind {
                 crate::event::EventKind::Body => n,
                 crate::event::EventKind::Wall => w,
+                crate::event::EventKind::Reset => {
+                    if self.scene.settings.thermostat.is_none() {
+                        return Err("a thermostat reset in a run without a thermostat".into());
+                    }
+                    1
+                }
             };
             if c.event.a >= n || c.event.b >= limit_b {
                 return Err(format!(
@@ -374,6 +380,7 @@ fn decode<const D: usize>(buf: &[u8]) -> Result<RunRecord<D>, String> {
         TAG_BODY if a < b => Ok(RunRecord::Event(c(Event::body(t, a as usize, b as usize)))),
         TAG_WALL => Ok(RunRecord::Event(c(Event::wall(t, a as usize, b as usize)))),
         TAG_END => Ok(RunRecord::End(t)),
+        TAG_RESET => Ok(RunRecord::Event(c(Event::reset(t, a as usize)))),
         tag => Err(format!("bad tag {tag} or body order {a} ≥ {b}")),
     }
 }

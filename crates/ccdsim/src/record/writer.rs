@@ -1,6 +1,8 @@
 //! Writing run files with buffering, as the run goes.
 
-use super::{fnv1a, record_len, RecordError, MAGIC, TAG_BODY, TAG_END, TAG_WALL, VERSION};
+use super::{
+    fnv1a, record_len, version_for, RecordError, MAGIC, TAG_BODY, TAG_END, TAG_RESET, TAG_WALL,
+};
 use crate::event::EventKind;
 use crate::scene::Scene;
 use crate::sim::Collision;
@@ -40,7 +42,7 @@ impl<W: Write, const D: usize> RunWriter<W, D> {
         };
         let mut head = Vec::with_capacity(24 + json.len());
         head.extend_from_slice(&MAGIC);
-        head.extend_from_slice(&VERSION.to_le_bytes());
+        head.extend_from_slice(&version_for(scene).to_le_bytes());
         head.extend_from_slice(&(D as u32).to_le_bytes());
         head.extend_from_slice(&(json.len() as u64).to_le_bytes());
         head.extend_from_slice(json.as_bytes());
@@ -95,6 +97,7 @@ impl<W: Write, const D: usize> RunWriter<W, D> {
         let tag = match c.event.kind {
             EventKind::Body => TAG_BODY,
             EventKind::Wall => TAG_WALL,
+            EventKind::Reset => TAG_RESET,
         };
         self.put(
             tag,

@@ -23,6 +23,7 @@ use crate::narrow::Motion;
 use crate::periodic::min_image;
 use crate::scene::Scene;
 use crate::sim::Collision;
+use crate::thermostat::ResetClock;
 use crate::wall::{wall_clearance, Wall};
 use closest::{closest_approach, closest_to_wall};
 use proximity::Proximity;
@@ -53,6 +54,8 @@ pub struct VerifyReport {
     pub body_collisions: u64,
     /// Body–wall collisions.
     pub wall_collisions: u64,
+    /// Thermostat resets, each checked against the sequence the scene's seed gives.
+    pub resets: u64,
     /// Largest overlap seen (relative to the contact distance), at events or in between.
     pub max_overlap: f64,
     /// Kinetic energy at the start, joules.
@@ -71,6 +74,8 @@ pub struct Verifier<const D: usize> {
     restitution: f64,
     last_time: f64,
     report: VerifyReport,
+    /// The thermostat's reset sequence, regenerated from the scene, if it has one.
+    resets: Option<ResetClock>,
     /// The broad phase of the miss check; `None`: every pair is checked.
     grid: Option<Proximity<D>>,
     /// Slab length, seconds: a typical body crosses about one cell per slab.
@@ -120,6 +125,10 @@ impl<const D: usize> Verifier<D> {
             period: scene.periodic,
             restitution: scene.settings.restitution,
             last_time: scene.start_time,
+            resets: scene
+                .settings
+                .thermostat
+                .map(|th| ResetClock::new(&th, scene.bodies.len(), scene.start_time)),
             report: VerifyReport {
                 kinetic_energy_start: ke,
                 kinetic_energy_end: ke,
@@ -155,6 +164,19 @@ impl<const D: usize> Verifier<D> {
                 format!("time goes backwards (previous event at {})", self.last_time),
             ));
         }
+        if let Some(clock) = &self.resets {
+            let due = clock.next_time();
+            // A reset at a collision's time comes after it.
+            if due < t && c.event.kind != EventKind::Reset {
+                return Err(self.fail(
+                    t,
+                    format!(
+                        "the thermostat reset of body {} due at {due} is missing",
+                        clock.next_body()
+                    ),
+                ));
+            }
+        }
         let k = c.body_count();
         let ids = [c.event.a as usize, c.event.b as usize];
         for (s, &i) in ids[..k].iter().enumerate() {
@@ -181,6 +203,7 @@ impl<const D: usize> Verifier<D> {
         match c.event.kind {
             EventKind::Body => self.check_pair(c, ids[0], ids[1])?,
             EventKind::Wall => self.check_wall(c, ids[0], ids[1])?,
+            EventKind::Reset => self.check_reset(c, ids[0])?,
         }
         for (s, &i) in ids[..k].iter().enumerate() {
             self.motion[i] = Motion {
@@ -229,6 +252,31 @@ impl<const D: usize> Verifier<D> {
         let e1 = 0.5 * (mi * c.vel[0].norm_sq() + mj * c.vel[1].norm_sq());
         self.check_energy(t, e0, e1, &format!("bodies {i} and {j}"))?;
         self.report.body_collisions += 1;
+        self.report.kinetic_energy_end += e1 - e0;
+        Ok(())
+    }
+
+    fn check_reset(&mut self, c: &Collision<D>, i: usize) -> Result<(), Violation> {
+        let t = c.event.time;
+        let mass = self.mass[i];
+        let Some(clock) = self.resets.as_mut() else {
+            return Err(self.fail(t, "a thermostat reset in a run without a thermostat".into()));
+        };
+        let (due, body) = (clock.next_time(), clock.next_body());
+        let expect = clock.take::<D>(mass);
+        if (due, body) != (t, i) || expect.velocity != c.vel[0] {
+            return Err(self.fail(
+                t,
+                format!(
+                    "thermostat reset of body {i} at {t}: the scene's sequence resets body \
+                     {body} at {due} to {:?}",
+                    expect.velocity.0
+                ),
+            ));
+        }
+        let e0 = 0.5 * mass * self.motion[i].vel.norm_sq();
+        let e1 = 0.5 * mass * c.vel[0].norm_sq();
+        self.report.resets += 1;
         self.report.kinetic_energy_end += e1 - e0;
         Ok(())
     }
@@ -305,6 +353,18 @@ impl<const D: usize> Verifier<D> {
     /// kinetic energy recomputed from scratch.
     pub fn finish(mut self, end_time: f64) -> Result<VerifyReport, Violation> {
         let end = end_time.max(self.last_time);
+        if let Some(clock) = &self.resets {
+            if clock.next_time() < end_time {
+                return Err(self.fail(
+                    end_time,
+                    format!(
+                        "the thermostat reset of body {} due at {} is missing",
+                        clock.next_body(),
+                        clock.next_time()
+                    ),
+                ));
+            }
+        }
         if self.grid.is_some() {
             self.advance_slabs(end)?;
             self.check_pairs_until(end, "after the last event ")?;
