@@ -42,15 +42,16 @@ __all__ = [
 #: Names of the finders (broad phases); all give the same events bit for bit.
 FINDER_NAMES: list[str] = list(_ccdsim.FINDER_NAMES)
 
-#: Kinds in the ``kind`` field of an event.
-BODY, WALL = 0, 1
+#: Kinds in the ``kind`` field of an event: body-body, body-wall, and a thermostat's velocity
+#: reset of body ``a`` (scenes with ``settings.thermostat``).
+BODY, WALL, RESET = 0, 1, 2
 
 
 def EVENT_DTYPE(dim: int) -> np.dtype:
     """The NumPy structured dtype of events in ``dim`` dimensions.
 
-    Fields: ``t`` (time, s), ``kind`` (0 body-body, 1 body-wall), ``a``, ``b`` (body indices, or
-    body and wall index), ``pos`` (2 x dim: the bodies' positions at ``t``; the second zero for a
+    Fields: ``t`` (time, s), ``kind`` (0 body-body, 1 body-wall, 2 thermostat reset), ``a``, ``b``
+    (body indices, or body and wall index; for a reset the body and 0), ``pos`` (2 x dim: the bodies' positions at ``t``; the second zero for a
     wall event) and ``vel`` (2 x dim: their velocities after the event).
     """
     return np.dtype(
@@ -293,7 +294,8 @@ class Simulation:
 
     def stats(self) -> dict:
         """Counters: ``events``, ``body_collisions``, ``wall_collisions``, ``max_overlap``,
-        ``kinetic_energy_start`` (J) and the collision ``virial``."""
+        ``kinetic_energy_start`` (J), the collision ``virial`` and thermostat ``resets`` (counted in
+        ``events``)."""
         return self._sim.stats()
 
     def kinetic_energy(self) -> float:

@@ -114,3 +114,30 @@ def test_agrees_with_the_binary_and_reads_its_run_files(tmp_path, ccdsim_binary)
     assert run["complete"] and run["end"] == 5.0
     assert run["scene"]["bodies"] == scene["bodies"]
     np.testing.assert_array_equal(run["events"], frame)
+
+
+def test_thermostat_resets_are_events_and_hold_the_temperature():
+    scene = ccdsim.generate.gas(n=150, packing=0.3, periodic=True, lattice=True,
+                                temperature=0.5, seed=2)
+    scene["settings"] = {"thermostat": {"temperature": 2.0, "rate": 0.5, "seed": 1}}
+    sims = [ccdsim.Simulation(scene, finder=name) for name in ("all-pairs", "cells")]
+    frames = [sim.advance(10.0) for sim in sims]
+    np.testing.assert_array_equal(frames[0], frames[1])
+    kinds = frames[1]["kind"]
+    assert (kinds == ccdsim.RESET).sum() > 150 * 10 * 0.5 * 0.8
+    assert (kinds == ccdsim.BODY).sum() > 0
+    resets = frames[1][kinds == ccdsim.RESET]
+    assert np.all(resets["b"] == 0) and np.all(resets["vel"][:, 1] == 0)
+    temps = []
+    for _ in range(100):
+        sims[1].advance(0.5)
+        temps.append(sims[1].observables()["temperature"])
+    assert abs(np.mean(temps) - 2.0) < 0.1
+    assert sims[1].stats()["resets"] > 0
+
+
+def test_bad_thermostat_is_refused():
+    scene = two_balls()
+    scene["settings"] = {"thermostat": {"temperature": -1.0, "rate": 1.0}}
+    with pytest.raises(ValueError, match="settings.thermostat.temperature"):
+        ccdsim.Simulation(scene)

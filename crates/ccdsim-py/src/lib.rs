@@ -135,10 +135,7 @@ pub(crate) fn events_dict<'py, const D: usize>(
     let k = events.len();
     let out = PyDict::new(py);
     let t: Vec<f64> = events.iter().map(|c| c.event.time).collect();
-    let kind: Vec<u8> = events
-        .iter()
-        .map(|c| u8::from(c.event.kind == ccdsim::EventKind::Wall))
-        .collect();
+    let kind: Vec<u8> = events.iter().map(|c| c.event.kind as u8).collect();
     let a: Vec<u32> = events.iter().map(|c| c.event.a).collect();
     let b: Vec<u32> = events.iter().map(|c| c.event.b).collect();
     let flat = |f: fn(&Collision<D>) -> [ccdsim::Vector<D>; 2]| -> Vec<f64> {

@@ -302,6 +302,7 @@ impl PySimulation {
         d.set_item("max_overlap", st.max_overlap)?;
         d.set_item("kinetic_energy_start", st.kinetic_energy_start)?;
         d.set_item("virial", st.virial)?;
+        d.set_item("resets", st.resets)?;
         Ok(d)
     }
 

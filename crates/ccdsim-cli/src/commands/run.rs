@@ -59,6 +59,8 @@ struct Summary {
     events: u64,
     body_collisions: u64,
     wall_collisions: u64,
+    /// Thermostat resets (counted in `events`).
+    resets: u64,
     sim_time: f64,
     wall_seconds: f64,
     events_per_second: f64,
@@ -237,6 +239,7 @@ fn simulate<const D: usize>(scene: &Scene<D>, args: &Args) -> Result<Summary> {
         events: stats.events,
         body_collisions: stats.body_collisions,
         wall_collisions: stats.wall_collisions,
+        resets: stats.resets,
         sim_time: sim.time(),
         wall_seconds,
         events_per_second: if wall_seconds > 0.0 {
@@ -289,8 +292,13 @@ fn print_summary(s: &Summary, builtin: bool) {
         println!("Built-in example: a billiard break (16 balls, 4 cushions).");
     }
     println!("{}D, {} bodies, finder {}", s.dim, s.bodies, s.finder);
+    let resets = if s.resets > 0 {
+        format!(", {} thermostat resets", s.resets)
+    } else {
+        String::new()
+    };
     println!(
-        "simulated {:.6} s in {:.3} s of wall time: {} events ({} body-body, {} body-wall), {:.0} events/s",
+        "simulated {:.6} s in {:.3} s of wall time: {} events ({} body-body, {} body-wall{resets}), {:.0} events/s",
         s.sim_time, s.wall_seconds, s.events, s.body_collisions, s.wall_collisions, s.events_per_second
     );
     println!(

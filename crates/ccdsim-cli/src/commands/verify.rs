@@ -64,8 +64,13 @@ fn check<R: Read, const D: usize>(
             } else {
                 0.0
             };
+            let resets = if report.resets > 0 {
+                format!(", {} thermostat resets", report.resets)
+            } else {
+                String::new()
+            };
             println!(
-                "OK {}: {} events ({} body-body, {} body-wall) up to t = {end}; largest overlap {:.2e}; kinetic energy drift {:.2e}",
+                "OK {}: {} events ({} body-body, {} body-wall{resets}) up to t = {end}; largest overlap {:.2e}; kinetic energy drift {:.2e}",
                 reader.path(),
                 report.events,
                 report.body_collisions,
