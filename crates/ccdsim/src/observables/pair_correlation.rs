@@ -135,15 +135,16 @@ impl<const D: usize> PairCorrelation<D> {
     }
 }
 
-/// Volume of a ball of radius `r` in `D` dimensions (area in 2D).
+/// Volume of a ball of radius `r` in `D` dimensions (area in 2D), by the recurrence
+/// `V_D = 2π/D · r² · V_{D−2}` from `V_0 = 1` and `V_1 = 2r`.
 fn ball_volume<const D: usize>(r: f64) -> f64 {
-    use std::f64::consts::PI;
-    match D {
-        1 => 2.0 * r,
-        2 => PI * r * r,
-        3 => 4.0 / 3.0 * PI * r * r * r,
-        _ => unimplemented!("g(r) is defined here for 1 to 3 dimensions"),
+    let mut v = if D % 2 == 0 { 1.0 } else { 2.0 * r };
+    let mut d = if D % 2 == 0 { 2 } else { 3 };
+    while d <= D {
+        v *= 2.0 * std::f64::consts::PI / d as f64 * r * r;
+        d += 2;
     }
+    v
 }
 
 /// Bodies binned in cells at least `r_max` wide, so that pairs within `r_max` lie in
@@ -343,6 +344,15 @@ mod tests {
         for v in g.values() {
             assert!((v - 1.0).abs() < 0.1, "{v}");
         }
+    }
+
+    #[test]
+    fn ball_volumes() {
+        use std::f64::consts::PI;
+        assert_eq!(ball_volume::<1>(3.0), 6.0);
+        assert!((ball_volume::<2>(3.0) - PI * 9.0).abs() < 1e-12);
+        assert!((ball_volume::<3>(3.0) - 4.0 / 3.0 * PI * 27.0).abs() < 1e-12);
+        assert!((ball_volume::<4>(3.0) - PI * PI / 2.0 * 81.0).abs() < 1e-9);
     }
 
     #[test]
