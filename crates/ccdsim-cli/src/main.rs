@@ -25,6 +25,8 @@ enum Command {
     Run(commands::run::Args),
     /// Generate a scene and write it as JSON.
     Gen(commands::gen::Args),
+    /// Compress a random gas into a jammed packing (growing radii, Lubachevsky–Stillinger).
+    Pack(commands::pack::Args),
     /// Replay a run file and check the numerical rules.
     Verify(commands::verify::Args),
     /// Convert a run file to another format.
@@ -42,6 +44,7 @@ fn main() -> ExitCode {
     let result = match cli.command {
         Command::Run(a) => commands::run::run(a),
         Command::Gen(a) => commands::gen::run(a),
+        Command::Pack(a) => commands::pack::run(a),
         Command::Verify(a) => commands::verify::run(a),
         Command::Export(a) => commands::export::run(a),
         Command::Bench(a) => commands::bench::run(a),

@@ -5,6 +5,7 @@
 //! rounding left overlapping while approaching collides at once; a receding pair never does.
 
 use crate::geom::Vector;
+use crate::growth::{toi_circle_circle_growing, toi_circle_wall_growing, GrowthLaw};
 use crate::wall::Wall;
 
 /// A body's stored linear motion: at time `time` it is at `pos`, moving with `vel`.
@@ -230,6 +231,55 @@ pub fn toi_circle_wall<const D: usize>(m: &Motion<D>, r: f64, wall: &Wall<D>) ->
     match *wall {
         Wall::Segment { a, b } => toi_circle_segment(m, r, a, b),
         Wall::Plane { point, normal } => toi_circle_plane(m, r, point, normal),
+    }
+}
+
+/// Time of impact of two balls as every finder evaluates it: [`toi_circle_circle`], or in a
+/// growing world ([`crate::World::growth`]) its growing form (zero shift).
+#[must_use]
+#[inline(always)]
+pub fn toi_pair<const D: usize>(
+    a: &Motion<D>,
+    ra: f64,
+    b: &Motion<D>,
+    rb: f64,
+    growth: Option<&GrowthLaw>,
+) -> Option<f64> {
+    match growth {
+        None => toi_circle_circle(a, ra, b, rb),
+        Some(law) => toi_circle_circle_growing(a, ra, b, rb, Vector::ZERO, law),
+    }
+}
+
+/// [`toi_circle_circle_shifted`], or in a growing world its growing form.
+#[must_use]
+#[inline(always)]
+pub fn toi_pair_shifted<const D: usize>(
+    a: &Motion<D>,
+    ra: f64,
+    b: &Motion<D>,
+    rb: f64,
+    shift: Vector<D>,
+    growth: Option<&GrowthLaw>,
+) -> Option<f64> {
+    match growth {
+        None => toi_circle_circle_shifted(a, ra, b, rb, shift),
+        Some(law) => toi_circle_circle_growing(a, ra, b, rb, shift, law),
+    }
+}
+
+/// [`toi_circle_wall`], or in a growing world its growing form.
+#[must_use]
+#[inline]
+pub fn toi_body_wall<const D: usize>(
+    m: &Motion<D>,
+    r: f64,
+    wall: &Wall<D>,
+    growth: Option<&GrowthLaw>,
+) -> Option<f64> {
+    match growth {
+        None => toi_circle_wall(m, r, wall),
+        Some(law) => toi_circle_wall_growing(m, r, wall, law),
     }
 }
 

@@ -42,7 +42,8 @@
 //! scalar function.
 
 use crate::geom::Vector;
-use crate::narrow::{toi_circle_circle, toi_circle_circle_shifted, Motion, MIN_UNSCALED_A};
+use crate::growth::GrowthLaw;
+use crate::narrow::{toi_pair, toi_pair_shifted, Motion, MIN_UNSCALED_A};
 use wide::{f64x4, CmpGe, CmpGt, CmpLt};
 
 /// Pairs evaluated at once: the lanes of one register.
@@ -65,17 +66,18 @@ pub(crate) struct PairArgs<'a, const D: usize> {
     pub rb: f64,
     /// Displacement of the second ball's image, metres (ignored unless `SHIFTED`).
     pub shift: &'a Vector<D>,
+    /// The world's growth law, if radii grow (see [`crate::growth`]).
+    pub growth: Option<&'a GrowthLaw>,
 }
 
 impl<const D: usize> PairArgs<'_, D> {
-    /// The scalar time of impact: [`toi_circle_circle_shifted`] if `SHIFTED`, else
-    /// [`toi_circle_circle`].
+    /// The scalar time of impact: [`toi_pair_shifted`] if `SHIFTED`, else [`toi_pair`].
     #[inline(always)]
     pub fn scalar<const SHIFTED: bool>(&self) -> Option<f64> {
         if SHIFTED {
-            toi_circle_circle_shifted(self.a, self.ra, self.b, self.rb, *self.shift)
+            toi_pair_shifted(self.a, self.ra, self.b, self.rb, *self.shift, self.growth)
         } else {
-            toi_circle_circle(self.a, self.ra, self.b, self.rb)
+            toi_pair(self.a, self.ra, self.b, self.rb, self.growth)
         }
     }
 }
@@ -102,6 +104,22 @@ impl Lanes {
             hits: self.hits & valid,
             rare: self.rare & valid,
             ..self
+        }
+    }
+
+    /// Every lane of `valid` left to the scalar function when `scalar` holds (growing radii,
+    /// which the kernel does not evaluate), else `self`.
+    #[inline(always)]
+    #[must_use]
+    pub fn scalar_if(self, scalar: bool, valid: u32) -> Lanes {
+        if scalar {
+            Lanes {
+                hits: 0,
+                rare: valid,
+                ..self
+            }
+        } else {
+            self
         }
     }
 
@@ -355,6 +373,7 @@ mod tests {
                 b: &m[y],
                 rb: r[y],
                 shift,
+                growth: None,
             }
         }
         let pair = |x: usize, y: usize, s| args(&m, r, (x, y), s);
@@ -449,6 +468,7 @@ mod tests {
             b,
             rb: 1.0,
             shift: &s[0],
+            growth: None,
         };
         let lanes = toi_quad::<2, false>(&[
             pair(&head_on, &towards),

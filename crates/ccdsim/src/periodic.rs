@@ -18,6 +18,7 @@
 //! the stored states, like every narrow phase, it lets every finder agree bit for bit.
 
 use crate::geom::Vector;
+use crate::growth::{toi_circle_circle_periodic_growing, GrowthLaw};
 use crate::narrow::{toi_circle_circle_shifted, Motion};
 
 /// Face index of the exit through the lower (`upper = false`, x = 0) or upper (x = L) face of
@@ -183,6 +184,24 @@ pub fn toi_circle_circle_periodic<const D: usize>(
                 return best;
             }
         }
+    }
+}
+
+/// [`toi_circle_circle_periodic`], or in a growing world its growing form (every image
+/// tried).
+#[must_use]
+#[inline]
+pub fn toi_pair_periodic<const D: usize>(
+    a: &Motion<D>,
+    ra: f64,
+    b: &Motion<D>,
+    rb: f64,
+    size: &Vector<D>,
+    growth: Option<&GrowthLaw>,
+) -> Option<f64> {
+    match growth {
+        None => toi_circle_circle_periodic(a, ra, b, rb, size),
+        Some(law) => toi_circle_circle_periodic_growing(a, ra, b, rb, size, law),
     }
 }
 

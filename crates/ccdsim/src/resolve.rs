@@ -39,9 +39,22 @@ pub fn resolve_body_body_contact<const D: usize>(
         None => pj - pi,
     };
     let dist = d.norm();
-    let sigma = world.radius(i) + world.radius(j);
+    let sigma = world.radius_at(i, t) + world.radius_at(j, t);
     let (mut vi2, mut vj2) = (vi, vj);
-    if dist > 0.0 {
+    if let Some(law) = world.growth() {
+        // Growing radii: reverse the speed at which the surfaces approach (see
+        // `crate::growth`): u' = (1 + e)·σ̇ − e·u along the line of centres.
+        if dist > 0.0 {
+            let n = d * (1.0 / dist);
+            let grow = law.speed(world.radius(i) + world.radius(j));
+            let vn = (vj - vi).dot(n);
+            if vn < grow {
+                let k = (1.0 + world.restitution()) * (vn - grow);
+                vi2 = vi + n * (k * (mj / (mi + mj)));
+                vj2 = vj - n * (k * (mi / (mi + mj)));
+            }
+        }
+    } else if dist > 0.0 {
         let n = d * (1.0 / dist);
         let vn = (vj - vi).dot(n);
         if vn < 0.0 {
@@ -68,10 +81,13 @@ pub fn resolve_body_wall<const D: usize>(world: &mut World<D>, i: usize, w: usiz
     let p = world.position_at(i, t);
     let v = world.velocity(i);
     let wall = world.walls()[w];
-    let r = world.radius(i);
+    let r = world.radius_at(i, t);
+    // Growing radii: the surface moves towards the wall at the growth speed too (see
+    // `crate::growth`).
+    let grow = world.growth().map_or(0.0, |law| law.speed(world.radius(i)));
     let mut v2 = v;
     if let Some(n) = wall_normal(&wall, p) {
-        let vn = v.dot(n);
+        let vn = v.dot(n) - grow;
         if vn < 0.0 {
             v2 = v - n * ((1.0 + world.restitution()) * vn);
         }

@@ -4,6 +4,7 @@
 //! dimension; [`Scene::validate`] checks everything the simulator relies on.
 
 use crate::geom::{ball_volume, Vector};
+use crate::growth::Growth;
 use crate::resolution::{resolution_error, resolves, ulp, RESOLUTION_LIMIT};
 use crate::thermostat::Thermostat;
 use crate::wall::{closed_segments, inside_even_odd};
@@ -60,6 +61,9 @@ pub struct Settings {
     /// [`crate::thermostat`].
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub thermostat: Option<Thermostat>,
+    /// Growing radii (Lubachevsky–Stillinger compression), if any; see [`crate::growth`].
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub growth: Option<Growth>,
 }
 
 fn one() -> f64 {
@@ -71,6 +75,7 @@ impl Default for Settings {
         Settings {
             restitution: 1.0,
             thermostat: None,
+            growth: None,
         }
     }
 }
@@ -297,6 +302,14 @@ impl<const D: usize> Scene<D> {
                 if value <= 0.0 {
                     return Err(SceneError::NonPositive(field.into()));
                 }
+            }
+        }
+        if let Some(g) = &self.settings.growth {
+            if !g.rate.is_finite() {
+                return Err(SceneError::NonFinite("settings.growth.rate".into()));
+            }
+            if g.rate <= 0.0 {
+                return Err(SceneError::NonPositive("settings.growth.rate".into()));
             }
         }
         if !self.start_time.is_finite() {

@@ -340,6 +340,8 @@ impl<const D: usize> Simulation<D> {
         let (a, b) = (e.a as usize, e.b as usize);
         self.world.set_now(e.time.max(self.world.now()));
         let overlap;
+        // Growing radii: collisions add kinetic energy, which the resolution guard must know.
+        let energy_before = self.world.growth().map(|_| self.involved_energy(&e));
         let out = match e.kind {
             EventKind::Body => {
                 let before = self.world.velocity(a);
@@ -376,9 +378,57 @@ impl<const D: usize> Simulation<D> {
                 self.apply_reset(e.time)
             }
         };
+        if let Some(before) = energy_before {
+            self.guard.add_energy(self.involved_energy(&e) - before);
+        }
         self.stats.events += 1;
         self.stats.max_overlap = self.stats.max_overlap.max(overlap);
         out
+    }
+
+    /// Kinetic energy of the bodies `e` involves, joules.
+    fn involved_energy(&self, e: &Event) -> f64 {
+        let k =
+            |i: u32| 0.5 * self.world.mass(i as usize) * self.world.velocity(i as usize).norm_sq();
+        match e.kind {
+            EventKind::Body => k(e.a) + k(e.b),
+            EventKind::Wall | EventKind::Reset => k(e.a),
+        }
+    }
+
+    /// Radius of body `i` now, metres (it grows in a growing world, see [`crate::growth`]).
+    #[must_use]
+    pub fn radius(&self, i: usize) -> f64 {
+        self.world.radius_at(i, self.world.now())
+    }
+
+    /// Multiplies every body's velocity by `factor` from the current time on (growing
+    /// packings are cooled this way, see [`crate::growth`]). O(n): the finder is rebuilt.
+    pub fn rescale_velocities(&mut self, factor: f64) -> Result<(), SimError> {
+        if !(factor.is_finite() && factor >= 0.0) {
+            return Err(SimError::Input(format!(
+                "velocity factor {factor} is not a finite non-negative number"
+            )));
+        }
+        self.world.scale_velocities(factor);
+        self.rebuild()
+    }
+
+    /// Stops the growth of the radii at the current time: they keep their current values
+    /// from now on (a scene written afterwards has them). O(n): the finder is rebuilt.
+    pub fn stop_growth(&mut self) -> Result<(), SimError> {
+        let now = self.world.now();
+        self.world.stop_growth(now);
+        self.rebuild()
+    }
+
+    /// After a change of every body: the finder and the resolution guard start afresh.
+    fn rebuild(&mut self) -> Result<(), SimError> {
+        self.finder.init(&self.world)?;
+        self.guard = ResolutionGuard::new(&self.world);
+        self.pending = None;
+        self.halt = None;
+        Ok(())
     }
 
     /// Applies the thermostat's next reset (at `time`, the current time now).

@@ -10,6 +10,7 @@
 //! read only by tools, live in a separate array.
 
 use crate::geom::Vector;
+use crate::growth::GrowthLaw;
 use crate::narrow::Motion;
 use crate::scene::{Scene, SceneError};
 use crate::wall::Wall;
@@ -43,6 +44,7 @@ pub struct World<const D: usize> {
     periodic: Option<Vector<D>>,
     restitution: f64,
     thermostat: Option<crate::thermostat::Thermostat>,
+    growth: Option<GrowthLaw>,
     now: f64,
 }
 
@@ -71,6 +73,10 @@ impl<const D: usize> World<D> {
             periodic: scene.periodic,
             restitution: scene.settings.restitution,
             thermostat: scene.settings.thermostat,
+            growth: scene.settings.growth.map(|g| GrowthLaw {
+                rate: g.rate,
+                origin: scene.start_time,
+            }),
             now: scene.start_time,
         })
     }
@@ -133,11 +139,41 @@ impl<const D: usize> World<D> {
         self.bodies[i].motion.time
     }
 
-    /// Radius of body `i`, metres.
+    /// Stored radius of body `i`, metres: its radius at all times, or, in a growing world
+    /// (see [`World::growth`]), at the growth's origin.
     #[must_use]
     #[inline]
     pub fn radius(&self, i: usize) -> f64 {
         self.bodies[i].radius
+    }
+
+    /// Radius of body `i` at time `t`, metres: the stored radius, grown by the growth law if
+    /// the world grows.
+    #[must_use]
+    #[inline]
+    pub fn radius_at(&self, i: usize, t: f64) -> f64 {
+        match &self.growth {
+            None => self.bodies[i].radius,
+            Some(law) => law.radius_at(self.bodies[i].radius, t),
+        }
+    }
+
+    /// The growth law of a growing world (radii grow linearly in time, see
+    /// [`crate::growth`]), or `None` when radii are fixed.
+    #[must_use]
+    #[inline]
+    pub fn growth(&self) -> Option<&GrowthLaw> {
+        self.growth.as_ref()
+    }
+
+    /// Stops the growth at time `t`: the stored radii become the radii at `t`, and stay.
+    /// A finder serving this world must be re-initialised.
+    pub fn stop_growth(&mut self, t: f64) {
+        if let Some(law) = self.growth.take() {
+            for b in &mut self.bodies {
+                b.radius = law.radius_at(b.radius, t);
+            }
+        }
     }
 
     /// Every body's hot record (stored motion and radius), by body index.
@@ -238,6 +274,16 @@ impl<const D: usize> World<D> {
     /// stored states' times and `t`.
     pub fn set_time(&mut self, t: f64) {
         self.now = t;
+    }
+
+    /// Multiplies every velocity by `factor` at the current time: each body's stored position
+    /// moves to now. A finder serving this world must be re-initialised.
+    pub fn scale_velocities(&mut self, factor: f64) {
+        let now = self.now;
+        for i in 0..self.bodies.len() {
+            let m = self.bodies[i].motion;
+            self.set_state(i, m.at(now), m.vel * factor, now);
+        }
     }
 
     /// Total kinetic energy, joules.

@@ -95,6 +95,9 @@ enum Drive {
     Kicks { every: u64 },
     /// Frames of `dt` seconds: resolve the events inside, then `run_until` the frame's end.
     Frames { dt: f64 },
+    /// Every `every` events, bring the kinetic energy back to its start value by
+    /// `rescale_velocities` (growing worlds heat up).
+    Rescale { every: u64 },
 }
 
 /// A recorded run: the run file's bytes and the number of events.
@@ -192,6 +195,13 @@ fn record_run<const D: usize>(
                     v[k] = ((kick >> (8 * k)) & 0xff) as f64 / 64.0 - 2.0;
                 }
                 sim.set_velocity(i, v).expect("kick");
+            }
+        }
+        if let Drive::Rescale { every } = drive {
+            if events % every == 0 {
+                let k0 = sim.stats().kinetic_energy_start;
+                let factor = (k0 / sim.world().kinetic_energy()).sqrt();
+                sim.rescale_velocities(factor).expect("rescale");
             }
         }
     }
@@ -1218,4 +1228,68 @@ fn inelastic_collapse_to_infinite_time() {
     let mut sim = Simulation::new(&s3, "cells").unwrap();
     assert_eq!(sim.run_events(1000), n3);
     assert!(sim.time().is_finite() && sim.peek_event().is_none());
+}
+
+/// `scene` with radii growing at `rate` per second (see `ccdsim::growth`).
+fn growing<const D: usize>(mut scene: Scene<D>, rate: f64) -> Scene<D> {
+    scene.settings.growth = Some(ccdsim::growth::Growth { rate });
+    scene
+}
+
+#[test]
+fn growing_radii() {
+    // Lubachevsky–Stillinger growth: every pair and wall contact through the growing
+    // functions, the cells grid rebuilt at its horizons, checked against the oracle before
+    // every step; run files byte-identical across finders (and every cells mode).
+    for (k, &seed) in SMALL_SEEDS.iter().enumerate() {
+        let rate = [0.02, 0.1, 0.5][k];
+        for (disp, radii) in DISPERSITIES {
+            let s2 = growing(gas_scene::<2>(120, 0.35, radii, seed), rate);
+            let s3 = growing(gas_scene::<3>(80, 0.2, radii, seed), rate);
+            check_all(&format!("growing {disp} walls 2D seed {seed}"), &s2, 2000);
+            check_all(&format!("growing {disp} walls 3D seed {seed}"), &s3, 1500);
+            let p2 = growing(periodic_gas::<2>(150, 0.35, radii, seed), rate);
+            let p3 = growing(periodic_gas::<3>(100, 0.2, radii, seed), rate);
+            check_periodic(
+                &format!("growing {disp} 2D seed {seed}"),
+                &p2,
+                2000,
+                Drive::Events,
+            );
+            check_periodic(
+                &format!("growing {disp} 3D seed {seed}"),
+                &p3,
+                1500,
+                Drive::Events,
+            );
+        }
+        // An open world: bodies that fly apart may outrun the growth for ever.
+        let o2 = growing(
+            without_walls(gas_scene::<2>(40, 0.2, (0.3, 0.6), seed)),
+            rate,
+        );
+        check_all(&format!("growing open 2D seed {seed}"), &o2, 800);
+    }
+}
+
+#[test]
+fn growing_radii_with_edits_and_rescales() {
+    // Kicks and frames interleaved with growth, and whole-world velocity rescales (the
+    // compression's cooling), in periodic boxes.
+    let p2 = growing(
+        periodic_gas::<2>(150, 0.4, (0.3, 0.42), SMALL_SEEDS[1]),
+        0.2,
+    );
+    let p3 = growing(
+        periodic_gas::<3>(100, 0.25, (0.5, 0.5), SMALL_SEEDS[2]),
+        0.2,
+    );
+    for drive in [
+        Drive::Kicks { every: 7 },
+        Drive::Frames { dt: 0.05 },
+        Drive::Rescale { every: 200 },
+    ] {
+        check_periodic("growing edits 2D", &p2, 2500, drive);
+        check_periodic("growing edits 3D", &p3, 2000, drive);
+    }
 }

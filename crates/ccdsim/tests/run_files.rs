@@ -39,10 +39,10 @@ fn refuses_other_versions_and_other_files() {
     let mut bytes = record(&scene, 5, "all-pairs");
     bytes[8] = 99;
     match RunReader::<_, 2>::new(&bytes[..], "x.ccd".into()) {
-        // This build reads versions 1 (plain runs) to 2 (runs with thermostat resets).
+        // This build reads versions 1 (plain runs) to 3 (runs with growing radii).
         Err(RecordError::Version {
             found: 99,
-            supported: ccdsim::record::VERSION_RESETS,
+            supported: ccdsim::record::VERSION_GROWTH,
             ..
         }) => {}
         other => panic!("expected a version error, got {:?}", other.err()),

@@ -4,6 +4,7 @@ pub mod bench;
 pub mod export;
 pub mod finder_args;
 pub mod gen;
+pub mod pack;
 pub mod render;
 pub mod run;
 pub mod verify;

@@ -2,8 +2,8 @@
 
 use super::{finite_event, Finder, FinderError};
 use crate::event::Event;
-use crate::narrow::{toi_circle_circle, toi_circle_wall};
-use crate::periodic::{toi_box_exit, toi_circle_circle_periodic};
+use crate::narrow::{toi_body_wall, toi_pair};
+use crate::periodic::{toi_box_exit, toi_pair_periodic};
 use crate::world::World;
 
 /// Checks every body pair and every (body, wall) pair on every query: O(n²) per event,
@@ -23,11 +23,13 @@ impl AllPairs {
 /// when there is none, or when it lies at an infinite time, see [`finite_event`]).
 ///
 /// In a periodic world (see [`crate::periodic`]) a pair's time is
-/// [`toi_circle_circle_periodic`], and every body's box exit is an event too (a wall event
-/// naming face `f` as wall `walls.len() + f`).
+/// [`crate::periodic::toi_circle_circle_periodic`], and every body's box exit is an event too (a wall event
+/// naming face `f` as wall `walls.len() + f`). In a growing world (see [`crate::growth`]) the
+/// functions are the growing forms ([`toi_pair`], [`toi_pair_periodic`], [`toi_body_wall`]).
 #[must_use]
 pub fn all_pairs_next_event<const D: usize>(world: &World<D>) -> Option<Event> {
     let n = world.len();
+    let growth = world.growth();
     let mut best: Option<Event> = None;
     if let Some(size) = world.periodic() {
         let faces_from = world.walls().len();
@@ -36,7 +38,7 @@ pub fn all_pairs_next_event<const D: usize>(world: &World<D>) -> Option<Event> {
             for j in i + 1..n {
                 let mj = world.motion(j);
                 if let Some(t) =
-                    toi_circle_circle_periodic(&mi, world.radius(i), &mj, world.radius(j), &size)
+                    toi_pair_periodic(&mi, world.radius(i), &mj, world.radius(j), &size, growth)
                 {
                     best = Event::earliest(best, Some(Event::body(t, i, j)));
                 }
@@ -50,14 +52,18 @@ pub fn all_pairs_next_event<const D: usize>(world: &World<D>) -> Option<Event> {
     for i in 0..n {
         let mi = world.motion(i);
         for j in i + 1..n {
-            if let Some(t) =
-                toi_circle_circle(&mi, world.radius(i), &world.motion(j), world.radius(j))
-            {
+            if let Some(t) = toi_pair(
+                &mi,
+                world.radius(i),
+                &world.motion(j),
+                world.radius(j),
+                growth,
+            ) {
                 best = Event::earliest(best, Some(Event::body(t, i, j)));
             }
         }
         for (w, wall) in world.walls().iter().enumerate() {
-            if let Some(t) = toi_circle_wall(&mi, world.radius(i), wall) {
+            if let Some(t) = toi_body_wall(&mi, world.radius(i), wall, growth) {
                 best = Event::earliest(best, Some(Event::wall(t, i, w)));
             }
         }

@@ -25,8 +25,8 @@
 
 use super::{finite_event, Finder, FinderError, FinderMemory};
 use crate::event::{Event, EventKind};
-use crate::narrow::{toi_circle_circle, toi_circle_wall};
-use crate::periodic::{toi_box_exit, toi_circle_circle_periodic};
+use crate::narrow::{toi_body_wall, toi_pair};
+use crate::periodic::{toi_box_exit, toi_pair_periodic};
 use crate::world::World;
 use std::cmp::Reverse;
 use std::collections::BinaryHeap;
@@ -166,8 +166,8 @@ impl Sedgewick {
             };
             let (ra, rb) = (world.radius(a), world.radius(b));
             let t = match &period {
-                None => toi_circle_circle(&ma, ra, &mb, rb),
-                Some(size) => toi_circle_circle_periodic(&ma, ra, &mb, rb, size),
+                None => toi_pair(&ma, ra, &mb, rb, world.growth()),
+                Some(size) => toi_pair_periodic(&ma, ra, &mb, rb, size, world.growth()),
             };
             if let Some(t) = t {
                 self.push(Entry::new(
@@ -178,7 +178,7 @@ impl Sedgewick {
             }
         }
         for (w, wall) in world.walls().iter().enumerate() {
-            if let Some(t) = toi_circle_wall(&mi, world.radius(i), wall) {
+            if let Some(t) = toi_body_wall(&mi, world.radius(i), wall, world.growth()) {
                 self.push(Entry::new(Event::wall(t, i, w), ci, 0));
             }
         }

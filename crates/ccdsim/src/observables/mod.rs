@@ -11,7 +11,7 @@
 //! Units are the scene's, with Boltzmann's constant 1.
 
 mod correlation;
-mod pair_correlation;
+pub(crate) mod pair_correlation;
 mod pressure_tensor;
 pub mod thermodynamic;
 

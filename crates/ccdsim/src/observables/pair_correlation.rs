@@ -137,7 +137,7 @@ impl<const D: usize> PairCorrelation<D> {
 
 /// Volume of a ball of radius `r` in `D` dimensions (area in 2D), by the recurrence
 /// `V_D = 2π/D · r² · V_{D−2}` from `V_0 = 1` and `V_1 = 2r`.
-fn ball_volume<const D: usize>(r: f64) -> f64 {
+pub(crate) fn ball_volume<const D: usize>(r: f64) -> f64 {
     let mut v = if D % 2 == 0 { 1.0 } else { 2.0 * r };
     let mut d = if D % 2 == 0 { 2 } else { 3 };
     while d <= D {

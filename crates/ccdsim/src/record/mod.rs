@@ -15,6 +15,10 @@
 //! first slot its position at `t` and its new velocity); it is written for scenes with an
 //! Andersen thermostat only, so every other run file stays version 1, byte for byte.
 //!
+//! Version 3 is version 2 for scenes with growing radii (`settings.growth` in the header):
+//! the records are the same, but their contacts and velocities follow the growth (see
+//! [`crate::growth`]), which a reader of version 2 would not know to check.
+//!
 //! A record is: tag `u8` (1 body event, 2 wall event, 3 end of run, 4 reset), `a: u32`, `b: u32`,
 //! `t: f64`, then for two body slots the position at `t` and the velocity after the event
 //! (`D` `f64`s each; the second slot is zero for wall events and the end record), then an
@@ -33,14 +37,17 @@ pub use writer::RunWriter;
 pub const MAGIC: [u8; 8] = *b"CCDSIMRF";
 /// Format version of run files without thermostat resets.
 pub const VERSION: u32 = 1;
-/// Format version of run files of scenes with a thermostat (version 1 plus reset records);
-/// the newest this build reads.
+/// Format version of run files of scenes with a thermostat (version 1 plus reset records).
 pub const VERSION_RESETS: u32 = 2;
+/// Format version of run files of scenes with growing radii; the newest this build reads.
+pub const VERSION_GROWTH: u32 = 3;
 
 /// The format version a run of `scene` is written in.
 #[must_use]
 pub fn version_for<const D: usize>(scene: &crate::scene::Scene<D>) -> u32 {
-    if scene.settings.thermostat.is_some() {
+    if scene.settings.growth.is_some() {
+        VERSION_GROWTH
+    } else if scene.settings.thermostat.is_some() {
         VERSION_RESETS
     } else {
         VERSION

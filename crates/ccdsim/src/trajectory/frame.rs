@@ -74,7 +74,7 @@ impl<const D: usize> Frame<D> {
             positions: (0..n).map(|i| sim.position(i)).collect(),
             images: (0..n).map(|i| sim.image(i)).collect(),
             velocities: world.velocities().collect(),
-            radii: world.radii().collect(),
+            radii: (0..n).map(|i| world.radius_at(i, sim.time())).collect(),
             masses: world.masses().collect(),
         }
     }

@@ -49,16 +49,24 @@ pub(super) fn closest_approach<const D: usize>(
     ((dp + dv * s).norm(), s)
 }
 
-/// Smallest clearance between a body moving linearly from its reference time to `t` and a
-/// wall, and the time where it occurs. The clearance is convex in time for a segment (the
-/// distance to a convex set) and linear for a plane, so a golden-section search finds it.
-pub(super) fn closest_to_wall<const D: usize>(wall: &Wall<D>, m: &Motion<D>, t: f64) -> (f64, f64) {
-    let f = |s: f64| wall_clearance(wall, m.at(s));
-    let (mut lo, mut hi) = (m.time, t.max(m.time));
-    if let Wall::Plane { .. } = wall {
-        let (a, b) = (f(lo), f(hi));
-        return if a <= b { (a, lo) } else { (b, hi) };
-    }
+/// Growing radii: the smallest value over `[0, span]` of `|dp + dv·s| − grow·s`, the distance
+/// of two points less what their contact distance has grown by, and the offset `s` where it
+/// occurs. The function is convex (a norm of a linear function less a linear one), so a
+/// golden-section search finds it.
+pub(super) fn closest_approach_growing<const D: usize>(
+    dp: Vector<D>,
+    dv: Vector<D>,
+    span: f64,
+    grow: f64,
+) -> (f64, f64) {
+    golden_min(|s| (dp + dv * s).norm() - grow * s, 0.0, span.max(0.0))
+}
+
+/// The smallest value of a convex `f` on `[lo, hi]` and where it occurs: a golden-section
+/// search, with both ends as candidates.
+fn golden_min(f: impl Fn(f64) -> f64, lo: f64, hi: f64) -> (f64, f64) {
+    let (a, b) = (lo, hi);
+    let (mut lo, mut hi) = (lo, hi);
     const INV_PHI: f64 = 0.618_033_988_749_894_9;
     let mut x1 = hi - INV_PHI * (hi - lo);
     let mut x2 = lo + INV_PHI * (hi - lo);
@@ -78,16 +86,31 @@ pub(super) fn closest_to_wall<const D: usize>(wall: &Wall<D>, m: &Motion<D>, t: 
             f2 = f(x2);
         }
     }
-    let candidates = [
-        (f(m.time), m.time),
-        (f(t.max(m.time)), t.max(m.time)),
-        (f1, x1),
-        (f2, x2),
-    ];
-    candidates.into_iter().fold(
-        (f64::INFINITY, m.time),
-        |best, c| if c.0 < best.0 { c } else { best },
-    )
+    [(f(a), a), (f(b), b), (f1, x1), (f2, x2)]
+        .into_iter()
+        .fold(
+            (f64::INFINITY, a),
+            |best, c| if c.0 < best.0 { c } else { best },
+        )
+}
+
+/// Smallest clearance between a body moving linearly from its reference time to `t` and a
+/// wall, less `grow` times the time since the reference time (a growing radius; 0 for fixed
+/// ones), and the time where it occurs. The clearance is convex in time for a segment (the
+/// distance to a convex set) and linear for a plane, so a golden-section search finds it.
+pub(super) fn closest_to_wall<const D: usize>(
+    wall: &Wall<D>,
+    m: &Motion<D>,
+    t: f64,
+    grow: f64,
+) -> (f64, f64) {
+    let f = |s: f64| wall_clearance(wall, m.at(s)) - grow * (s - m.time);
+    let (lo, hi) = (m.time, t.max(m.time));
+    if let Wall::Plane { .. } = wall {
+        let (a, b) = (f(lo), f(hi));
+        return if a <= b { (a, lo) } else { (b, hi) };
+    }
+    golden_min(f, lo, hi)
 }
 
 #[cfg(test)]

@@ -13,19 +13,26 @@
 //! swept boxes in slabs of time, sharing no code with the finders) says may have come close,
 //! so a replay costs about as much per event as the simulation; [`Verifier::all_pairs`]
 //! checks every pair instead, for tests and small runs.
+//!
+//! With growing radii ([`crate::growth`]) contact distances are taken at each time, the miss
+//! check minimises the distance less the growth (a convex function of time) by golden-section
+//! search, and kinetic energy, which growth collisions add, is not checked: instead the
+//! impulse must lie along the line of centres (the wall's normal) and give the normal
+//! relative velocity the growth rule asks for, `u' = (1 + e)·σ̇ − e·u`.
 
 mod closest;
 mod proximity;
 
 use crate::event::EventKind;
 use crate::geom::Vector;
-use crate::narrow::Motion;
+use crate::growth::GrowthLaw;
+use crate::narrow::{wall_normal, Motion};
 use crate::periodic::min_image;
 use crate::scene::Scene;
 use crate::sim::Collision;
 use crate::thermostat::ResetClock;
 use crate::wall::{wall_clearance, Wall};
-use closest::{closest_approach, closest_to_wall};
+use closest::{closest_approach, closest_approach_growing, closest_to_wall};
 use proximity::Proximity;
 
 /// Allowed overlap relative to the contact distance.
@@ -80,6 +87,8 @@ pub struct Verifier<const D: usize> {
     grid: Option<Proximity<D>>,
     /// Slab length, seconds: a typical body crosses about one cell per slab.
     slab: f64,
+    /// Growing radii, if the scene has them (origin: its start time).
+    growth: Option<GrowthLaw>,
 }
 
 impl<const D: usize> Verifier<D> {
@@ -102,6 +111,10 @@ impl<const D: usize> Verifier<D> {
             .map(|(m, ms)| 0.5 * ms * m.vel.norm_sq())
             .sum();
         let radius: Vec<f64> = scene.bodies.iter().map(|b| b.radius).collect();
+        let growth = scene.settings.growth.map(|g| GrowthLaw {
+            rate: g.rate,
+            origin: scene.start_time,
+        });
         let r_max = radius.iter().fold(0.0f64, |m, &r| m.max(r));
         let mean_speed =
             motion.iter().map(|m| m.vel.norm()).sum::<f64>() / motion.len().max(1) as f64;
@@ -112,10 +125,12 @@ impl<const D: usize> Verifier<D> {
         };
         let mut grid = Proximity::new(&radius, scene.periodic, scene.start_time);
         grid.start_slab(scene.start_time, scene.start_time + slab);
+        let grown = growth.map_or(1.0, |g| g.scale(grid.end));
         for (i, m) in motion.iter().enumerate() {
-            grid.file(i, m, radius[i], scene.start_time);
+            grid.file(i, m, radius[i] * grown, scene.start_time);
         }
         Verifier {
+            growth,
             grid: Some(grid),
             slab,
             motion,
@@ -211,8 +226,9 @@ impl<const D: usize> Verifier<D> {
                 vel: c.vel[s],
                 time: t,
             };
+            let r = self.radius_until_slab_end(i);
             if let Some(grid) = &mut self.grid {
-                grid.file(i, &self.motion[i], self.radius[i], t);
+                grid.file(i, &self.motion[i], r, t);
             }
         }
         self.last_time = t;
@@ -222,7 +238,7 @@ impl<const D: usize> Verifier<D> {
 
     fn check_pair(&mut self, c: &Collision<D>, i: usize, j: usize) -> Result<(), Violation> {
         let t = c.event.time;
-        let sigma = self.radius[i] + self.radius[j];
+        let sigma = self.radius_at(i, t) + self.radius_at(j, t);
         let gap = (self.image(c.pos[1] - c.pos[0]).norm() - sigma) / sigma;
         if gap > OVERLAP_TOLERANCE {
             return Err(self.fail(
@@ -250,7 +266,20 @@ impl<const D: usize> Verifier<D> {
         }
         let e0 = 0.5 * (mi * vi.norm_sq() + mj * vj.norm_sq());
         let e1 = 0.5 * (mi * c.vel[0].norm_sq() + mj * c.vel[1].norm_sq());
-        self.check_energy(t, e0, e1, &format!("bodies {i} and {j}"))?;
+        if let Some(law) = self.growth {
+            let n = self.image(c.pos[1] - c.pos[0]);
+            let grow = law.speed(self.radius[i] + self.radius[j]);
+            self.check_growth_rule(
+                t,
+                n,
+                vi - vj,
+                c.vel[0] - c.vel[1],
+                -grow,
+                &format!("bodies {i} and {j}"),
+            )?;
+        } else {
+            self.check_energy(t, e0, e1, &format!("bodies {i} and {j}"))?;
+        }
         self.report.body_collisions += 1;
         self.report.kinetic_energy_end += e1 - e0;
         Ok(())
@@ -283,7 +312,7 @@ impl<const D: usize> Verifier<D> {
 
     fn check_wall(&mut self, c: &Collision<D>, i: usize, w: usize) -> Result<(), Violation> {
         let t = c.event.time;
-        let r = self.radius[i];
+        let r = self.radius_at(i, t);
         let gap = (wall_clearance(&self.walls[w], c.pos[0]) - r) / r;
         if gap > OVERLAP_TOLERANCE {
             return Err(self.fail(
@@ -298,7 +327,15 @@ impl<const D: usize> Verifier<D> {
         let m = self.mass[i];
         let e0 = 0.5 * m * self.motion[i].vel.norm_sq();
         let e1 = 0.5 * m * c.vel[0].norm_sq();
-        self.check_energy(t, e0, e1, &format!("body {i} at wall {w}"))?;
+        match (self.growth, wall_normal(&self.walls[w], c.pos[0])) {
+            (Some(law), Some(n)) => {
+                let grow = law.speed(self.radius[i]);
+                let (v0, v1) = (self.motion[i].vel, c.vel[0]);
+                self.check_growth_rule(t, n, v0, v1, grow, &format!("body {i} at wall {w}"))?;
+            }
+            (Some(_), None) => {}
+            (None, _) => self.check_energy(t, e0, e1, &format!("body {i} at wall {w}"))?,
+        }
         self.report.wall_collisions += 1;
         self.report.kinetic_energy_end += e1 - e0;
         Ok(())
@@ -320,6 +357,86 @@ impl<const D: usize> Verifier<D> {
         Ok(())
     }
 
+    /// Growing radii: a collision's change of velocity `v0 → v1` (of the first body less the
+    /// second; of the body alone at a wall) lies along `n` and turns the normal velocity `u`
+    /// (along `n`, which points towards the first body) into `(1 + e)·σ̇ − e·u` when `u < σ̇`,
+    /// where `σ̇ = grow` (negated for pairs, whose `n` points the other way).
+    fn check_growth_rule(
+        &self,
+        t: f64,
+        n: Vector<D>,
+        v0: Vector<D>,
+        v1: Vector<D>,
+        grow: f64,
+        who: &str,
+    ) -> Result<(), Violation> {
+        let n = n * (1.0 / n.norm());
+        let (u0, u1) = (v0.dot(n), v1.dot(n));
+        let e = self.restitution;
+        let (u0, u1, g) = if grow < 0.0 {
+            (-u0, -u1, -grow)
+        } else {
+            (u0, u1, grow)
+        };
+        let want = if u0 < g { (1.0 + e) * g - e * u0 } else { u0 };
+        let change = v1 - v0;
+        let sideways = (change - n * change.dot(n)).norm();
+        let scale = v0.norm() + v1.norm() + g + f64::MIN_POSITIVE;
+        if (u1 - want).abs() > 1e-9 * scale || sideways > 1e-9 * scale {
+            return Err(self.fail(
+                t,
+                format!(
+                    "{who}: normal velocity {u0} becomes {u1}, the growth rule asks for {want}                      (and no change across the normal; found {sideways:e})"
+                ),
+            ));
+        }
+        Ok(())
+    }
+
+    /// Radius of body `i` at time `t`, metres (grown, in a growing scene).
+    fn radius_at(&self, i: usize, t: f64) -> f64 {
+        self.growth
+            .map_or(self.radius[i], |law| law.radius_at(self.radius[i], t))
+    }
+
+    /// The radius body `i` reaches by the end of the current slab, to file it with.
+    fn radius_until_slab_end(&self, i: usize) -> f64 {
+        match &self.grid {
+            Some(g) => self.radius_at(i, g.end),
+            None => self.radius[i],
+        }
+    }
+
+    /// Growth speed of body `i`'s radius, metres per second (0 for fixed radii).
+    fn growth_speed(&self, i: usize) -> f64 {
+        self.growth.map_or(0.0, |law| law.speed(self.radius[i]))
+    }
+
+    /// The largest overlap of bodies `i` and `j` (relative to their contact distance) over
+    /// `[t0, t1]`, and when; `None` when a cheap bound shows they stayed apart.
+    fn pair_overlap(&self, i: usize, j: usize, t0: f64, t1: f64) -> Option<(f64, f64)> {
+        let (mi, mj) = (self.motion[i], self.motion[j]);
+        let sigma0 = self.radius_at(i, t0) + self.radius_at(j, t0);
+        let sigma1 = self.radius_at(i, t1) + self.radius_at(j, t1);
+        if self.stay_apart(&mi, &mj, t0, t1, sigma1) {
+            return None;
+        }
+        let grow = self.growth_speed(i) + self.growth_speed(j);
+        // `d` is the distance less what the contact distance grew by since `t0`.
+        let (d, at) = self.approach(mi.at(t0), mi.vel, mj.at(t0), mj.vel, t1 - t0, grow);
+        let sigma_at = self.radius_at(i, t0 + at) + self.radius_at(j, t0 + at);
+        Some(((sigma0 - d) / sigma_at, t0 + at))
+    }
+
+    /// The largest overlap of body `i` with wall `w` (relative to its radius) from its
+    /// reference time to `t`, and when.
+    fn wall_overlap(&self, i: usize, w: usize, t: f64) -> (f64, f64) {
+        let mi = self.motion[i];
+        let (d, at) = closest_to_wall(&self.walls[w], &mi, t, self.growth_speed(i));
+        let r0 = self.radius_at(i, mi.time);
+        (((r0 - d) / self.radius_at(i, at)), at)
+    }
+
     /// Body `i` is about to change course at `t`: no body or wall may have come too close
     /// to it since the later of their reference times.
     fn check_no_miss(&mut self, i: usize, t: f64) -> Result<(), Violation> {
@@ -327,20 +444,16 @@ impl<const D: usize> Verifier<D> {
         for j in self.candidates(i) {
             let mj = self.motion[j];
             let t0 = self.from(&mi).max(self.from(&mj));
-            let sigma = self.radius[i] + self.radius[j];
-            if self.stay_apart(&mi, &mj, t0, t, sigma) {
+            let Some((overlap, at)) = self.pair_overlap(i, j, t0, t) else {
                 continue;
-            }
-            let (d, at) = self.approach(mi.at(t0), mi.vel, mj.at(t0), mj.vel, t - t0);
-            let overlap = (sigma - d) / sigma;
+            };
             if overlap > OVERLAP_TOLERANCE {
-                return Err(self.fail(t, format!("bodies {i} and {j} overlap by {overlap:e} of their contact distance at t = {} (a missed collision)", t0 + at)));
+                return Err(self.fail(t, format!("bodies {i} and {j} overlap by {overlap:e} of their contact distance at t = {at} (a missed collision)")));
             }
             self.report.max_overlap = self.report.max_overlap.max(overlap);
         }
-        for (w, wall) in self.walls.iter().enumerate() {
-            let (d, at) = closest_to_wall(wall, &mi, t);
-            let overlap = (self.radius[i] - d) / self.radius[i];
+        for w in 0..self.walls.len() {
+            let (overlap, at) = self.wall_overlap(i, w, t);
             if overlap > OVERLAP_TOLERANCE {
                 return Err(self.fail(t, format!("body {i} crosses wall {w} by {overlap:e} of its radius at t = {} (a missed collision)", at)));
             }
@@ -401,10 +514,9 @@ impl<const D: usize> Verifier<D> {
     }
 
     fn check_walls_upto(&mut self, i: usize, t: f64) -> Result<(), Violation> {
-        let mi = self.motion[i];
-        for (w, wall) in self.walls.iter().enumerate() {
-            let (d, at) = closest_to_wall(wall, &mi, t);
-            if (self.radius[i] - d) / self.radius[i] > OVERLAP_TOLERANCE {
+        for w in 0..self.walls.len() {
+            let (overlap, at) = self.wall_overlap(i, w, t);
+            if overlap > OVERLAP_TOLERANCE {
                 return Err(self.fail(
                     at,
                     format!("body {i} crosses wall {w} after the last event (a missed collision)"),
@@ -426,20 +538,15 @@ impl<const D: usize> Verifier<D> {
         if t1 < t0 {
             return Ok(());
         }
-        let (mi, mj) = (self.motion[i], self.motion[j]);
-        let sigma = self.radius[i] + self.radius[j];
-        if self.stay_apart(&mi, &mj, t0, t1, sigma) {
+        let Some((overlap, at)) = self.pair_overlap(i, j, t0, t1) else {
             return Ok(());
-        }
-        let (d, at) = self.approach(mi.at(t0), mi.vel, mj.at(t0), mj.vel, t1 - t0);
-        let overlap = (sigma - d) / sigma;
+        };
         if overlap > OVERLAP_TOLERANCE {
             return Err(self.fail(
-                t0 + at,
+                at,
                 format!(
                     "bodies {i} and {j} overlap by {overlap:e} of their contact distance \
-                     {when}at t = {} (a missed collision)",
-                    t0 + at
+                     {when}at t = {at} (a missed collision)"
                 ),
             ));
         }
@@ -478,10 +585,11 @@ impl<const D: usize> Verifier<D> {
             self.slab = 2.0 * r_max / mean_speed;
         }
         let next_end = (end + self.slab).max(t);
+        let grown = self.growth.map_or(1.0, |g| g.scale(next_end));
         let grid = self.grid.as_mut().expect("grid mode");
         grid.start_slab(end, next_end);
         for (i, m) in self.motion.iter().enumerate() {
-            grid.file(i, m, self.radius[i], m.time.max(end));
+            grid.file(i, m, self.radius[i] * grown, m.time.max(end));
         }
         Ok(())
     }
@@ -524,8 +632,9 @@ impl<const D: usize> Verifier<D> {
         }
     }
 
-    /// Smallest distance between two points moving linearly over `[0, span]` (between nearest
-    /// images in a periodic scene), and the time offset where it occurs.
+    /// Smallest distance, less `grow` times the time offset (growing radii; 0 for fixed ones),
+    /// between two points moving linearly over `[0, span]` (between nearest images in a
+    /// periodic scene), and the time offset where it occurs.
     fn approach(
         &self,
         pa: Vector<D>,
@@ -533,9 +642,17 @@ impl<const D: usize> Verifier<D> {
         pb: Vector<D>,
         vb: Vector<D>,
         span: f64,
+        grow: f64,
     ) -> (f64, f64) {
+        let closest = |dp: Vector<D>, dv: Vector<D>, span: f64| {
+            if grow > 0.0 {
+                closest_approach_growing(dp, dv, span, grow)
+            } else {
+                closest_approach(Vector::ZERO, Vector::ZERO, dp, dv, span)
+            }
+        };
         let Some(size) = self.period else {
-            return closest_approach(pa, va, pb, vb, span);
+            return closest(pb - pa, vb - va, span);
         };
         // Pieces short enough that the relative motion crosses a quarter box at most; in each,
         // every image next to the nearest one at its start is tried.
@@ -555,7 +672,8 @@ impl<const D: usize> Verifier<D> {
                     dp[d] += ((c % 3) as f64 - 1.0) * size[d];
                     c /= 3;
                 }
-                let (dist, at) = closest_approach(Vector::ZERO, Vector::ZERO, dp, dv, s1 - s0);
+                let (dist, at) = closest(dp, dv, s1 - s0);
+                let dist = dist - grow * s0;
                 if dist < best.0 {
                     best = (dist, s0 + at);
                 }

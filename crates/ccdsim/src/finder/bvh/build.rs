@@ -24,11 +24,15 @@ impl<const D: usize> SweptTree<D> {
             None => self.shifts.clear(),
         }
         self.leaf_boxes.clear();
-        self.leaf_boxes
-            .extend((0..n).map(|i| swept_box(&world.motion(i), world.radius(i), now, horizon)));
+        self.leaf_boxes.extend(
+            (0..n).map(|i| swept_box(&world.motion(i), world.radius_at(i, horizon), now, horizon)),
+        );
         self.finite = self.leaf_boxes.iter().all(is_finite_box);
         self.extent_now = (0..n).fold(Aabb::EMPTY, |acc, i| {
-            acc.union(Aabb::of_ball(world.position_at(i, now), world.radius(i)))
+            acc.union(Aabb::of_ball(
+                world.position_at(i, now),
+                world.radius_at(i, now),
+            ))
         });
         if self.order.len() != n {
             // Otherwise keep the last permutation: the bodies have barely moved since, so the

@@ -107,8 +107,8 @@ pub use validate::InvalidTree;
 
 use super::{finite_event, DebugBox, Finder, FinderError, FinderOptions};
 use crate::event::Event;
-use crate::narrow::toi_circle_circle;
-use crate::periodic::toi_circle_circle_periodic;
+use crate::narrow::toi_pair;
+use crate::periodic::toi_pair_periodic;
 use crate::world::World;
 use tree::{children, l1, SweptTree};
 use walls::WallCache;
@@ -262,8 +262,8 @@ impl<const D: usize> BvhFinder<D> {
             for j in i + 1..world.len() {
                 let (mj, ri, rj) = (world.motion(j), world.radius(i), world.radius(j));
                 let t = match world.periodic() {
-                    None => toi_circle_circle(&mi, ri, &mj, rj),
-                    Some(size) => toi_circle_circle_periodic(&mi, ri, &mj, rj, &size),
+                    None => toi_pair(&mi, ri, &mj, rj, world.growth()),
+                    Some(size) => toi_pair_periodic(&mi, ri, &mj, rj, &size, world.growth()),
                 };
                 if let Some(t) = t {
                     best = Event::earliest(best, Some(Event::body(t, i, j)));

@@ -15,7 +15,12 @@ impl<const D: usize> SweptTree<D> {
             let node = self.nodes[k];
             let aabb = if node.is_leaf() {
                 let i = self.order[node.start as usize] as usize;
-                let b = swept_box(&world.motion(i), world.radius(i), self.now, horizon);
+                let b = swept_box(
+                    &world.motion(i),
+                    world.radius_at(i, horizon),
+                    self.now,
+                    horizon,
+                );
                 finite &= is_finite_box(&b);
                 b
             } else {

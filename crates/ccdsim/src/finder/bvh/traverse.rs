@@ -5,8 +5,8 @@
 use super::tree::{children, SweptTree, ROUND_PAD};
 use crate::event::Event;
 use crate::geom::{Aabb, Vector};
-use crate::narrow::toi_circle_circle;
-use crate::periodic::toi_circle_circle_periodic;
+use crate::narrow::toi_pair;
+use crate::periodic::toi_pair_periodic;
 use crate::world::World;
 
 /// What one traversal found and how much work it took.
@@ -175,8 +175,8 @@ impl<const D: usize> Check<'_, D> {
         let (mi, ri) = (self.world.motion(i), self.world.radius(i));
         let (mj, rj) = (self.world.motion(j), self.world.radius(j));
         let t = match &self.period {
-            None => toi_circle_circle(&mi, ri, &mj, rj),
-            Some(size) => toi_circle_circle_periodic(&mi, ri, &mj, rj, size),
+            None => toi_pair(&mi, ri, &mj, rj, self.world.growth()),
+            Some(size) => toi_pair_periodic(&mi, ri, &mj, rj, size, self.world.growth()),
         };
         let Some(t) = t else {
             return;

@@ -2,7 +2,7 @@
 //! cached and recomputed only for bodies whose stored state changed.
 
 use crate::event::Event;
-use crate::narrow::toi_circle_wall;
+use crate::narrow::toi_body_wall;
 use crate::periodic::toi_box_exit;
 use crate::world::World;
 
@@ -48,7 +48,7 @@ impl WallCache {
             let m = world.motion(i);
             let mut best = None;
             for (w, wall) in world.walls().iter().enumerate() {
-                if let Some(t) = toi_circle_wall(&m, r, wall) {
+                if let Some(t) = toi_body_wall(&m, r, wall, world.growth()) {
                     best = Event::earliest(best, Some(Event::wall(t, i, w)));
                 }
             }

@@ -191,7 +191,9 @@ impl<const D: usize> Cells<D> {
         let mask = probe_first(quad, p.i as u32);
         let sa = Side::select(mask, probe, other);
         let sb = Side::select(mask, other, probe);
-        let lanes = toi_sides::<D, PERIODIC>(&sa, &sb, &[f64x4::ZERO; D]).only(valid);
+        let lanes = toi_sides::<D, PERIODIC>(&sa, &sb, &[f64x4::ZERO; D])
+            .only(valid)
+            .scalar_if(p.growth.is_some(), valid);
         if lanes.rare != 0 {
             Self::offer_rare_lanes::<PERIODIC>(bodies, p, quad, lanes, best);
             return;

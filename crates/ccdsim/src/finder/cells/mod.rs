@@ -109,6 +109,22 @@
 //! (that is, `|x| + |v|·|t|` below about 10⁹ σ_max), which is far beyond where the simulation's
 //! own overlap tolerance of 10⁻⁹ would already fail.
 //!
+//! # Growing radii
+//!
+//! In a growing world ([`crate::growth`]) contact distances grow with time. `init` then sizes
+//! the grid, the wall reach and the lists for the radii at a *horizon* `t_h`, by default the
+//! time at which the radii have grown by [`GROWTH_HEADROOM`] of their current size: every
+//! argument above holds for contacts at times up to `t_h` with `σ_max` read as `σ_max(t_h)`.
+//! Pairs are evaluated one at a time by the growing functions (the four-lane kernel is for
+//! fixed radii; its lanes are all handed to the scalar path), with the oracle's arguments.
+//! When the top of the queue lies beyond `t_h`, the oracle's event does too (if it lay at or
+//! before `t_h`, the top would be it), so nothing is returned: the finder rebuilds everything
+//! from the stored states at the current time for a horizon at least at that key's time (a
+//! live term or a lower bound of one, so the oracle's event comes at or before it) and at
+//! least twice as far, and asks again. After many rebuilds in a row without an event (bodies
+//! that never meet: the window has doubled each time), the query is answered by the
+//! all-pairs search itself. A rebuild is O(n); radii grow by 5 % between rebuilds.
+//!
 //! # List mode (Verlet neighbour lists with a skin)
 //!
 //! With a skin `s > 0` (option `cells_skin`, relative to `σ_max`) and a periodic world of
@@ -264,6 +280,8 @@ pub struct CellsStats {
     pub undone: u64,
     /// Shell exits processed (list mode; internal, never returned).
     pub rebuilds: u64,
+    /// Growing radii: whole rebuilds of the grid for a later horizon.
+    pub regrids: u64,
 }
 
 /// The finder's mode, chosen once by `init` (see the module docs). Each has its own module:
@@ -331,6 +349,13 @@ pub struct Cells<const D: usize> {
     mode: Mode<D>,
     /// Prefetch hints are on: the working set is larger than a core's cache (see `init`).
     hints: bool,
+    /// Growing worlds: the time up to which the grid (and lists) are sized for the contact
+    /// distances; `+∞` when radii are fixed (see "Growing radii" in the module docs).
+    horizon: f64,
+    /// Growing worlds: a horizon asked for beyond the default one, for the next `init`.
+    wanted_horizon: f64,
+    /// Growing worlds: rebuilds since the last event returned.
+    regrids_in_a_row: u32,
 }
 
 impl<const D: usize> Default for Cells<D> {
@@ -357,6 +382,9 @@ impl<const D: usize> Cells<D> {
             skin: 0.0,
             mode: Mode::Crossings,
             hints: false,
+            horizon: f64::INFINITY,
+            wanted_horizon: f64::NEG_INFINITY,
+            regrids_in_a_row: 0,
         }
     }
 
@@ -499,6 +527,41 @@ fn two_largest(radii: impl Iterator<Item = f64>) -> (f64, f64) {
     (r1, r2)
 }
 
+/// Growing radii: the grid is sized for the radii they reach when they have grown by this
+/// fraction of their current size (see "Growing radii" in the module docs).
+const GROWTH_HEADROOM: f64 = 0.05;
+
+/// Growing radii: rebuilds in a row, each doubling the horizon, before a query is answered
+/// by the all-pairs search instead (only bodies that never meet get there).
+const MAX_REGRIDS_IN_A_ROW: u32 = 48;
+
+impl<const D: usize> Cells<D> {
+    /// Rebuilds the grid of a growing world for a horizon at `beyond` at least (its top key's
+    /// time) and at least twice as far as the current one: `None` to go on with the query, or
+    /// the query's answer when rebuilds no longer make progress (bodies that never meet).
+    fn regrid(&mut self, world: &World<D>, beyond: f64) -> Option<Option<Event>> {
+        self.regrids_in_a_row += 1;
+        if self.regrids_in_a_row > MAX_REGRIDS_IN_A_ROW {
+            self.regrids_in_a_row = 0;
+            return Some(super::all_pairs_next_event(world));
+        }
+        let now = world.now();
+        let window = 2.0 * (self.horizon - now).max(0.0);
+        self.wanted_horizon = if beyond.is_finite() {
+            beyond.max(now + window)
+        } else {
+            now + window
+        };
+        let (stats, regrids) = (self.stats, self.regrids_in_a_row);
+        self.init(world)
+            .expect("a world the finder served serves again");
+        self.stats = stats;
+        self.stats.regrids += 1;
+        self.regrids_in_a_row = regrids;
+        None
+    }
+}
+
 impl<const D: usize> Finder<D> for Cells<D> {
     fn name(&self) -> &'static str {
         "cells"
@@ -518,9 +581,19 @@ impl<const D: usize> Finder<D> for Cells<D> {
         if n > MAX_INDEX || world.walls().len() + 2 * D > MAX_INDEX {
             return unsupported("more than 2^31 − 1 bodies or walls");
         }
-        let (r1, r2) = two_largest(world.radii());
-        let sigma_max = if n >= 2 { r1 + r2 } else { 2.0 * r1.max(0.5) };
         let now = world.now();
+        // Growing radii: size everything for the radii at a horizon, rebuilt before it passes.
+        self.horizon = f64::INFINITY;
+        let mut grown = 1.0;
+        if let Some(law) = world.growth() {
+            let window = (law.scale(now) * GROWTH_HEADROOM / law.rate).max(0.0);
+            self.horizon = (now + window).max(self.wanted_horizon);
+            grown = law.scale(self.horizon);
+        }
+        self.wanted_horizon = f64::NEG_INFINITY;
+        let (r1, r2) = two_largest(world.radii());
+        let (r1, r2) = (r1 * grown, r2 * grown);
+        let sigma_max = if n >= 2 { r1 + r2 } else { 2.0 * r1.max(0.5) };
         let period = world.periodic();
         self.periodic = period.is_some();
         self.faces_from = world.walls().len();
@@ -629,6 +702,13 @@ impl<const D: usize> Finder<D> for Cells<D> {
         loop {
             let i = self.queue.top()?;
             let key = self.queue.top_key();
+            if key.seconds() > self.horizon {
+                // Growing radii: past the horizon the grid may miss contacts; rebuild it.
+                if let Some(answer) = self.regrid(world, key.seconds()) {
+                    return answer;
+                }
+                continue;
+            }
             if key.seconds() == f64::INFINITY {
                 // Every key is a lower bound of what it stands for (see above), so every
                 // event left lies at an infinite time, which never comes (`finite_event`).
@@ -649,6 +729,7 @@ impl<const D: usize> Finder<D> for Cells<D> {
                 continue;
             }
             let e = key.event();
+            self.regrids_in_a_row = 0;
             self.clock = self.clock.max(e.time);
             if self.hints {
                 self.hint_event(world, key);
@@ -681,6 +762,7 @@ impl<const D: usize> Finder<D> for Cells<D> {
             ("recomputes", s.recomputes),
             ("undone", s.undone),
             ("rebuilds", s.rebuilds),
+            ("regrids", s.regrids),
         ]
     }
 

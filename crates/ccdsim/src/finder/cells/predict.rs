@@ -7,7 +7,8 @@ use super::grid::Grid;
 use super::key::{ordered, Key};
 use super::{Cells, Mode, NO_CROSSING, SECOND_KNOWN};
 use crate::geom::Vector;
-use crate::narrow::{toi_circle_circle, toi_circle_circle_shifted, toi_circle_wall, Motion};
+use crate::growth::GrowthLaw;
+use crate::narrow::{toi_body_wall, toi_pair, toi_pair_shifted, Motion};
 use crate::narrow_lanes::Side;
 use crate::periodic::toi_box_exit;
 use crate::prefetch::prefetch;
@@ -115,6 +116,9 @@ pub(super) struct Probe<const D: usize> {
     pub i: usize,
     /// Its stored motion and radius.
     pub b: Body<D>,
+    /// The world's growth law, if radii grow: pairs then take the growing functions, one
+    /// at a time (the four-lane kernel is for fixed radii).
+    pub growth: Option<GrowthLaw>,
 }
 
 impl<const D: usize> Probe<D> {
@@ -124,6 +128,7 @@ impl<const D: usize> Probe<D> {
         Probe {
             i,
             b: world.bodies()[i],
+            growth: world.growth().copied(),
         }
     }
 }
@@ -143,9 +148,16 @@ impl<const D: usize> Cells<D> {
         let (a, b) = if i < j { (bi, bj) } else { (bj, bi) };
         if self.periodic {
             let s = if i < j { *shift } else { Vector::ZERO - *shift };
-            toi_circle_circle_shifted(&a.motion, a.radius, &b.motion, b.radius, s)
+            toi_pair_shifted(
+                &a.motion,
+                a.radius,
+                &b.motion,
+                b.radius,
+                s,
+                p.growth.as_ref(),
+            )
         } else {
-            toi_circle_circle(&a.motion, a.radius, &b.motion, b.radius)
+            toi_pair(&a.motion, a.radius, &b.motion, b.radius, p.growth.as_ref())
         }
     }
 
@@ -175,9 +187,16 @@ impl<const D: usize> Cells<D> {
         let (a, c) = if probe_first { (&p.b, bj) } else { (bj, &p.b) };
         let t = if PERIODIC {
             let s = if probe_first { *shift } else { *neg };
-            toi_circle_circle_shifted(&a.motion, a.radius, &c.motion, c.radius, s)
+            toi_pair_shifted(
+                &a.motion,
+                a.radius,
+                &c.motion,
+                c.radius,
+                s,
+                p.growth.as_ref(),
+            )
         } else {
-            toi_circle_circle(&a.motion, a.radius, &c.motion, c.radius)
+            toi_pair(&a.motion, a.radius, &c.motion, c.radius, p.growth.as_ref())
         };
         if let Some(t) = t {
             let bits = ordered(t);
@@ -374,7 +393,8 @@ impl<const D: usize> Cells<D> {
             if skip.next_if_eq(&&w).is_some() {
                 continue;
             }
-            if let Some(t) = toi_circle_wall(&p.b.motion, p.b.radius, &world.walls()[w as usize]) {
+            let wall = &world.walls()[w as usize];
+            if let Some(t) = toi_body_wall(&p.b.motion, p.b.radius, wall, p.growth.as_ref()) {
                 best.offer(Key::wall(t, p.i, w as usize), Grid::<D>::ZERO_IMAGE);
             }
         }

@@ -9,7 +9,7 @@ use super::super::slots::SLOTS;
 use super::super::{Cells, Mode, KEY_IS_CROSSING};
 use super::*;
 use crate::geom::Vector;
-use crate::narrow::{toi_circle_circle, toi_circle_circle_shifted};
+use crate::narrow::{toi_pair, toi_pair_shifted};
 use crate::narrow_lanes::{
     first_lanes, toi_sides, vector_lanes, Lanes, PairArgs, Side, ALL_LANES, LANES,
 };
@@ -152,7 +152,8 @@ impl<const D: usize> Cells<D> {
                 toi_sides::<D, PERIODIC>(&sa, &sb, &shift_of(tables))
             }
         }
-        .only(valid);
+        .only(valid)
+        .scalar_if(p.growth.is_some(), valid);
         if lanes.rare != 0 {
             self.offer_rare_quad::<PERIODIC>(bodies, p, quad, lanes, best);
             return;
@@ -197,6 +198,7 @@ impl<const D: usize> Cells<D> {
                 b: &b.motion,
                 rb: b.radius,
                 shift: &lists.shifts[image],
+                growth: p.growth.as_ref(),
             }
         } else {
             PairArgs {
@@ -205,6 +207,7 @@ impl<const D: usize> Cells<D> {
                 b: &p.b.motion,
                 rb: p.b.radius,
                 shift: &lists.neg_shifts[image],
+                growth: p.growth.as_ref(),
             }
         }
     }
@@ -234,9 +237,16 @@ impl<const D: usize> Cells<D> {
                 } else {
                     Vector::ZERO - shift
                 };
-                toi_circle_circle_shifted(&a.motion, a.radius, &c.motion, c.radius, s)
+                toi_pair_shifted(
+                    &a.motion,
+                    a.radius,
+                    &c.motion,
+                    c.radius,
+                    s,
+                    p.growth.as_ref(),
+                )
             } else {
-                toi_circle_circle(&a.motion, a.radius, &c.motion, c.radius)
+                toi_pair(&a.motion, a.radius, &c.motion, c.radius, p.growth.as_ref())
             };
             if let Some(t) = t {
                 let bits = super::super::key::ordered(t);
