@@ -330,8 +330,9 @@ mod tests {
         };
         let t = toi_circle_wall_growing(&m, 1.0, &seg, &LAW).unwrap();
         assert!((t - 4.0).abs() < 1e-12, "{t}");
-        // Beyond the end, at (4, 3): distance 5 from the end point (1, 0): t = 8.
-        let m = m2([4.0, 3.0], [0.0, 0.0], 0.0);
+        // Beyond the end, at (5, 3): distance 5 from the end point (1, 0): t = 8 (the line
+        // is reached at t = 4, beyond the end, and does not count).
+        let m = m2([5.0, 3.0], [0.0, 0.0], 0.0);
         let t = toi_circle_wall_growing(&m, 1.0, &seg, &LAW).unwrap();
         assert!((t - 8.0).abs() < 1e-12, "{t}");
     }

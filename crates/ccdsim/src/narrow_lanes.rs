@@ -44,7 +44,7 @@
 use crate::geom::Vector;
 use crate::growth::GrowthLaw;
 use crate::narrow::{toi_pair, toi_pair_shifted, Motion, MIN_UNSCALED_A};
-use wide::{f64x4, CmpGe, CmpGt, CmpLt};
+use wide::{f64x4, CmpGe, CmpGt, CmpLe, CmpLt};
 
 /// Pairs evaluated at once: the lanes of one register.
 pub(crate) const LANES: usize = 4;
@@ -104,22 +104,6 @@ impl Lanes {
             hits: self.hits & valid,
             rare: self.rare & valid,
             ..self
-        }
-    }
-
-    /// Every lane of `valid` left to the scalar function when `scalar` holds (growing radii,
-    /// which the kernel does not evaluate), else `self`.
-    #[inline(always)]
-    #[must_use]
-    pub fn scalar_if(self, scalar: bool, valid: u32) -> Lanes {
-        if scalar {
-            Lanes {
-                hits: 0,
-                rare: valid,
-                ..self
-            }
-        } else {
-            self
         }
     }
 
@@ -325,6 +309,78 @@ pub(crate) fn toi_sides<const D: usize, const SHIFTED: bool>(
     let regular = c.cmp_gt(zero) & vv.cmp_ge(f64x4::splat(MIN_UNSCALED_A)) & b.cmp_lt(zero);
     let hits = (regular & disc.cmp_ge(zero)).move_mask() as u32;
     let misses = (recedes | (regular & disc.cmp_lt(zero))).move_mask() as u32;
+    Lanes {
+        times: t,
+        hits,
+        rare: !(hits | misses) & ALL_LANES,
+    }
+}
+
+/// [`toi_sides`] for fixed radii (`law` `None`), [`toi_sides_growing`] for growing ones.
+#[inline(always)]
+pub(crate) fn toi_sides_law<const D: usize, const SHIFTED: bool>(
+    sa: &Side<D>,
+    sb: &Side<D>,
+    shift: &[f64x4; D],
+    law: Option<&GrowthLaw>,
+) -> Lanes {
+    match law {
+        None => toi_sides::<D, SHIFTED>(sa, sb, shift),
+        Some(law) => toi_sides_growing::<D, SHIFTED>(sa, sb, shift, law),
+    }
+}
+
+/// The times of impact of four pairs of growing balls: in each lane
+/// [`toi_circle_circle_growing`](crate::growth::toi_circle_circle_growing)'s result bit for
+/// bit, by the same operations in the same order (the contact distance `(r_a + r_b)·(1 + Γ·(T
+/// − t₀))` and its speed `(r_a + r_b)·Γ`, then `B = dp·dv − σσ̇`, `C = |dp|² − σ²`, `A = |dv|² −
+/// σ̇²`, `T + C / (−B + √(B² − AC))`). Unshifted lanes skip the scalar function's `+ 0` shift,
+/// which changes at most the sign of a zero component of `dp`, which neither `B` (a zero
+/// product only matters when every term is zero, and `σσ̇ > 0` is subtracted) nor the squares
+/// can see. A lane is used when the scalar function takes the same path: the pair is apart
+/// (`C > 0`) and misses (`disc < 0`, or `−B + √disc ≤ 0`) or hits at a finite time; every other
+/// lane (an overlap, an infinite time, a NaN) is left to the scalar function.
+#[inline(always)]
+pub(crate) fn toi_sides_growing<const D: usize, const SHIFTED: bool>(
+    sa: &Side<D>,
+    sb: &Side<D>,
+    shift: &[f64x4; D],
+    law: &GrowthLaw,
+) -> Lanes {
+    let zero = f64x4::ZERO;
+    let t0 = sa.time.fast_max(sb.time);
+    let dta = t0 - sa.time;
+    let dtb = t0 - sb.time;
+    let (mut b, mut pp, mut vv) = (zero, zero, zero);
+    for (k, &shift) in shift.iter().enumerate() {
+        let (va, vb) = (sa.vel[k], sb.vel[k]);
+        let xa = sa.pos[k] + va * dta;
+        let xb = sb.pos[k] + vb * dtb;
+        let mut dp = xb - xa;
+        if SHIFTED {
+            dp += shift;
+        }
+        let dv = vb - va;
+        b += dp * dv;
+        pp += dp * dp;
+        vv += dv * dv;
+    }
+    let rate = f64x4::splat(law.rate);
+    let sum = sa.radius + sb.radius;
+    let sigma = sum * (f64x4::splat(1.0) + rate * (t0 - f64x4::splat(law.origin)));
+    let sigma_dot = sum * rate;
+    let b = b - sigma * sigma_dot;
+    let c = pp - sigma * sigma;
+    let a = vv - sigma_dot * sigma_dot;
+    let disc = b * b - a * c;
+    let q = (b ^ f64x4::splat(-0.0)) + disc.sqrt();
+    let dt = c / q;
+    let t = (t0 + dt).to_array();
+    let apart = c.cmp_gt(zero);
+    let meets = apart & disc.cmp_ge(zero) & q.cmp_gt(zero);
+    let hits = (meets & dt.cmp_lt(f64x4::splat(f64::INFINITY))).move_mask() as u32;
+    let misses =
+        (apart & (disc.cmp_lt(zero) | (disc.cmp_ge(zero) & q.cmp_le(zero)))).move_mask() as u32;
     Lanes {
         times: t,
         hits,
@@ -546,6 +602,93 @@ mod tests {
             Just(-20.0)
         ])
         .prop_map(Vector)
+    }
+
+    /// [`toi_sides_growing`] against the scalar growing function, bit for bit, in several pair
+    /// orders and both shift modes.
+    fn check_growing<const D: usize>(
+        m: [Motion<D>; 4],
+        r: [f64; 4],
+        shift: [Vector<D>; 4],
+        law: GrowthLaw,
+    ) {
+        fn lanes<const D: usize, const SHIFTED: bool>(
+            p: &[PairArgs<'_, D>; LANES],
+            law: &GrowthLaw,
+        ) -> [Option<f64>; LANES] {
+            let sa = Side::gather(p.map(|p| p.a), p.map(|p| p.ra));
+            let sb = Side::gather(p.map(|p| p.b), p.map(|p| p.rb));
+            let s = vector_lanes(p.map(|p| p.shift));
+            toi_sides_growing::<D, SHIFTED>(&sa, &sb, &s, law).times(|k| p[k].scalar::<SHIFTED>())
+        }
+        for pattern in [
+            [(0, 1), (2, 3), (1, 0), (3, 2)],
+            [(0, 2), (1, 3), (2, 0), (3, 1)],
+            [(0, 1), (0, 2), (0, 3), (1, 2)],
+        ] {
+            let p: [PairArgs<'_, D>; LANES] = std::array::from_fn(|k| {
+                let (x, y) = pattern[k];
+                PairArgs {
+                    a: &m[x],
+                    ra: r[x],
+                    b: &m[y],
+                    rb: r[y],
+                    shift: &shift[k],
+                    growth: Some(&law),
+                }
+            });
+            let (plain, shifted) = (lanes::<D, false>(&p, &law), lanes::<D, true>(&p, &law));
+            for k in 0..LANES {
+                assert_eq!(bits(plain[k]), bits(p[k].scalar::<false>()), "{p:?}");
+                assert_eq!(bits(shifted[k]), bits(p[k].scalar::<true>()), "{p:?}");
+            }
+        }
+    }
+
+    fn law() -> impl Strategy<Value = GrowthLaw> {
+        (1e-4..2.0f64, -5.0..5.0f64).prop_map(|(rate, origin)| GrowthLaw { rate, origin })
+    }
+
+    #[test]
+    fn growing_lanes_on_hits_misses_and_overlaps() {
+        let law = GrowthLaw {
+            rate: 0.5,
+            origin: 0.0,
+        };
+        let head_on = motion([0.0, 0.0], [1.0, 0.0], 0.0);
+        let receding = motion([10.0, 0.0], [0.2, 0.0], 0.0); // A < 0: meets all the same
+        let fleeing = motion([10.0, 0.0], [5.0, 0.0], 1.0); // never
+        let overlapping = motion([1.5, 0.0], [0.1, 0.0], 3.0); // left to the scalar code
+        let r = [1.0, 1.0, 1.0, 1.0];
+        let s = [
+            Vector([0.0, 0.0]),
+            Vector([-0.0, 5.0]),
+            Vector([-5.0, 0.0]),
+            Vector([5.0, -5.0]),
+        ];
+        check_growing([head_on, receding, fleeing, overlapping], r, s, law);
+    }
+
+    proptest! {
+        #[test]
+        fn growing_lanes_agree_with_the_scalar_function(
+            m in proptest::array::uniform4(motion2()),
+            r in proptest::array::uniform4(0.01..2.0f64),
+            s in proptest::array::uniform4(shift::<2>()),
+            law in law(),
+        ) {
+            check_growing(m, r, s, law);
+        }
+
+        #[test]
+        fn growing_lanes_agree_with_the_scalar_function_near_pairs_3d(
+            m in proptest::array::uniform4(near3()),
+            r in proptest::array::uniform4(0.3..1.0f64),
+            s in proptest::array::uniform4(shift::<3>()),
+            law in law(),
+        ) {
+            check_growing(m, r, s, law);
+        }
     }
 
     proptest! {

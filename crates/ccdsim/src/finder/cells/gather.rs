@@ -1,6 +1,6 @@
 //! Interior scans of crossing mode, four pairs at a time: the candidates of a block of cells
 //! are gathered from the cells' slots without a branch per cell, then evaluated by the
-//! four-lane kernel [`toi_sides`], each lane with its pair's balls in the oracle's order.
+//! four-lane kernel [`toi_sides`](crate::narrow_lanes::toi_sides), each lane with its pair's balls in the oracle's order.
 //!
 //! *Gathering.* Each cell's record is copied whole (its [`CELL_SLOTS`] slots) to the end of a
 //! buffer, and the end advances by the number of used slots: the unused slots' copies are
@@ -35,7 +35,7 @@ use super::key::{ordered, Key};
 use super::predict::{Best, Probe};
 use super::Cells;
 use crate::geom::Vector;
-use crate::narrow_lanes::{toi_sides, Lanes, Side, ALL_LANES, LANES};
+use crate::narrow_lanes::{toi_sides_law, Lanes, Side, ALL_LANES, LANES};
 use crate::world::Body;
 use wide::{f64x4, i32x4, CmpGt};
 
@@ -191,9 +191,8 @@ impl<const D: usize> Cells<D> {
         let mask = probe_first(quad, p.i as u32);
         let sa = Side::select(mask, probe, other);
         let sb = Side::select(mask, other, probe);
-        let lanes = toi_sides::<D, PERIODIC>(&sa, &sb, &[f64x4::ZERO; D])
-            .only(valid)
-            .scalar_if(p.growth.is_some(), valid);
+        let lanes = toi_sides_law::<D, PERIODIC>(&sa, &sb, &[f64x4::ZERO; D], p.growth.as_ref())
+            .only(valid);
         if lanes.rare != 0 {
             Self::offer_rare_lanes::<PERIODIC>(bodies, p, quad, lanes, best);
             return;

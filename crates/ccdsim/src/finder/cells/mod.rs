@@ -115,8 +115,9 @@
 //! the grid, the wall reach and the lists for the radii at a *horizon* `t_h`, by default the
 //! time at which the radii have grown by [`GROWTH_HEADROOM`] of their current size: every
 //! argument above holds for contacts at times up to `t_h` with `σ_max` read as `σ_max(t_h)`.
-//! Pairs are evaluated one at a time by the growing functions (the four-lane kernel is for
-//! fixed radii; its lanes are all handed to the scalar path), with the oracle's arguments.
+//! Pairs are evaluated by the growing functions with the oracle's arguments, four at a time by
+//! the kernel's growing form (`narrow_lanes::toi_sides_growing`, each lane the scalar
+//! function's result bit for bit; overlapping pairs go to the scalar function).
 //! When the top of the queue lies beyond `t_h`, the oracle's event does too (if it lay at or
 //! before `t_h`, the top would be it), so nothing is returned: the finder rebuilds everything
 //! from the stored states at the current time for a horizon at least at that key's time (a

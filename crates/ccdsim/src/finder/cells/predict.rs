@@ -116,8 +116,8 @@ pub(super) struct Probe<const D: usize> {
     pub i: usize,
     /// Its stored motion and radius.
     pub b: Body<D>,
-    /// The world's growth law, if radii grow: pairs then take the growing functions, one
-    /// at a time (the four-lane kernel is for fixed radii).
+    /// The world's growth law, if radii grow: pairs then take the growing functions (and the
+    /// four-lane kernel its growing form).
     pub growth: Option<GrowthLaw>,
 }
 

@@ -11,7 +11,7 @@ use super::*;
 use crate::geom::Vector;
 use crate::narrow::{toi_pair, toi_pair_shifted};
 use crate::narrow_lanes::{
-    first_lanes, toi_sides, vector_lanes, Lanes, PairArgs, Side, ALL_LANES, LANES,
+    first_lanes, toi_sides_law, vector_lanes, Lanes, PairArgs, Side, ALL_LANES, LANES,
 };
 use crate::prefetch::prefetch;
 use crate::world::{Body, World};
@@ -72,7 +72,7 @@ impl<const D: usize> Cells<D> {
     /// Offers body `p` the pairs of the list entries `entries`, of which the first `above`
     /// have a higher body index than `p`'s (`p` goes first in their pairs, the partner in
     /// the others'). The entries go four at a time, in list order, through the lane kernel
-    /// ([`toi_sides`], each lane the scalar function's times bit for bit): `p` is put in
+    /// ([`toi_sides`](crate::narrow_lanes::toi_sides), each lane the scalar function's times bit for bit): `p` is put in
     /// all lanes once; a quad of one part has `p` on one side, the quad where the parts meet
     /// selects each lane's sides by its part, and the last quad is padded with copies of the
     /// last entry, whose lanes are dropped (no time, never handed to the scalar function).
@@ -135,9 +135,17 @@ impl<const D: usize> Cells<D> {
                 [f64x4::ZERO; D]
             }
         };
+        let law = p.growth.as_ref();
         let lanes = match ORDER {
-            0 => toi_sides::<D, PERIODIC>(probe, &other, &shift_of([&lists.shifts; LANES])),
-            1 => toi_sides::<D, PERIODIC>(&other, probe, &shift_of([&lists.neg_shifts; LANES])),
+            0 => {
+                toi_sides_law::<D, PERIODIC>(probe, &other, &shift_of([&lists.shifts; LANES]), law)
+            }
+            1 => toi_sides_law::<D, PERIODIC>(
+                &other,
+                probe,
+                &shift_of([&lists.neg_shifts; LANES]),
+                law,
+            ),
             _ => {
                 let mask = first_lanes(first);
                 let sa = Side::select(mask, probe, &other);
@@ -149,11 +157,10 @@ impl<const D: usize> Cells<D> {
                         &lists.neg_shifts
                     }
                 });
-                toi_sides::<D, PERIODIC>(&sa, &sb, &shift_of(tables))
+                toi_sides_law::<D, PERIODIC>(&sa, &sb, &shift_of(tables), law)
             }
         }
-        .only(valid)
-        .scalar_if(p.growth.is_some(), valid);
+        .only(valid);
         if lanes.rare != 0 {
             self.offer_rare_quad::<PERIODIC>(bodies, p, quad, lanes, best);
             return;
