@@ -347,6 +347,12 @@
     }
   }
 
+  // Radii grow linearly in time in a growing run (settings.growth): their factor at `t`.
+  function grown(t) {
+    const g = S.meta.growth;
+    return g ? 1 + g.rate * (t - g.origin) : 1;
+  }
+
   function draw() {
     ensureSurface();
     const surf = S.surface, cam = makeCamera();
@@ -361,7 +367,7 @@
       for (let i = 0; i < n; i++) {
         position(i, t, p);
         const [x, y] = cam.project(p[0], p[1]);
-        const r = S.radius[i] * cam.scale;
+        const r = S.radius[i] * grown(t) * cam.scale;
         if (lit(i)) { flashing.push(i); continue; }
         surf.disc(x, y, r, bodyWord(i));
       }
@@ -370,7 +376,7 @@
       for (let i = 0; i < n; i++) {
         position(i, t, p);
         const [x, y, z] = cam.project(p[0], p[1], p[2]);
-        const r = S.radius[i] * cam.scale;
+        const r = S.radius[i] * grown(t) * cam.scale;
         const on = lit(i);
         if (on) flashing.push(i);
         surf.sphere(x, y, z, r, on ? Raster.FLASH_FILL : bodyRgb(i));
@@ -380,7 +386,7 @@
     for (const i of flashing) {
       position(i, t, p);
       const [x, y] = cam.project(p[0], p[1], p[2]);
-      const r = S.radius[i] * cam.scale;
+      const r = S.radius[i] * grown(t) * cam.scale;
       // In 2D a ring marks bodies big enough to see one around (tiny ones just turn white);
       // in 3D the white sphere alone, since a ring would show through nearer spheres.
       if (D === 2) {
@@ -598,7 +604,7 @@
     bodyOnScreen(i) {
       const p = position(i, S.time, [0, 0, 0]);
       const [x, y] = S.camera.project(p[0], p[1], p[2]);
-      return { x: x / dpr(), y: y / dpr(), r: (S.radius[i] * S.camera.scale) / dpr() };
+      return { x: x / dpr(), y: y / dpr(), r: (S.radius[i] * grown(S.time) * S.camera.scale) / dpr() };
     },
   };
 

@@ -120,7 +120,9 @@ pub fn encode_boxes<const D: usize>(boxes: &[DebugBox<D>]) -> Vec<u8> {
 }
 
 /// The run's description as JSON: file, dimension, counts, times, walls, bounds, the
-/// largest speed, the keyframe interval and the finders that can draw boxes.
+/// largest speed, the keyframe interval, the finders that can draw boxes, and the growth of
+/// the radii (`{"rate", "origin"}`: radii at time `t` are `/api/bodies`'s times
+/// `1 + rate·(t − origin)`), or `null`.
 #[must_use]
 pub fn meta_json<const D: usize>(p: &Playback<D>, finder: &str) -> serde_json::Value {
     let e = p.extent();
@@ -139,5 +141,9 @@ pub fn meta_json<const D: usize>(p: &Playback<D>, finder: &str) -> serde_json::V
         "keyframes": p.index().keyframes.len(),
         "finder": finder,
         "finders": FINDER_NAMES,
+        "growth": p.scene().settings.growth.map(|g| serde_json::json!({
+            "rate": g.rate,
+            "origin": p.scene().start_time,
+        })),
     })
 }

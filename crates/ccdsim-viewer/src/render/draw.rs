@@ -177,9 +177,15 @@ fn draw_bodies<const D: usize>(pm: &mut Pixmap, cam: &Camera, f: &FrameInput<'_,
         ColourBy::Id => colour::id_colour(b),
         ColourBy::Speed => colour::speed_colour(b),
     };
+    // Growing runs: radii at the frame's time.
+    let grown = f
+        .scene
+        .settings
+        .growth
+        .map_or(1.0, |g| 1.0 + g.rate * (t - f.scene.start_time));
     let disc = |i: usize| {
         let (x, y, z) = cam.project(s.position_at(i, t));
-        let r = (f.scene.bodies[i].radius * cam.scale).max(0.75) as f32;
+        let r = (f.scene.bodies[i].radius * grown * cam.scale).max(0.75) as f32;
         (x, y, z, r)
     };
     let mut flashes = Vec::new();
