@@ -27,6 +27,7 @@ import numpy as np
 from . import _ccdsim
 from . import generate
 from . import observables
+from . import packing
 
 __all__ = [
     "Simulation",
@@ -37,6 +38,7 @@ __all__ = [
     "FINDER_NAMES",
     "generate",
     "observables",
+    "packing",
 ]
 
 #: Names of the finders (broad phases); all give the same events bit for bit.
@@ -254,7 +256,7 @@ class Simulation:
 
     @property
     def radii(self) -> np.ndarray:
-        """Radii, m."""
+        """Radii now, m (they grow in a scene with ``settings.growth``)."""
         return self._sim.radii
 
     @property
@@ -291,6 +293,16 @@ class Simulation:
     def set_velocity(self, i: int, v: Sequence[float]) -> None:
         """Gives body ``i`` velocity ``v`` from the current time on."""
         self._sim.set_velocity(int(i), [float(x) for x in v])
+
+    def rescale_velocities(self, factor: float) -> None:
+        """Multiplies every velocity by ``factor`` from now on (growing packings heat up; this
+        cools them). O(n): the finder is rebuilt."""
+        self._sim.rescale_velocities(float(factor))
+
+    def stop_growth(self) -> None:
+        """Stops the growth of the radii (``settings.growth``) now: they keep their current
+        values from here on."""
+        self._sim.stop_growth()
 
     def stats(self) -> dict:
         """Counters: ``events``, ``body_collisions``, ``wall_collisions``, ``max_overlap``,

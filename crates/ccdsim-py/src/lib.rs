@@ -5,6 +5,7 @@
 #![forbid(unsafe_code)]
 
 mod observables;
+mod packing;
 mod simulation;
 
 use ccdsim::generate::{gas, rack, thesis, GasConfig, Lattice, RackConfig, ThesisConfig};
@@ -164,6 +165,7 @@ fn _ccdsim(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(thesis_json, m)?)?;
     m.add_function(wrap_pyfunction!(rack_json, m)?)?;
     m.add_function(wrap_pyfunction!(read_run, m)?)?;
+    m.add_function(wrap_pyfunction!(packing::pack_json, m)?)?;
     observables::register(m)?;
     m.add("FINDER_NAMES", ccdsim::FINDER_NAMES.to_vec())?;
     Ok(())

@@ -224,10 +224,23 @@ impl PySimulation {
         })
     }
 
-    /// Radii, metres.
+    /// Radii now, metres (they grow in a scene with `settings.growth`).
     #[getter]
     fn radii<'py>(&mut self, py: Python<'py>) -> Bound<'py, PyArray1<f64>> {
-        with_sim!(self, s, PyArray1::from_vec(py, s.world().radii().collect()))
+        with_sim!(self, s, {
+            let r = (0..s.world().len()).map(|i| s.radius(i)).collect();
+            PyArray1::from_vec(py, r)
+        })
+    }
+
+    /// Multiplies every velocity by `factor` from now on (O(n): the finder is rebuilt).
+    fn rescale_velocities(&mut self, factor: f64) -> PyResult<()> {
+        with_sim!(self, s, s.rescale_velocities(factor).map_err(value_error))
+    }
+
+    /// Stops the growth of the radii now: they keep their current values.
+    fn stop_growth(&mut self) -> PyResult<()> {
+        with_sim!(self, s, s.stop_growth().map_err(value_error))
     }
 
     /// Masses, kilograms.
