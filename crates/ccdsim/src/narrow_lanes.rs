@@ -316,20 +316,6 @@ pub(crate) fn toi_sides<const D: usize, const SHIFTED: bool>(
     }
 }
 
-/// [`toi_sides`] for fixed radii (`law` `None`), [`toi_sides_growing`] for growing ones.
-#[inline(always)]
-pub(crate) fn toi_sides_law<const D: usize, const SHIFTED: bool>(
-    sa: &Side<D>,
-    sb: &Side<D>,
-    shift: &[f64x4; D],
-    law: Option<&GrowthLaw>,
-) -> Lanes {
-    match law {
-        None => toi_sides::<D, SHIFTED>(sa, sb, shift),
-        Some(law) => toi_sides_growing::<D, SHIFTED>(sa, sb, shift, law),
-    }
-}
-
 /// The times of impact of four pairs of growing balls: in each lane
 /// [`toi_circle_circle_growing`](crate::growth::toi_circle_circle_growing)'s result bit for
 /// bit, by the same operations in the same order (the contact distance `(r_a + r_b)·(1 + Γ·(T

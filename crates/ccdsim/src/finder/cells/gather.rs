@@ -35,7 +35,8 @@ use super::key::{ordered, Key};
 use super::predict::{Best, Probe};
 use super::Cells;
 use crate::geom::Vector;
-use crate::narrow_lanes::{toi_sides_law, Lanes, Side, ALL_LANES, LANES};
+use crate::growth::GrowthLaw;
+use crate::narrow_lanes::{toi_sides, toi_sides_growing, Lanes, Side, ALL_LANES, LANES};
 use crate::world::Body;
 use wide::{f64x4, i32x4, CmpGt};
 
@@ -136,7 +137,8 @@ impl<const D: usize> Cells<D> {
     /// `ids[from..to]` (`to + LANES ≤ ids.len()`; `p` not among them), in quads.
     #[inline(always)]
     #[allow(clippy::too_many_arguments)]
-    pub(super) fn scan_gathered<const PERIODIC: bool>(
+    pub(super) fn scan_gathered<const PERIODIC: bool, const GROW: bool>(
+        law: Option<&GrowthLaw>,
         bodies: &[Body<D>],
         p: &Probe<D>,
         probe: &Side<D>,
@@ -148,7 +150,7 @@ impl<const D: usize> Cells<D> {
         let mut k = from;
         while k < to {
             let (quad, valid, other) = quad_at(bodies, ids, k, to);
-            Self::offer_quad::<PERIODIC>(bodies, p, probe, &other, quad, valid, best);
+            Self::offer_quad::<PERIODIC, GROW>(law, bodies, p, probe, &other, quad, valid, best);
             k += LANES;
         }
     }
@@ -158,7 +160,8 @@ impl<const D: usize> Cells<D> {
     /// quad gathered once, evaluated for both.
     #[inline(always)]
     #[allow(clippy::too_many_arguments)]
-    pub(super) fn scan_gathered_both<const PERIODIC: bool>(
+    pub(super) fn scan_gathered_both<const PERIODIC: bool, const GROW: bool>(
+        law: Option<&GrowthLaw>,
         bodies: &[Body<D>],
         (pi, si, bi): (&Probe<D>, &Side<D>, &mut Best),
         (pj, sj, bj): (&Probe<D>, &Side<D>, &mut Best),
@@ -169,17 +172,19 @@ impl<const D: usize> Cells<D> {
         let mut k = from;
         while k < to {
             let (quad, valid, other) = quad_at(bodies, ids, k, to);
-            Self::offer_quad::<PERIODIC>(bodies, pi, si, &other, quad, valid, bi);
-            Self::offer_quad::<PERIODIC>(bodies, pj, sj, &other, quad, valid, bj);
+            Self::offer_quad::<PERIODIC, GROW>(law, bodies, pi, si, &other, quad, valid, bi);
+            Self::offer_quad::<PERIODIC, GROW>(law, bodies, pj, sj, &other, quad, valid, bj);
             k += LANES;
         }
     }
 
     /// Offers body `p` its pairs with the bodies `quad` (balls in `other`) of the lanes in
-    /// `valid`: the kernel on each lane's pair in the oracle's order, with the zero shift.
+    /// `valid`: the kernel on each lane's pair in the oracle's order, with the zero shift (its
+    /// growing form when `GROW`, with the growth law `law`).
     #[inline(always)]
     #[allow(clippy::too_many_arguments)]
-    fn offer_quad<const PERIODIC: bool>(
+    fn offer_quad<const PERIODIC: bool, const GROW: bool>(
+        law: Option<&GrowthLaw>,
         bodies: &[Body<D>],
         p: &Probe<D>,
         probe: &Side<D>,
@@ -191,10 +196,21 @@ impl<const D: usize> Cells<D> {
         let mask = probe_first(quad, p.i as u32);
         let sa = Side::select(mask, probe, other);
         let sb = Side::select(mask, other, probe);
-        let lanes = toi_sides_law::<D, PERIODIC>(&sa, &sb, &[f64x4::ZERO; D], p.growth.as_ref())
-            .only(valid);
+        let zero = [f64x4::ZERO; D];
+        let lanes = match (GROW, law) {
+            (true, Some(law)) => toi_sides_growing::<D, PERIODIC>(&sa, &sb, &zero, law),
+            _ => toi_sides::<D, PERIODIC>(&sa, &sb, &zero),
+        }
+        .only(valid);
         if lanes.rare != 0 {
-            Self::offer_rare_lanes::<PERIODIC>(bodies, p, quad, lanes, best);
+            Self::offer_rare_lanes::<PERIODIC>(
+                if GROW { law } else { None },
+                bodies,
+                p,
+                quad,
+                lanes,
+                best,
+            );
             return;
         }
         let mut hits = lanes.hits;
@@ -216,6 +232,7 @@ impl<const D: usize> Cells<D> {
     #[cold]
     #[inline(never)]
     fn offer_rare_lanes<const PERIODIC: bool>(
+        law: Option<&GrowthLaw>,
         bodies: &[Body<D>],
         p: &Probe<D>,
         quad: [u32; LANES],
@@ -227,7 +244,7 @@ impl<const D: usize> Cells<D> {
             let j = j as usize;
             if lanes.rare >> l & 1 != 0 {
                 let image = Grid::<D>::ZERO_IMAGE;
-                Self::offer_body::<PERIODIC>(p, j, &bodies[j], &zero, &zero, image, best);
+                Self::offer_body::<PERIODIC>(law, p, j, &bodies[j], &zero, &zero, image, best);
             } else if lanes.hits >> l & 1 != 0 {
                 offer_time(best, p.i, j, lanes.times[l], Grid::<D>::ZERO_IMAGE);
             }

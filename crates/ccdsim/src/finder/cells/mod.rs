@@ -357,6 +357,9 @@ pub struct Cells<const D: usize> {
     wanted_horizon: f64,
     /// Growing worlds: rebuilds since the last event returned.
     regrids_in_a_row: u32,
+    /// The world's growth law, if radii grow: pairs then take the growing functions (and the
+    /// four-lane kernel its growing form).
+    growth: Option<crate::growth::GrowthLaw>,
 }
 
 impl<const D: usize> Default for Cells<D> {
@@ -386,6 +389,7 @@ impl<const D: usize> Cells<D> {
             horizon: f64::INFINITY,
             wanted_horizon: f64::NEG_INFINITY,
             regrids_in_a_row: 0,
+            growth: None,
         }
     }
 
@@ -585,6 +589,7 @@ impl<const D: usize> Finder<D> for Cells<D> {
         let now = world.now();
         // Growing radii: size everything for the radii at a horizon, rebuilt before it passes.
         self.horizon = f64::INFINITY;
+        self.growth = world.growth().copied();
         let mut grown = 1.0;
         if let Some(law) = world.growth() {
             let window = (law.scale(now) * GROWTH_HEADROOM / law.rate).max(0.0);

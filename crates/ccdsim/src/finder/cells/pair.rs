@@ -47,6 +47,7 @@ use super::key::Key;
 use super::predict::{Best, Probe};
 use super::{Cells, Mode};
 use crate::geom::Vector;
+use crate::growth::GrowthLaw;
 use crate::narrow_lanes::Side;
 use crate::prefetch::prefetch;
 use crate::world::{Body, World};
@@ -56,6 +57,7 @@ impl<const D: usize> Cells<D> {
     /// `recompute(i)` then `recompute(j)` would, in one scan of their neighbourhoods, when
     /// that applies: crossing mode, two distinct bodies filed in interior cells that are the
     /// same or neighbours. Returns false, having done nothing, otherwise.
+    #[inline(always)]
     pub(super) fn recompute_pair(&mut self, world: &World<D>, i: usize, j: usize) -> bool {
         if matches!(self.mode, Mode::Lists(_)) || i == j {
             return false;
@@ -151,10 +153,14 @@ impl<const D: usize> Cells<D> {
         let sj = Side::splat(&pj.b.motion, pj.b.radius);
         let ids = &g.ids[..];
         let parts = (e0, e1, g.n);
-        if self.periodic {
-            Self::scan_pair_parts::<true>(bodies, (pi, &si, bi), (pj, &sj, bj), ids, parts);
-        } else {
-            Self::scan_pair_parts::<false>(bodies, (pi, &si, bi), (pj, &sj, bj), ids, parts);
+        let (i, j) = ((pi, &si, bi), (pj, &sj, bj));
+        // The world's kind, once per scan: the loops are compiled for each.
+        let law = self.growth.as_ref();
+        match (self.periodic, law.is_some()) {
+            (true, false) => Self::scan_pair_parts::<true, false>(law, bodies, i, j, ids, parts),
+            (false, false) => Self::scan_pair_parts::<false, false>(law, bodies, i, j, ids, parts),
+            (true, true) => Self::scan_pair_parts::<true, true>(law, bodies, i, j, ids, parts),
+            (false, true) => Self::scan_pair_parts::<false, true>(law, bodies, i, j, ids, parts),
         }
         true
     }
@@ -163,14 +169,16 @@ impl<const D: usize> Cells<D> {
     /// `parts.0` (the shared cells') to both, then those up to `parts.1` to `pi` and those up
     /// to `parts.2` to `pj`.
     #[inline(always)]
-    fn scan_pair_parts<const PERIODIC: bool>(
+    fn scan_pair_parts<const PERIODIC: bool, const GROW: bool>(
+        law: Option<&GrowthLaw>,
         bodies: &[Body<D>],
         (pi, si, bi): (&Probe<D>, &Side<D>, &mut Best),
         (pj, sj, bj): (&Probe<D>, &Side<D>, &mut Best),
         ids: &[u32],
         (e0, e1, n): (usize, usize, usize),
     ) {
-        Self::scan_gathered_both::<PERIODIC>(
+        Self::scan_gathered_both::<PERIODIC, GROW>(
+            law,
             bodies,
             (pi, si, &mut *bi),
             (pj, sj, &mut *bj),
@@ -178,7 +186,7 @@ impl<const D: usize> Cells<D> {
             0,
             e0,
         );
-        Self::scan_gathered::<PERIODIC>(bodies, pi, si, ids, e0, e1, bi);
-        Self::scan_gathered::<PERIODIC>(bodies, pj, sj, ids, e1, n, bj);
+        Self::scan_gathered::<PERIODIC, GROW>(law, bodies, pi, si, ids, e0, e1, bi);
+        Self::scan_gathered::<PERIODIC, GROW>(law, bodies, pj, sj, ids, e1, n, bj);
     }
 }

@@ -116,9 +116,6 @@ pub(super) struct Probe<const D: usize> {
     pub i: usize,
     /// Its stored motion and radius.
     pub b: Body<D>,
-    /// The world's growth law, if radii grow: pairs then take the growing functions (and the
-    /// four-lane kernel its growing form).
-    pub growth: Option<GrowthLaw>,
 }
 
 impl<const D: usize> Probe<D> {
@@ -128,7 +125,6 @@ impl<const D: usize> Probe<D> {
         Probe {
             i,
             b: world.bodies()[i],
-            growth: world.growth().copied(),
         }
     }
 }
@@ -148,16 +144,16 @@ impl<const D: usize> Cells<D> {
         let (a, b) = if i < j { (bi, bj) } else { (bj, bi) };
         if self.periodic {
             let s = if i < j { *shift } else { Vector::ZERO - *shift };
-            toi_pair_shifted(
+            let law = self.growth.as_ref();
+            toi_pair_shifted(&a.motion, a.radius, &b.motion, b.radius, s, law)
+        } else {
+            toi_pair(
                 &a.motion,
                 a.radius,
                 &b.motion,
                 b.radius,
-                s,
-                p.growth.as_ref(),
+                self.growth.as_ref(),
             )
-        } else {
-            toi_pair(&a.motion, a.radius, &b.motion, b.radius, p.growth.as_ref())
         }
     }
 
@@ -169,10 +165,11 @@ impl<const D: usize> Cells<D> {
     /// first: [`toi_circle_circle`] in open worlds, [`toi_circle_circle_shifted`] in periodic
     /// ones (`PERIODIC`), the shift negated when the partner comes first (`0 − s` keeps zero
     /// components +0 where `−s` would make them −0). The order is chosen by selecting
-    /// references, not by branching on data.
+    /// references, not by branching on data. `law` is the world's growth law, if radii grow.
     #[inline(always)]
     #[allow(clippy::too_many_arguments)]
     pub(super) fn offer_body<const PERIODIC: bool>(
+        law: Option<&GrowthLaw>,
         p: &Probe<D>,
         j: usize,
         bj: &Body<D>,
@@ -187,16 +184,9 @@ impl<const D: usize> Cells<D> {
         let (a, c) = if probe_first { (&p.b, bj) } else { (bj, &p.b) };
         let t = if PERIODIC {
             let s = if probe_first { *shift } else { *neg };
-            toi_pair_shifted(
-                &a.motion,
-                a.radius,
-                &c.motion,
-                c.radius,
-                s,
-                p.growth.as_ref(),
-            )
+            toi_pair_shifted(&a.motion, a.radius, &c.motion, c.radius, s, law)
         } else {
-            toi_pair(&a.motion, a.radius, &c.motion, c.radius, p.growth.as_ref())
+            toi_pair(&a.motion, a.radius, &c.motion, c.radius, law)
         };
         if let Some(t) = t {
             let bits = ordered(t);
@@ -279,7 +269,8 @@ impl<const D: usize> Cells<D> {
             for j in self.grid.bodies_in(c) {
                 let j = j as usize;
                 if j != p.i {
-                    Self::offer_body::<PERIODIC>(p, j, &bodies[j], shift, &neg, image, best);
+                    let law = self.growth.as_ref();
+                    Self::offer_body::<PERIODIC>(law, p, j, &bodies[j], shift, &neg, image, best);
                 }
             }
         }
@@ -339,10 +330,21 @@ impl<const D: usize> Cells<D> {
             }
         }
         let probe = Side::splat(&p.b.motion, p.b.radius);
-        if self.periodic {
-            Self::scan_gathered::<true>(bodies, p, &probe, &g.ids, 0, g.n, best);
-        } else {
-            Self::scan_gathered::<false>(bodies, p, &probe, &g.ids, 0, g.n, best);
+        let ids = &g.ids;
+        let law = self.growth.as_ref();
+        match (self.periodic, law.is_some()) {
+            (true, false) => {
+                Self::scan_gathered::<true, false>(law, bodies, p, &probe, ids, 0, g.n, best)
+            }
+            (false, false) => {
+                Self::scan_gathered::<false, false>(law, bodies, p, &probe, ids, 0, g.n, best)
+            }
+            (true, true) => {
+                Self::scan_gathered::<true, true>(law, bodies, p, &probe, ids, 0, g.n, best)
+            }
+            (false, true) => {
+                Self::scan_gathered::<false, true>(law, bodies, p, &probe, ids, 0, g.n, best)
+            }
         }
     }
 
@@ -394,7 +396,7 @@ impl<const D: usize> Cells<D> {
                 continue;
             }
             let wall = &world.walls()[w as usize];
-            if let Some(t) = toi_body_wall(&p.b.motion, p.b.radius, wall, p.growth.as_ref()) {
+            if let Some(t) = toi_body_wall(&p.b.motion, p.b.radius, wall, self.growth.as_ref()) {
                 best.offer(Key::wall(t, p.i, w as usize), Grid::<D>::ZERO_IMAGE);
             }
         }

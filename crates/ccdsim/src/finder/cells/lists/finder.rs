@@ -11,7 +11,8 @@ use super::*;
 use crate::geom::Vector;
 use crate::narrow::{toi_pair, toi_pair_shifted};
 use crate::narrow_lanes::{
-    first_lanes, toi_sides_law, vector_lanes, Lanes, PairArgs, Side, ALL_LANES, LANES,
+    first_lanes, toi_sides, toi_sides_growing, vector_lanes, Lanes, PairArgs, Side, ALL_LANES,
+    LANES,
 };
 use crate::prefetch::prefetch;
 use crate::world::{Body, World};
@@ -62,10 +63,11 @@ impl<const D: usize> Cells<D> {
         if self.hints {
             self.prefetch_partners(world, p.i);
         }
-        if self.periodic {
-            self.scan_quads::<true>(bodies, p, entries, above, best);
-        } else {
-            self.scan_quads::<false>(bodies, p, entries, above, best);
+        match (self.periodic, self.growth.is_some()) {
+            (true, false) => self.scan_quads::<true, false>(bodies, p, entries, above, best),
+            (false, false) => self.scan_quads::<false, false>(bodies, p, entries, above, best),
+            (true, true) => self.scan_quads::<true, true>(bodies, p, entries, above, best),
+            (false, true) => self.scan_quads::<false, true>(bodies, p, entries, above, best),
         }
     }
 
@@ -77,7 +79,7 @@ impl<const D: usize> Cells<D> {
     /// selects each lane's sides by its part, and the last quad is padded with copies of the
     /// last entry, whose lanes are dropped (no time, never handed to the scalar function).
     #[inline(always)]
-    fn scan_quads<const PERIODIC: bool>(
+    fn scan_quads<const PERIODIC: bool, const GROW: bool>(
         &self,
         bodies: &[Body<D>],
         p: &Probe<D>,
@@ -97,11 +99,12 @@ impl<const D: usize> Cells<D> {
                 (q, (1 << (n - k)) - 1)
             };
             if k + LANES <= above {
-                self.scan_quad::<PERIODIC, 0>(bodies, p, &probe, quad, LANES, valid, best);
+                self.scan_quad::<PERIODIC, GROW, 0>(bodies, p, &probe, quad, LANES, valid, best);
             } else if k >= above {
-                self.scan_quad::<PERIODIC, 1>(bodies, p, &probe, quad, 0, valid, best);
+                self.scan_quad::<PERIODIC, GROW, 1>(bodies, p, &probe, quad, 0, valid, best);
             } else {
-                self.scan_quad::<PERIODIC, 2>(bodies, p, &probe, quad, above - k, valid, best);
+                let first = above - k;
+                self.scan_quad::<PERIODIC, GROW, 2>(bodies, p, &probe, quad, first, valid, best);
             }
             k += LANES;
         }
@@ -112,7 +115,7 @@ impl<const D: usize> Cells<D> {
     /// lanes below `first` (2).
     #[inline(always)]
     #[allow(clippy::too_many_arguments)]
-    fn scan_quad<const PERIODIC: bool, const ORDER: u8>(
+    fn scan_quad<const PERIODIC: bool, const GROW: bool, const ORDER: u8>(
         &self,
         bodies: &[Body<D>],
         p: &Probe<D>,
@@ -135,17 +138,15 @@ impl<const D: usize> Cells<D> {
                 [f64x4::ZERO; D]
             }
         };
-        let law = p.growth.as_ref();
+        let law = if GROW { self.growth.as_ref() } else { None };
+        // The fixed-radius kernel, or (growing radii) its growing form.
+        let kernel = |sa: &Side<D>, sb: &Side<D>, shift: &[f64x4; D]| match law {
+            Some(law) => toi_sides_growing::<D, PERIODIC>(sa, sb, shift, law),
+            None => toi_sides::<D, PERIODIC>(sa, sb, shift),
+        };
         let lanes = match ORDER {
-            0 => {
-                toi_sides_law::<D, PERIODIC>(probe, &other, &shift_of([&lists.shifts; LANES]), law)
-            }
-            1 => toi_sides_law::<D, PERIODIC>(
-                &other,
-                probe,
-                &shift_of([&lists.neg_shifts; LANES]),
-                law,
-            ),
+            0 => kernel(probe, &other, &shift_of([&lists.shifts; LANES])),
+            1 => kernel(&other, probe, &shift_of([&lists.neg_shifts; LANES])),
             _ => {
                 let mask = first_lanes(first);
                 let sa = Side::select(mask, probe, &other);
@@ -157,7 +158,7 @@ impl<const D: usize> Cells<D> {
                         &lists.neg_shifts
                     }
                 });
-                toi_sides_law::<D, PERIODIC>(&sa, &sb, &shift_of(tables), law)
+                kernel(&sa, &sb, &shift_of(tables))
             }
         }
         .only(valid);
@@ -205,7 +206,7 @@ impl<const D: usize> Cells<D> {
                 b: &b.motion,
                 rb: b.radius,
                 shift: &lists.shifts[image],
-                growth: p.growth.as_ref(),
+                growth: self.growth.as_ref(),
             }
         } else {
             PairArgs {
@@ -214,7 +215,7 @@ impl<const D: usize> Cells<D> {
                 b: &p.b.motion,
                 rb: p.b.radius,
                 shift: &lists.neg_shifts[image],
-                growth: p.growth.as_ref(),
+                growth: self.growth.as_ref(),
             }
         }
     }
@@ -250,10 +251,16 @@ impl<const D: usize> Cells<D> {
                     &c.motion,
                     c.radius,
                     s,
-                    p.growth.as_ref(),
+                    self.growth.as_ref(),
                 )
             } else {
-                toi_pair(&a.motion, a.radius, &c.motion, c.radius, p.growth.as_ref())
+                toi_pair(
+                    &a.motion,
+                    a.radius,
+                    &c.motion,
+                    c.radius,
+                    self.growth.as_ref(),
+                )
             };
             if let Some(t) = t {
                 let bits = super::super::key::ordered(t);
