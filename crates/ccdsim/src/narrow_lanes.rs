@@ -267,21 +267,19 @@ impl<const D: usize> Side<D> {
     }
 }
 
-/// The times of impact of the pair in each lane, its first ball on side `sa` and its second
-/// on side `sb`, displaced by `shift` if `SHIFTED`: in each lane the scalar function's result
-/// bit for bit (see the module docs), a lane on a rare path left to the caller
-/// ([`Lanes::rare`]).
+/// Per lane, from `T = max(t_a, t_b)`: `T`, `dp·dv`, `|dp|²` and `|dv|²`, with `dp` the second
+/// ball's position less the first's at `T` (plus `shift` if `SHIFTED`) and `dv` their relative
+/// velocity; the dot products summed `s = 0.0; s += x·y` per component, as `Vector::dot`.
 #[inline(always)]
-pub(crate) fn toi_sides<const D: usize, const SHIFTED: bool>(
+fn relative<const D: usize, const SHIFTED: bool>(
     sa: &Side<D>,
     sb: &Side<D>,
     shift: &[f64x4; D],
-) -> Lanes {
+) -> (f64x4, f64x4, f64x4, f64x4) {
     let zero = f64x4::ZERO;
     let t0 = sa.time.fast_max(sb.time);
     let dta = t0 - sa.time;
     let dtb = t0 - sb.time;
-    // `s = 0.0; s += x·y` per component, as `Vector::dot`.
     let (mut b, mut pp, mut vv) = (zero, zero, zero);
     for (k, &shift) in shift.iter().enumerate() {
         let (va, vb) = (sa.vel[k], sb.vel[k]);
@@ -296,6 +294,21 @@ pub(crate) fn toi_sides<const D: usize, const SHIFTED: bool>(
         pp += dp * dp;
         vv += dv * dv;
     }
+    (t0, b, pp, vv)
+}
+
+/// The times of impact of the pair in each lane, its first ball on side `sa` and its second
+/// on side `sb`, displaced by `shift` if `SHIFTED`: in each lane the scalar function's result
+/// bit for bit (see the module docs), a lane on a rare path left to the caller
+/// ([`Lanes::rare`]).
+#[inline(always)]
+pub(crate) fn toi_sides<const D: usize, const SHIFTED: bool>(
+    sa: &Side<D>,
+    sb: &Side<D>,
+    shift: &[f64x4; D],
+) -> Lanes {
+    let zero = f64x4::ZERO;
+    let (t0, b, pp, vv) = relative::<D, SHIFTED>(sa, sb, shift);
     // No early exit when all pairs recede: a branch on the outcome costs more in
     // mispredictions than the rest of the kernel (two lanes, 3D list mode, N = 10,976: +2 %
     // instructions, about 7 % more collisions per CPU second).
@@ -334,23 +347,7 @@ pub(crate) fn toi_sides_growing<const D: usize, const SHIFTED: bool>(
     law: &GrowthLaw,
 ) -> Lanes {
     let zero = f64x4::ZERO;
-    let t0 = sa.time.fast_max(sb.time);
-    let dta = t0 - sa.time;
-    let dtb = t0 - sb.time;
-    let (mut b, mut pp, mut vv) = (zero, zero, zero);
-    for (k, &shift) in shift.iter().enumerate() {
-        let (va, vb) = (sa.vel[k], sb.vel[k]);
-        let xa = sa.pos[k] + va * dta;
-        let xb = sb.pos[k] + vb * dtb;
-        let mut dp = xb - xa;
-        if SHIFTED {
-            dp += shift;
-        }
-        let dv = vb - va;
-        b += dp * dv;
-        pp += dp * dp;
-        vv += dv * dv;
-    }
+    let (t0, b, pp, vv) = relative::<D, SHIFTED>(sa, sb, shift);
     let rate = f64x4::splat(law.rate);
     let sum = sa.radius + sb.radius;
     let sigma = sum * (f64x4::splat(1.0) + rate * (t0 - f64x4::splat(law.origin)));
