@@ -18,6 +18,7 @@
 #![deny(missing_docs)]
 #![forbid(unsafe_code)]
 
+pub mod accelerated_contact;
 pub mod discrete;
 pub mod event;
 pub mod finder;

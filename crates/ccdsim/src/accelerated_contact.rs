@@ -1,0 +1,636 @@
+//! First contact of a point moving on a parabola with a ball: a ball under uniform gravity
+//! against a fixed point (a wall segment's end point), or two balls with different
+//! accelerations.
+//!
+//! # A quartic
+//!
+//! The offset `x(t) = dp + dv·t + ½·acc·t²` is within `σ` of the origin when
+//! `f(t) = |x(t)|² − σ² ≤ 0`, a quartic with leading coefficient `¼|acc|² > 0`; the pair
+//! approaches when `f'(t) = 2·x·ẋ < 0`. No closed form is safe to use (the quartic formula
+//! cancels catastrophically), so the roots are isolated through the derivative chain: the
+//! roots of `f''` (a quadratic, solved without cancellation) cut `[0, T]` into pieces on which
+//! `f'` is monotone, so each holds at most one root of `f'`; those roots cut it further into
+//! pieces on which `f` is monotone, so each holds at most one sign change of `f`, bracketed by
+//! the values at its ends. Every root is then narrowed to adjacent floats by safeguarded
+//! Newton steps with bisection of the float bit patterns as the fallback, which ends after a
+//! bounded number of evaluations on any scale. `T` is four times a Fujiwara-type bound on the
+//! roots, where `f`, `f'` and `f''` are all positive by a wide margin. A root can be missed
+//! only where `f` dips below zero by no more than its rounding error (a graze).
+//!
+//! # Scale
+//!
+//! Lengths are divided by a power of two above `max(|dp|∞, σ)` and times by one near the
+//! free-fall time `√(length / |acc|)`, so the coefficients sit near 1 whatever the units.
+//! Multiplying by powers of two commutes with every rounding, so a problem scaled by powers
+//! of two in length and time gets the scaled answer bit for bit, and nothing overflows.
+
+use crate::geom::Vector;
+use crate::narrow::first_contact;
+
+/// Time offset `t ≥ 0`, seconds, at which a point at offset `dp` (metres) from the origin,
+/// moving at relative velocity `dv` (m/s) with constant relative acceleration `acc` (m/s²),
+/// is first within `sigma` (metres) of the origin while approaching it: the first time the
+/// pair is in contact and approaching, as for [`first_contact`] and
+/// [`crate::growth::first_contact_growing`]. `None` when that never happens.
+///
+/// With `f(t) = |dp + dv·t + ½·acc·t²|² − σ²`:
+/// - in contact and approaching now (`f(0) ≤ 0`, `dp·dv < 0`): `0`;
+/// - apart (`f(0) > 0`): the first root where `f` turns negative; a graze, where `f` only
+///   touches zero, may count or not, but no sign change is ever skipped;
+/// - in contact but not approaching, as rounding leaves a pair after a collision: the first
+///   time it turns to approach while still in contact (`f'` turns negative while `f ≤ 0`),
+///   or, if it leaves contact first, the first time it comes back.
+///
+/// An `acc` of exactly zero gives [`first_contact`]'s answer bit for bit. Non-finite inputs
+/// (with `acc ≠ 0`), and contacts later than the largest float, give `None`; no answer is NaN
+/// or negative. A relative speed over 2²⁰⁰ times the free-fall speed `√(|acc|·max(|dp|, σ))`
+/// gets [`first_contact`]'s answer, since the quartic's coefficients would overflow: the
+/// acceleration bends such a flight by under 2⁻⁴⁰⁰·max(|dp|, σ) near the ball, and turns it
+/// back only 2⁴⁰⁰ times as far away.
+#[must_use]
+pub fn first_contact_accelerating<const D: usize>(
+    dp: Vector<D>,
+    dv: Vector<D>,
+    acc: Vector<D>,
+    sigma: f64,
+) -> Option<f64> {
+    if acc.0.iter().all(|&a| a == 0.0) {
+        return first_contact(dp, dv, sigma);
+    }
+    if !(dp.is_finite() && dv.is_finite() && acc.is_finite() && sigma.is_finite()) {
+        return None;
+    }
+    let reach = max_abs(dp).max(sigma.abs());
+    if reach == 0.0 {
+        // f = |x|² ≥ 0 only touches zero: never a contact that approaches.
+        return None;
+    }
+    // Lengths in units of 2^e > reach, times in units of 2^m with |acc|∞ in [1, 4) after.
+    let e = exponent(reach) + 1;
+    let m = (e - exponent(max_abs(acc)) + 1).div_euclid(2);
+    let v = scaled(dv, m - e);
+    if max_abs(v) > MAX_SCALED_SPEED {
+        return first_contact(dp, dv, sigma);
+    }
+    let r = ldexp(sigma, -e);
+    let parabola = Parabola {
+        p: scaled(dp, -e),
+        v,
+        h: scaled(acc, 2 * m - e - 1),
+        r_sq: r * r,
+    };
+    parabola
+        .first_contact()
+        .map(|t| ldexp(t, m))
+        .filter(|t| t.is_finite())
+}
+
+/// Above this scaled speed (2²⁰⁰) `f(T)` could overflow: `T ~ |v|`, `f(T) ~ T⁴`.
+const MAX_SCALED_SPEED: f64 = 1.606_938_044_258_990_3e60;
+
+/// `x(t) = p + v·t + h·t²` in scaled units (`h` is half the acceleration, `|h|∞` in
+/// `[½, 2)`, `|p|∞, √r_sq < 1`).
+struct Parabola<const D: usize> {
+    p: Vector<D>,
+    v: Vector<D>,
+    h: Vector<D>,
+    r_sq: f64,
+}
+
+impl<const D: usize> Parabola<D> {
+    /// `[f, f', f'']` at `t`, from `x(t)` and `ẋ(t)` in Horner form rather than from the
+    /// expanded coefficients: near a contact `|x| ≈ σ`, so the rounding error is of order
+    /// `ε·σ·|terms of x|`, not `ε·|terms of x|²` (a point arriving from far away).
+    #[inline]
+    fn eval(&self, t: f64) -> [f64; 3] {
+        let x = self.p + (self.v + self.h * t) * t;
+        let xd = self.v + self.h * (2.0 * t);
+        [
+            x.norm_sq() - self.r_sq,
+            2.0 * x.dot(xd),
+            2.0 * (xd.norm_sq() + 2.0 * x.dot(self.h)),
+        ]
+    }
+
+    /// The contract of [`first_contact_accelerating`] in scaled time.
+    fn first_contact(&self) -> Option<f64> {
+        let a4 = self.h.norm_sq();
+        let a3 = 2.0 * self.v.dot(self.h);
+        let a2 = self.v.norm_sq() + 2.0 * self.p.dot(self.h);
+        let a1 = 2.0 * self.p.dot(self.v);
+        let a0 = self.p.norm_sq() - self.r_sq;
+        // With |a_i| ≤ a4·M^(4−i), every root of f (and, by Gauss–Lucas, of f' and f'') lies
+        // below 2M; at 4M the leading term outweighs the rest threefold, so rounding cannot
+        // flip the signs there.
+        let bound = (a3.abs() / a4)
+            .max((a2.abs() / a4).sqrt())
+            .max((a1.abs() / a4).cbrt())
+            .max((a0.abs() / a4).sqrt().sqrt());
+        let t_max = 4.0 * bound;
+        // Roots of f''/2 = 6·a4·t² + 3·a3·t + a2; `clip` also maps −0.0 and NaN to +0.0, as the
+        // bit-pattern bisection needs.
+        let clip = |r: f64| if r > 0.0 { r.min(t_max) } else { 0.0 };
+        let mut cuts = [0.0, t_max, t_max, t_max];
+        let (qa, qb) = (6.0 * a4, 3.0 * a3);
+        let disc = qb * qb - 4.0 * qa * a2;
+        if disc > 0.0 {
+            let q = -0.5 * (qb + disc.sqrt().copysign(qb));
+            let (r1, r2) = (q / qa, a2 / q);
+            cuts[1] = clip(r1.min(r2));
+            cuts[2] = clip(r1.max(r2));
+        }
+        for w in cuts.windows(2) {
+            let (l, r) = (w[0], w[1]);
+            let [approach_l, approach_r] = [l, r].map(|t| self.eval(t)[1] < 0.0);
+            let found = match (approach_l, approach_r) {
+                (true, true) => self.descent(l, r),
+                (false, false) => None,
+                _ => {
+                    // f' is monotone here: one turn, narrowed to adjacent floats.
+                    let slope = |t| {
+                        let [_, d1, d2] = self.eval(t);
+                        (d1, d2)
+                    };
+                    let (lo, hi) = refine(slope, |d1| (d1 < 0.0) == approach_r, l, r);
+                    if approach_l {
+                        self.descent(l, lo)
+                    } else {
+                        self.descent(hi, r)
+                    }
+                }
+            };
+            if found.is_some() {
+                return found;
+            }
+        }
+        None
+    }
+
+    /// On `[a, b]`, where the pair approaches throughout (`f` decreasing): the first time it is
+    /// in contact, if it is by `b`.
+    fn descent(&self, a: f64, b: f64) -> Option<f64> {
+        if self.eval(a)[0] <= 0.0 {
+            return Some(a);
+        }
+        if self.eval(b)[0] > 0.0 {
+            return None;
+        }
+        let value = |t| {
+            let [f, d1, _] = self.eval(t);
+            (f, d1)
+        };
+        // The first float at which the pair is in contact.
+        Some(refine(value, |f| f <= 0.0, a, b).1)
+    }
+}
+
+/// Narrows `[lo, hi]` (`0 ≤ lo < hi`), where `inside` is false for `g`'s value at `lo` and
+/// true at `hi`, to two adjacent floats. `g(t)` is `(value, slope)`.
+///
+/// Newton steps from `lo` while they stay in the bracket and at least halve, at most 8 in a
+/// row; otherwise the bracket is bisected in its bit patterns (ordered like the values for
+/// non-negative floats), which halves the float count, below 2⁶³, whatever the scale: at
+/// most about 600 evaluations, typically under 10. Newton approaches a root from one side;
+/// once it stalls there, it probes the next float inward, which decides the other end.
+fn refine(
+    g: impl Fn(f64) -> (f64, f64),
+    inside: impl Fn(f64) -> bool,
+    mut lo: f64,
+    mut hi: f64,
+) -> (f64, f64) {
+    let (mut x, mut run, mut step_old) = (lo, 0, f64::INFINITY);
+    let (mut gx, mut slope) = g(lo);
+    loop {
+        let gap = hi.to_bits() - lo.to_bits();
+        if gap <= 1 {
+            return (lo, hi);
+        }
+        let newton = x - gx / slope;
+        let step = (newton - x).abs();
+        let t = if run < 8 && step <= 0.5 * step_old && newton >= lo && newton <= hi {
+            run += 1;
+            step_old = step;
+            let inward = |end: f64, by: i64| f64::from_bits(end.to_bits().wrapping_add_signed(by));
+            newton.clamp(inward(lo, 1), inward(hi, -1))
+        } else {
+            run = 0;
+            step_old = f64::INFINITY;
+            f64::from_bits(lo.to_bits() + gap / 2)
+        };
+        x = t;
+        (gx, slope) = g(t);
+        if inside(gx) {
+            hi = t;
+        } else {
+            lo = t;
+        }
+    }
+}
+
+/// Largest absolute component.
+fn max_abs<const D: usize>(v: Vector<D>) -> f64 {
+    v.0.iter().fold(0.0, |m, x| m.max(x.abs()))
+}
+
+/// `⌊log₂ x⌋` for finite `x > 0`, subnormals included.
+fn exponent(x: f64) -> i32 {
+    let biased = ((x.to_bits() >> 52) & 0x7ff) as i32;
+    if biased == 0 {
+        exponent(x * 18_446_744_073_709_551_616.0) - 64 // 2⁶⁴
+    } else {
+        biased - 1023
+    }
+}
+
+/// `x·2^k`, exact unless the result leaves the normal range; in steps of 2^±1000, so a
+/// finite result never passes through an infinite one.
+fn ldexp(mut x: f64, mut k: i32) -> f64 {
+    let pow2 = |k: i32| f64::from_bits(((k + 1023) as u64) << 52);
+    while k > 1000 {
+        x *= pow2(1000);
+        k -= 1000;
+    }
+    while k < -1000 {
+        x *= pow2(-1000);
+        k += 1000;
+    }
+    x * pow2(k)
+}
+
+/// `v·2^k` component-wise.
+fn scaled<const D: usize>(v: Vector<D>, k: i32) -> Vector<D> {
+    Vector(v.0.map(|x| ldexp(x, k)))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use num_bigint::BigInt;
+    use num_rational::BigRational;
+    use num_traits::{One, Signed, Zero};
+    use proptest::array::{uniform2, uniform3};
+    use proptest::prelude::*;
+
+    fn v2(x: f64, y: f64) -> Vector<2> {
+        Vector([x, y])
+    }
+
+    fn rat(x: f64) -> BigRational {
+        BigRational::from_float(x).expect("finite")
+    }
+
+    /// Polynomials over the rationals, lowest degree first, no trailing zeros.
+    fn derivative(p: &[BigRational]) -> Vec<BigRational> {
+        let k = |i: usize| BigRational::from_integer(i.into());
+        p.iter()
+            .enumerate()
+            .skip(1)
+            .map(|(i, c)| c * k(i))
+            .collect()
+    }
+
+    /// The Sturm chain of `p`, each term scaled by a positive integer to integer coefficients:
+    /// signs are all it is for, and integers spare every operation a gcd.
+    fn sturm(p: Vec<BigRational>) -> Vec<Vec<BigInt>> {
+        let mut chain = vec![derivative(&p), p];
+        chain.swap(0, 1);
+        loop {
+            let (a, b) = (&chain[chain.len() - 2], &chain[chain.len() - 1]);
+            let mut r = a.clone();
+            while r.len() >= b.len() {
+                let (shift, q) = (r.len() - b.len(), r.last().unwrap() / b.last().unwrap());
+                for (i, c) in b.iter().enumerate() {
+                    r[shift + i] -= &q * c;
+                }
+                r.pop();
+                while r.last().is_some_and(Zero::is_zero) {
+                    r.pop();
+                }
+            }
+            if r.is_empty() {
+                break;
+            }
+            chain.push(r.into_iter().map(|c| -c).collect());
+        }
+        let integral = |p: &Vec<BigRational>| {
+            let l = p.iter().fold(BigInt::one(), |l, c| {
+                if (&l % c.denom()).is_zero() {
+                    l
+                } else {
+                    l * c.denom()
+                }
+            });
+            p.iter().map(|c| (c * &l).to_integer()).collect()
+        };
+        chain.iter().map(integral).collect()
+    }
+
+    /// Sign changes along the chain at `x = n/d`, `d > 0`: of `Σ c_i·n^i·d^(k−i)`, by Horner.
+    fn variations(chain: &[Vec<BigInt>], x: &BigRational) -> usize {
+        let (n, d) = (x.numer(), x.denom());
+        let signs: Vec<bool> = chain
+            .iter()
+            .map(|p| {
+                let mut d_pow = BigInt::one();
+                p.iter()
+                    .rev()
+                    .skip(1)
+                    .fold(p.last().unwrap().clone(), |acc, c| {
+                        d_pow *= d;
+                        acc * n + c * &d_pow
+                    })
+            })
+            .filter(|v| !v.is_zero())
+            .map(|v| v.is_positive())
+            .collect();
+        signs.windows(2).filter(|w| w[0] != w[1]).count()
+    }
+
+    /// Distinct real roots in `(a, b]` of the chain's (square-free) polynomial.
+    fn roots(chain: &[Vec<BigInt>], a: &BigRational, b: &BigRational) -> usize {
+        if a >= b {
+            0
+        } else {
+            variations(chain, a) - variations(chain, b)
+        }
+    }
+
+    /// The function's answer, after checking it against the exact quartic of the exact inputs
+    /// (every f64 is a dyadic rational) by Sturm counts, to `tol = 1e-9·(unit + t)` seconds.
+    /// With inputs of order 1 and `unit = 1`, a computed root is off by about ε·|terms of
+    /// f| / |f'| ≲ 1e-15 / |f'|: 1e-9 leaves room for grazes down to |f'| ~ 1e-6 (dips 1e-12
+    /// deep, rare at random), while a missed root is off by O(1). `unit = 0` makes it relative,
+    /// for times of any scale.
+    fn checked<const D: usize>(
+        dp: Vector<D>,
+        dv: Vector<D>,
+        acc: Vector<D>,
+        sigma: f64,
+        unit: f64,
+    ) -> Option<f64> {
+        let got = first_contact_accelerating(dp, dv, acc, sigma);
+        assert!(got.is_none_or(|t| t >= 0.0 && t.is_finite()), "{got:?}");
+        if acc.0.iter().all(|&a| a == 0.0) {
+            let want = first_contact(dp, dv, sigma);
+            assert_eq!(got.map(f64::to_bits), want.map(f64::to_bits));
+            return got;
+        }
+        let dot = |a: Vector<D>, b: Vector<D>| -> BigRational {
+            (0..D).map(|k| rat(a[k]) * rat(b[k])).sum()
+        };
+        let (zero, two) = (BigRational::zero(), rat(2.0));
+        let f = vec![
+            dot(dp, dp) - rat(sigma) * rat(sigma),
+            &two * dot(dp, dv),
+            dot(dv, dv) + dot(dp, acc),
+            dot(dv, acc),
+            dot(acc, acc) / rat(4.0),
+        ];
+        let [f0, d0, dd0] = [0, 1, 2].map(|i| f[i].cmp(&zero));
+        // The function sees f(0) and f'(0) rounded: exact ties are outside what it decides.
+        let rounded = [dp.norm_sq() - sigma * sigma, dp.dot(dv)].map(|x| x.partial_cmp(&0.0));
+        let (sf, sd) = (sturm(f.clone()), sturm(derivative(&f)));
+        // So is a repeated root of f or f' (a tangency).
+        if rounded != [Some(f0), Some(d0)] || f0.is_eq() || sf[sf.len() - 1].len() > 1 {
+            return got;
+        }
+        if sd[sd.len() - 1].len() > 1 || (f0.is_le() && d0.is_eq() && dd0.is_eq()) {
+            return got;
+        }
+        let bound = f[..4]
+            .iter()
+            .fold(rat(1.0), |m, c| m.max((c / &f[4]).abs()))
+            + rat(1.0);
+        let window = got.map(|t| {
+            let (t, tol) = (rat(t), rat(1e-9) * (rat(unit) + rat(t)));
+            (&t - &tol, t + tol)
+        });
+        if f0.is_le() && (d0.is_lt() || (d0.is_eq() && dd0.is_lt())) {
+            // Approaching now, or from the next instant on.
+            assert!(
+                got.is_some_and(|t| t <= 1e-9 * unit),
+                "approaches now: {got:?}"
+            );
+            assert!(d0.is_eq() || got == Some(0.0));
+            return got;
+        }
+        let start = if f0.is_gt() {
+            zero
+        } else {
+            // Exit from the overlap: the first root of f, to 2⁻⁷⁰ of itself (from zero, by
+            // steps of 2¹⁰ first: the bound may be far above it).
+            let (mut lo, mut hi, rel) = (zero.clone(), bound.clone(), rat(ldexp(1.0, -70)));
+            while &hi - &lo > &hi * &rel {
+                let mid = if lo.is_zero() {
+                    &hi / rat(1024.0)
+                } else {
+                    (&lo + &hi) / &two
+                };
+                if roots(&sf, &zero, &mid) > 0 {
+                    hi = mid
+                } else {
+                    lo = mid
+                }
+            }
+            if roots(&sd, &zero, &lo) > 0 {
+                // Turns to approach inside the overlap: the answer is that turn.
+                let (a, b) = window.expect("turns while in contact");
+                assert_eq!(roots(&sd, &zero, &a), 0, "turn before {got:?}");
+                assert!(roots(&sd, &a, &b) >= 1 && b < lo, "no turn at {got:?}");
+                return got;
+            }
+            hi
+        };
+        match window {
+            None => assert_eq!(roots(&sf, &start, &bound), 0, "missed contact"),
+            Some((a, b)) => {
+                let a = a.max(start.clone());
+                assert_eq!(roots(&sf, &start, &a), 0, "contact before {got:?}");
+                assert!(roots(&sf, &a, &b) >= 1, "no contact at {got:?}");
+            }
+        }
+        got
+    }
+
+    fn close(t: Option<f64>, want: f64) -> bool {
+        t.is_some_and(|t| (t - want).abs() <= 8.0 * f64::EPSILON * want)
+    }
+
+    #[test]
+    fn dropped_ball_meets_point_below_at_free_fall_time() {
+        // The ball falls from rest, its centre 3 m above the point: relative to the ball the
+        // point rises at g, and the gap of 2 m closes when ½·g·t² = 2.
+        let g = 9.81f64;
+        let t = checked(v2(0.0, -3.0), Vector::ZERO, v2(0.0, g), 1.0, 1.0);
+        assert!(close(t, (4.0 / g).sqrt()), "{t:?}");
+        let t = checked(
+            Vector([0.0, 0.0, -3.0]),
+            Vector::ZERO,
+            Vector([0.0, 0.0, g]),
+            1.0,
+            1.0,
+        );
+        assert!(close(t, (4.0 / g).sqrt()), "{t:?}");
+    }
+
+    #[test]
+    fn acceleration_bends_a_miss_into_a_hit() {
+        // Straight, the point passes 2 m from the centre; bent down, x(1) = (0, 1).
+        let (dp, dv, acc) = (v2(-5.0, 2.0), v2(5.0, 0.0), v2(0.0, -2.0));
+        assert_eq!(first_contact(dp, dv, 1.0), None);
+        assert!(close(checked(dp, dv, acc, 1.0, 1.0), 1.0));
+    }
+
+    #[test]
+    fn pulled_back_after_receding_or_passing() {
+        // x = 2 + t − t²/2 recedes to 2.5, then returns to 1 at t = 1 + √3.
+        let t = checked(v2(2.0, 0.0), v2(1.0, 0.0), v2(-1.0, 0.0), 1.0, 1.0);
+        assert!(close(t, 1.0 + 3f64.sqrt()), "{t:?}");
+        // Passes over the ball 1.4 m from its centre, turns at t = 3, hits on the way back.
+        let t = checked(v2(-3.0, 1.5), v2(3.0, 0.0), v2(-1.0, -0.1), 1.0, 1.0);
+        assert!(t.is_some_and(|t| t > 3.0 && t < 5.0), "{t:?}");
+    }
+
+    #[test]
+    fn overlapping_pairs_that_recede() {
+        // Leaves the overlap, turns outside at x = 1.4 and comes back to x = 1 at 1 + √0.8.
+        let t = checked(v2(0.9, 0.0), v2(1.0, 0.0), v2(-1.0, 0.0), 1.0, 1.0);
+        assert!(close(t, 1.0 + 0.8f64.sqrt()), "{t:?}");
+        // Turns at t = 0.1 still inside (x = 0.505): that turn is the contact, or the point
+        // would pass through the ball and out the far side.
+        let t = checked(v2(0.5, 0.0), v2(0.1, 0.0), v2(-1.0, 0.0), 1.0, 1.0);
+        assert!(close(t, 0.1), "{t:?}");
+        let away = checked(v2(0.9, 0.0), v2(1.0, 0.0), v2(1.0, 0.0), 1.0, 1.0);
+        assert_eq!(away, None);
+        let now = checked(v2(0.9, 0.0), v2(-1.0, 0.0), v2(5.0, 0.0), 1.0, 1.0);
+        assert_eq!(now, Some(0.0));
+    }
+
+    #[test]
+    fn zero_acceleration_is_first_contact_bit_for_bit() {
+        for (dp, dv) in [
+            (v2(3.0, 0.5), v2(-1.0, 0.1)),
+            (v2(3.0, 0.5), v2(1.0, 0.1)),
+            (v2(0.5, 0.5), v2(-1.0, 0.0)),
+            (v2(3.0, 0.0), v2(-1e-200, 0.0)),
+            (v2(3.0, 2.0), v2(-1.0, 0.0)),
+        ] {
+            for acc in [v2(0.0, 0.0), v2(-0.0, 0.0)] {
+                let got = first_contact_accelerating(dp, dv, acc, 1.0).map(f64::to_bits);
+                assert_eq!(got, first_contact(dp, dv, 1.0).map(f64::to_bits));
+            }
+        }
+    }
+
+    #[test]
+    fn powers_of_two_in_length_and_time_scale_the_answer_exactly() {
+        for (dp, dv, acc, sigma) in [
+            (v2(0.0, -3.0), v2(0.0, 0.0), v2(0.0, 9.81), 1.0),
+            (v2(-3.0, 1.5), v2(3.0, 0.0), v2(-1.0, -0.1), 1.0),
+            (v2(0.5, 0.0), v2(0.1, 0.0), v2(-1.0, 0.0), 1.0),
+            (v2(0.9, 0.0), v2(1.0, 0.0), v2(-1.0, 0.0), 1.0),
+            (v2(-5.0, 2.0), v2(5.0, 0.0), v2(0.0, -2.0), 1.5),
+        ] {
+            let t = first_contact_accelerating(dp, dv, acc, sigma).unwrap();
+            for (k, j) in [-300, -7, 0, 300, 500]
+                .map(|k| [-200, 3, 100].map(|j| (k, j)))
+                .concat()
+            {
+                let (dp, dv, acc) = (scaled(dp, k), scaled(dv, k - j), scaled(acc, k - 2 * j));
+                let got = first_contact_accelerating(dp, dv, acc, ldexp(sigma, k));
+                assert_eq!(
+                    got.map(f64::to_bits),
+                    Some(ldexp(t, j).to_bits()),
+                    "{k} {j}"
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn extreme_inputs_give_no_nan() {
+        let (a, nan) = (v2(0.0, -9.81), v2(f64::NAN, 0.0));
+        assert_eq!(first_contact_accelerating(nan, a, a, 1.0), None);
+        assert_eq!(first_contact_accelerating(Vector::ZERO, a, a, 0.0), None);
+        // Falls 9·10²⁹⁹ m from rest: at 10⁻³⁰⁰ m/s² in 1.34·10³⁰⁰ s; at 10⁻³²⁰ m/s², later
+        // than the largest float.
+        let fall = |g: f64| first_contact_accelerating(v2(0.0, 1e300), a * 0.0, v2(0.0, g), 1e299);
+        let want = 1.8e300f64.sqrt() * 1e150;
+        assert!(fall(-1e-300).is_some_and(|t| (t / want - 1.0).abs() < 1e-12));
+        assert_eq!(fall(-1e-320), None);
+        // Straight flight past, at 10⁹⁸ free-fall speeds.
+        let fast = first_contact_accelerating(v2(-2.0, 0.5), v2(1e100, 0.0), a, 1.0);
+        assert_eq!(fast, first_contact(v2(-2.0, 0.5), v2(1e100, 0.0), 1.0));
+    }
+
+    fn component(range: f64) -> impl Strategy<Value = f64> {
+        prop_oneof![4 => -range..range, 1 => Just(0.0)]
+    }
+
+    fn vec2(range: f64) -> impl Strategy<Value = Vector<2>> {
+        uniform2(component(range)).prop_map(Vector)
+    }
+
+    fn vec3(range: f64) -> impl Strategy<Value = Vector<3>> {
+        uniform3(component(range)).prop_map(Vector)
+    }
+
+    /// `dv` such that `x(tau) = q·1.2·σ`, `|q|∞ ≤ 1`: mostly hits, some grazes and misses.
+    fn aimed(dp: Vector<3>, acc: Vector<3>, sigma: f64, tau: f64, q: Vector<3>) -> Vector<3> {
+        (q * (1.2 * sigma) - dp - acc * (0.5 * tau * tau)) * (1.0 / tau)
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(512))]
+
+        #[test]
+        fn matches_exact_reference_2d(
+            dp in vec2(5.0), dv in vec2(5.0), acc in vec2(10.0), sigma in 0.1..2.0f64,
+        ) {
+            checked(dp, dv, acc, sigma, 1.0);
+        }
+
+        #[test]
+        fn matches_exact_reference_3d(
+            dp in vec3(5.0), dv in vec3(5.0), acc in vec3(10.0), sigma in 0.1..2.0f64,
+        ) {
+            checked(dp, dv, acc, sigma, 1.0);
+        }
+
+        #[test]
+        fn matches_exact_reference_from_overlap(
+            dp in vec2(1.5), dv in vec2(2.0), acc in vec2(10.0), sigma in 0.1..2.0f64,
+        ) {
+            checked(dp, dv, acc, sigma, 1.0);
+        }
+
+        #[test]
+        fn matches_exact_reference_aimed(
+            dp in vec3(5.0), acc in vec3(10.0), sigma in 0.1..2.0f64,
+            tau in 0.1..3.0f64, q in vec3(1.0),
+        ) {
+            checked(dp, aimed(dp, acc, sigma, tau, q), acc, sigma, 1.0);
+        }
+
+        #[test]
+        fn matches_exact_reference_across_scales(
+            dp in uniform3(-5.0..5.0f64), sigma in 0.1..2.0f64, q in uniform3(-1.0..1.0f64),
+            acc in uniform3(-10.0..10.0f64), k in -40..40i32, r in -30..20i32,
+        ) {
+            // Aimed at 2^k s, 2^±40, with the free-fall time 2^-10..2^15 times that.
+            let (dp, acc, q) = (Vector(dp), scaled(Vector(acc), r - 2 * k), Vector(q));
+            let dv = aimed(dp, acc, sigma, ldexp(1.0, k), q);
+            // Beyond 2^20·σ from the origin, positions in f64 err by over 1e-10·σ: whether the
+            // path meets the ball there is not decided by the input floats. Roots lie below
+            // twice the largest |a_i/a4|^(1/(4−i)) (Fujiwara).
+            let (a4, a3, a2) = (0.25 * acc.norm_sq(), dv.dot(acc), dv.norm_sq() + dp.dot(acc));
+            let (a1, a0) = (2.0 * dp.dot(dv), dp.norm_sq() - sigma * sigma);
+            let bound = 2.0 * [a3 / a4, (a2 / a4).abs().sqrt(), (a1 / a4).abs().cbrt(),
+                (a0 / a4).abs().sqrt().sqrt()].into_iter().fold(0.0f64, |m, x| m.max(x.abs()));
+            let t = first_contact_accelerating(dp, dv, acc, sigma).map_or(bound, |t| 1.1 * t);
+            if dp.norm() + dv.norm() * t + 0.5 * acc.norm() * t * t <= 1_048_576.0 * sigma {
+                checked(dp, dv, acc, sigma, 0.0);
+            }
+        }
+    }
+}
