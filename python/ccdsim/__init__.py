@@ -314,6 +314,12 @@ class Simulation:
         """Total kinetic energy now, J."""
         return self._sim.kinetic_energy()
 
+    def potential_energy(self) -> float:
+        """Potential energy in the scene's gravity field now (``settings.gravity``), J:
+        ``-sum(m g . x)``, zero without gravity. Elastic collisions keep kinetic plus
+        potential energy."""
+        return self._sim.potential_energy()
+
     def observables(self) -> dict:
         """Over the run so far: ``temperature`` (kT), ``collision_rate`` (per body per unit
         time), ``volume``, ``pressure`` and ``compressibility`` (Z = PV/NkT; None without a

@@ -141,3 +141,29 @@ def test_bad_thermostat_is_refused():
     scene["settings"] = {"thermostat": {"temperature": -1.0, "rate": 1.0}}
     with pytest.raises(ValueError, match="settings.thermostat.temperature"):
         ccdsim.Simulation(scene)
+
+
+def test_gravity_bends_paths_and_keeps_the_total_energy():
+    # A ball dropped 5 m onto a floor bounces back every 2 sqrt(2h/g) s, elastic.
+    scene = {
+        "dim": 2,
+        "settings": {"gravity": [0.0, -9.81]},
+        "bodies": [{"pos": [2.0, 5.5], "vel": [0.0, 0.0], "radius": 0.5}],
+        "walls": [
+            {"a": [0, 0], "b": [4, 0]},
+            {"a": [4, 0], "b": [4, 40]},
+            {"a": [4, 40], "b": [0, 40]},
+            {"a": [0, 40], "b": [0, 0]},
+        ],
+    }
+    fall = (2 * 5.0 / 9.81) ** 0.5
+    sim = ccdsim.Simulation(scene)
+    total = sim.kinetic_energy() + sim.potential_energy()
+    ev = sim.step()
+    assert ev["kind"] == ccdsim.WALL and abs(ev["t"] - fall) < 1e-12
+    sim.run_until(fall * 2)  # back at the top: at rest, 5.5 m up
+    np.testing.assert_allclose(sim.positions, [[2.0, 5.5]], atol=1e-9)
+    np.testing.assert_allclose(sim.velocities, [[0.0, 0.0]], atol=1e-9)
+    assert abs(sim.kinetic_energy() + sim.potential_energy() - total) < 1e-9 * total
+    with pytest.raises(ValueError, match="settings.gravity"):
+        ccdsim.Simulation({**scene, "settings": {"gravity": [0.0, -9.81, 0.0]}})

@@ -420,3 +420,55 @@ fn every_finder_records_byte_identical_run_files() {
         }
     }
 }
+
+#[test]
+fn gravity_scenes_from_gen_run_and_verify_alike_with_every_finder() {
+    let scene = tmp("pegs.json");
+    run_ok(
+        ccdsim()
+            .args(["gen", "pegs", "--balls", "20", "--rows", "4", "--out"])
+            .arg(&scene),
+    );
+    let mut files = Vec::new();
+    for finder in ["all-pairs", "bvh", "sedgewick", "cells"] {
+        let rec = tmp(&format!("pegs-{finder}.ccd"));
+        let out = run_ok(
+            ccdsim()
+                .arg("run")
+                .arg(&scene)
+                .args(["--until", "8", "--json", "--finder", finder, "--record"])
+                .arg(&rec),
+        );
+        let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+        assert!(v["events"].as_u64().unwrap() > 100, "{v}");
+        assert!(v["halt"].is_null(), "{v}");
+        assert!(v["energy_drift"].as_f64().unwrap().abs() < 1e-9, "{v}");
+        assert!(v["potential_energy_start"].as_f64().unwrap() > 0.0, "{v}");
+        run_ok(ccdsim().arg("verify").arg(&rec));
+        files.push(std::fs::read(&rec).unwrap());
+    }
+    assert!(files.windows(2).all(|w| w[0] == w[1]), "run files differ");
+    // --gravity on any generated scene, validated against it.
+    let out = run_ok(ccdsim().args(["gen", "gas", "--n", "10", "--gravity", "0,-9.81"]));
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(v["settings"]["gravity"], serde_json::json!([0.0, -9.81]));
+    for (args, culprit) in [
+        (
+            &["gen", "gas", "--n", "10", "--gravity", "0,-1,0"][..],
+            "3D",
+        ),
+        (
+            &["gen", "gas", "--n", "10", "--periodic", "--gravity", "0,-1"][..],
+            "periodic box",
+        ),
+        (
+            &["gen", "gas", "--n", "10", "--gravity", "1"][..],
+            "one per dimension",
+        ),
+    ] {
+        let out = ccdsim().args(args).output().unwrap();
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(!out.status.success(), "{args:?}");
+        assert!(err.contains(culprit), "{args:?}: {err}");
+    }
+}

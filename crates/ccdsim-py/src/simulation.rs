@@ -125,10 +125,14 @@ impl PySimulation {
         })
     }
 
-    /// Velocities, N×D, metres per second.
+    /// Velocities now, N×D, metres per second (under gravity, the stored velocities plus
+    /// the fall since each body's last change).
     #[getter]
     fn velocities<'py>(&mut self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f64>>> {
-        with_sim!(self, s, matrix::<D>(py, s.world().velocities()))
+        with_sim!(self, s, {
+            let (w, t) = (s.world(), s.time());
+            matrix::<D>(py, (0..w.len()).map(|i| w.velocity_at(i, t)))
+        })
     }
 
     /// Periodic images, N×D integers: `positions + images · L` are the unwrapped positions
@@ -321,7 +325,12 @@ impl PySimulation {
 
     /// Kinetic energy now, joules.
     fn kinetic_energy(&mut self) -> f64 {
-        with_sim!(self, s, s.world().kinetic_energy())
+        with_sim!(self, s, s.world().kinetic_energy_at(s.time()))
+    }
+
+    /// Potential energy in the gravity field now, joules (−Σ m g·x; 0 without gravity).
+    fn potential_energy(&mut self) -> f64 {
+        with_sim!(self, s, s.world().potential_energy_at(s.time()))
     }
 
     /// Temperature, collision rate, volume, pressure and compressibility factor over the run

@@ -12,12 +12,17 @@
 //!   coordinates' rounding, stay within `5e-10` of its radius. Past that, contact times and
 //!   positions are noise, so the event is not resolved.
 //!
-//! Either check depends only on the world's stored states and the event, never on the finder,
+//! * **Resting.** Under gravity a ball whose bounces on a wall die away (restitution below 1)
+//!   ends touching it with no normal speed: the collision changes nothing, and the same event
+//!   would come again at the same time for ever. When a wall collision left the body's state
+//!   as it was and the finder names that very event again, the run stops.
+//!
+//! Each check depends only on the world's stored states and the events, never on the finder,
 //! so every finder halts at the same event with the same reason.
 
 use crate::event::{Event, EventKind};
 use crate::geom::Vector;
-use crate::narrow::{contact_beyond_range, toi_circle_wall};
+use crate::narrow::{contact_beyond_range, toi_body_wall};
 use crate::resolution::RESOLUTION_LIMIT;
 use crate::world::World;
 
@@ -75,6 +80,21 @@ pub enum Halt {
         /// Its resolution error, metres.
         error: f64,
     },
+    /// Under gravity body `body` touches wall `wall` at `time` without any normal speed (a
+    /// ball come to rest on a floor): the collision there changed nothing and would repeat
+    /// at the same time for ever. Resting contacts are not simulated yet: the run stops.
+    #[error(
+        "at t = {time:e} s body {body} rests on wall {wall} (it touches it with no normal \
+         speed under gravity): resting contacts are not simulated yet, so the run stops"
+    )]
+    Resting {
+        /// The time, seconds.
+        time: f64,
+        /// The body.
+        body: usize,
+        /// The wall it rests on.
+        wall: usize,
+    },
 }
 
 /// The simulation's per-event resolution check, with a fast path: up to a time `fast_until`
@@ -104,7 +124,10 @@ impl ResolutionGuard {
     /// inside closed polygons of segments (validation keeps every body inside them); other
     /// worlds get no fast path.
     pub(crate) fn new<const D: usize>(world: &World<D>) -> Self {
-        let coordinate_bound = if let Some(size) = world.periodic() {
+        // Under gravity kinetic energy grows as bodies fall: no speed bound, no fast path.
+        let coordinate_bound = if world.gravity().is_some() {
+            None
+        } else if let Some(size) = world.periodic() {
             Some(2.0 * size.0.iter().fold(0.0f64, |m, &l| m.max(l)))
         } else {
             let loops = crate::wall::closed_segments(world.walls());
@@ -170,7 +193,14 @@ pub fn event_resolved<const D: usize>(world: &World<D>, e: &Event) -> bool {
     let clock = crate::resolution::ulp_of_finite(e.time);
     let body = |i: u32| {
         let b = &world.bodies()[i as usize];
-        crate::resolution::resolution_error_at(clock, b.motion.at(e.time), b.motion.vel)
+        let (pos, vel) = match world.gravity() {
+            None => (b.motion.at(e.time), b.motion.vel),
+            Some(g) => (
+                b.motion.falling_at(e.time, &g),
+                b.motion.falling_velocity(e.time, &g),
+            ),
+        };
+        crate::resolution::resolution_error_at(clock, pos, vel)
             <= crate::resolution::RESOLUTION_LIMIT * b.radius
     };
     body(e.a) && (e.kind != EventKind::Body || body(e.b))
@@ -186,13 +216,15 @@ pub fn unresolved<const D: usize>(world: &World<D>, e: &Event) -> Option<Halt> {
         EventKind::Wall | EventKind::Reset => &[e.a][..],
     };
     involved.iter().find_map(|&i| {
-        let m = world.motion(i as usize);
-        let pos = m.at(e.time);
-        (!crate::resolution::resolves(e.time, pos, m.vel, world.radius(i as usize))).then(|| {
+        let (pos, vel) = (
+            world.position_at(i as usize, e.time),
+            world.velocity_at(i as usize, e.time),
+        );
+        (!crate::resolution::resolves(e.time, pos, vel, world.radius(i as usize))).then(|| {
             Halt::Resolution {
                 time: e.time,
                 body: i as usize,
-                error: crate::resolution::resolution_error(e.time, pos, m.vel),
+                error: crate::resolution::resolution_error(e.time, pos, vel),
             }
         })
     })
@@ -213,7 +245,7 @@ pub fn unresolved<const D: usize>(world: &World<D>, e: &Event) -> Option<Halt> {
 pub fn beyond_range<const D: usize>(world: &World<D>) -> Option<Halt> {
     let time = world.now();
     let n = world.len();
-    let moving = |i: usize| world.velocity(i) != Vector::ZERO;
+    let moving = |i: usize| world.velocity(i) != Vector::ZERO || world.gravity().is_some();
     if world.periodic().is_some() {
         return (0..n).find(|&i| moving(i)).map(|body| Halt::BeyondRange {
             body,
@@ -224,7 +256,7 @@ pub fn beyond_range<const D: usize>(world: &World<D>) -> Option<Halt> {
     for i in (0..n).filter(|&i| moving(i)) {
         let m = world.motion(i);
         for (w, wall) in world.walls().iter().enumerate() {
-            if toi_circle_wall(&m, world.radius(i), wall) == Some(f64::INFINITY) {
+            if toi_body_wall(&m, world.radius(i), wall, world.laws()) == Some(f64::INFINITY) {
                 return Some(Halt::BeyondRange {
                     body: i,
                     partner: Partner::Wall(w),
@@ -268,14 +300,14 @@ fn pair_beyond_range<const D: usize>(world: &World<D>) -> Option<(usize, usize)>
     let tiny = extent / f64::MAX * 2f64.powi(55);
     let key = |i: usize| {
         world
-            .velocity(i)
+            .velocity_at(i, now)
             .0
             .map(|c| if c.abs() <= tiny { 0 } else { c.to_bits() })
     };
     // Sorted by key, then by exact velocity: bodies moving alike (all those at rest, say)
     // form runs whose pairs are skipped at once.
     let mut order: Vec<Candidate<D>> = (0..n)
-        .map(|i| (key(i), world.velocity(i).0.map(f64::to_bits), i))
+        .map(|i| (key(i), world.velocity_at(i, now).0.map(f64::to_bits), i))
         .collect();
     order.sort_unstable();
     let mut best: Option<(usize, usize)> = None;
@@ -291,9 +323,10 @@ fn pair_beyond_range<const D: usize>(world: &World<D>) -> Option<(usize, usize)>
                         }
                         let (mi, mj) = (world.motion(i), world.motion(j));
                         let t0 = mi.time.max(mj.time);
-                        let dp = mj.at(t0) - mi.at(t0);
+                        let dp = world.position_at(j, t0) - world.position_at(i, t0);
+                        let dv = world.velocity_at(j, t0) - world.velocity_at(i, t0);
                         let sigma = world.radius(i) + world.radius(j);
-                        if contact_beyond_range(dp, mj.vel - mi.vel, sigma) {
+                        if contact_beyond_range(dp, dv, sigma) {
                             best = Some((i, j));
                         }
                     }

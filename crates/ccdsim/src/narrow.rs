@@ -5,7 +5,9 @@
 //! rounding left overlapping while approaching collides at once; a receding pair never does.
 
 use crate::geom::Vector;
-use crate::growth::{toi_circle_circle_growing, toi_circle_wall_growing, GrowthLaw};
+use crate::gravity::{toi_circle_circle_falling, toi_circle_wall_falling};
+use crate::growth::{toi_circle_circle_growing, toi_circle_wall_growing};
+use crate::laws::Laws;
 use crate::wall::Wall;
 
 /// A body's stored linear motion: at time `time` it is at `pos`, moving with `vel`.
@@ -234,8 +236,8 @@ pub fn toi_circle_wall<const D: usize>(m: &Motion<D>, r: f64, wall: &Wall<D>) ->
     }
 }
 
-/// Time of impact of two balls as every finder evaluates it: [`toi_circle_circle`], or in a
-/// growing world ([`crate::World::growth`]) its growing form (zero shift).
+/// Time of impact of two balls as every finder evaluates it: [`toi_circle_circle`], or under
+/// the world's laws ([`crate::World::laws`]) its falling or growing form (zero shift).
 #[must_use]
 #[inline(always)]
 pub fn toi_pair<const D: usize>(
@@ -243,15 +245,15 @@ pub fn toi_pair<const D: usize>(
     ra: f64,
     b: &Motion<D>,
     rb: f64,
-    growth: Option<&GrowthLaw>,
+    laws: Option<&Laws<D>>,
 ) -> Option<f64> {
-    match growth {
+    match laws {
         None => toi_circle_circle(a, ra, b, rb),
-        Some(law) => toi_circle_circle_growing(a, ra, b, rb, Vector::ZERO, law),
+        Some(l) => toi_pair_under(a, ra, b, rb, Vector::ZERO, l),
     }
 }
 
-/// [`toi_circle_circle_shifted`], or in a growing world its growing form.
+/// [`toi_circle_circle_shifted`], or under the world's laws its falling or growing form.
 #[must_use]
 #[inline(always)]
 pub fn toi_pair_shifted<const D: usize>(
@@ -260,26 +262,50 @@ pub fn toi_pair_shifted<const D: usize>(
     b: &Motion<D>,
     rb: f64,
     shift: Vector<D>,
-    growth: Option<&GrowthLaw>,
+    laws: Option<&Laws<D>>,
 ) -> Option<f64> {
-    match growth {
+    match laws {
         None => toi_circle_circle_shifted(a, ra, b, rb, shift),
-        Some(law) => toi_circle_circle_growing(a, ra, b, rb, shift, law),
+        Some(l) => toi_pair_under(a, ra, b, rb, shift, l),
     }
 }
 
-/// [`toi_circle_wall`], or in a growing world its growing form.
+/// The pair function under laws in force: gravity's ([`toi_circle_circle_falling`]; scenes
+/// with gravity have fixed radii) or growth's ([`toi_circle_circle_growing`]).
+#[inline]
+fn toi_pair_under<const D: usize>(
+    a: &Motion<D>,
+    ra: f64,
+    b: &Motion<D>,
+    rb: f64,
+    shift: Vector<D>,
+    laws: &Laws<D>,
+) -> Option<f64> {
+    match (&laws.gravity, &laws.growth) {
+        (Some(g), _) => toi_circle_circle_falling(a, ra, b, rb, shift, g),
+        (None, Some(law)) => toi_circle_circle_growing(a, ra, b, rb, shift, law),
+        (None, None) => toi_circle_circle_shifted(a, ra, b, rb, shift),
+    }
+}
+
+/// [`toi_circle_wall`], or under the world's laws its falling or growing form.
 #[must_use]
 #[inline]
 pub fn toi_body_wall<const D: usize>(
     m: &Motion<D>,
     r: f64,
     wall: &Wall<D>,
-    growth: Option<&GrowthLaw>,
+    laws: Option<&Laws<D>>,
 ) -> Option<f64> {
-    match growth {
+    match laws {
         None => toi_circle_wall(m, r, wall),
-        Some(law) => toi_circle_wall_growing(m, r, wall, law),
+        Some(Laws {
+            gravity: Some(g), ..
+        }) => toi_circle_wall_falling(m, r, wall, g),
+        Some(Laws {
+            growth: Some(law), ..
+        }) => toi_circle_wall_growing(m, r, wall, law),
+        Some(_) => toi_circle_wall(m, r, wall),
     }
 }
 

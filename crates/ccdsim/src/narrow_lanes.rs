@@ -43,6 +43,7 @@
 
 use crate::geom::Vector;
 use crate::growth::GrowthLaw;
+use crate::laws::Laws;
 use crate::narrow::{toi_pair, toi_pair_shifted, Motion, MIN_UNSCALED_A};
 use wide::{f64x4, CmpGe, CmpGt, CmpLe, CmpLt};
 
@@ -66,8 +67,8 @@ pub(crate) struct PairArgs<'a, const D: usize> {
     pub rb: f64,
     /// Displacement of the second ball's image, metres (ignored unless `SHIFTED`).
     pub shift: &'a Vector<D>,
-    /// The world's growth law, if radii grow (see [`crate::growth`]).
-    pub growth: Option<&'a GrowthLaw>,
+    /// The world's laws, if any is in force (see [`crate::laws`]).
+    pub laws: Option<&'a Laws<D>>,
 }
 
 impl<const D: usize> PairArgs<'_, D> {
@@ -75,9 +76,9 @@ impl<const D: usize> PairArgs<'_, D> {
     #[inline(always)]
     pub fn scalar<const SHIFTED: bool>(&self) -> Option<f64> {
         if SHIFTED {
-            toi_pair_shifted(self.a, self.ra, self.b, self.rb, *self.shift, self.growth)
+            toi_pair_shifted(self.a, self.ra, self.b, self.rb, *self.shift, self.laws)
         } else {
-            toi_pair(self.a, self.ra, self.b, self.rb, self.growth)
+            toi_pair(self.a, self.ra, self.b, self.rb, self.laws)
         }
     }
 }
@@ -96,6 +97,17 @@ pub(crate) struct Lanes {
 }
 
 impl Lanes {
+    /// Every lane left to the scalar function (laws the kernels do not model: gravity).
+    #[inline(always)]
+    #[must_use]
+    pub fn all_rare() -> Lanes {
+        Lanes {
+            times: [0.0; LANES],
+            hits: 0,
+            rare: ALL_LANES,
+        }
+    }
+
     /// The lanes of `valid` only (the others hold padding: no time, nothing rare).
     #[inline(always)]
     #[must_use]
@@ -412,7 +424,7 @@ mod tests {
                 b: &m[y],
                 rb: r[y],
                 shift,
-                growth: None,
+                laws: None,
             }
         }
         let pair = |x: usize, y: usize, s| args(&m, r, (x, y), s);
@@ -507,7 +519,7 @@ mod tests {
             b,
             rb: 1.0,
             shift: &s[0],
-            growth: None,
+            laws: None,
         };
         let lanes = toi_quad::<2, false>(&[
             pair(&head_on, &towards),
@@ -609,6 +621,10 @@ mod tests {
             [(0, 2), (1, 3), (2, 0), (3, 1)],
             [(0, 1), (0, 2), (0, 3), (1, 2)],
         ] {
+            let laws = Laws {
+                growth: Some(law),
+                gravity: None,
+            };
             let p: [PairArgs<'_, D>; LANES] = std::array::from_fn(|k| {
                 let (x, y) = pattern[k];
                 PairArgs {
@@ -617,7 +633,7 @@ mod tests {
                     b: &m[y],
                     rb: r[y],
                     shift: &shift[k],
-                    growth: Some(&law),
+                    laws: Some(&laws),
                 }
             });
             let (plain, shifted) = (lanes::<D, false>(&p, &law), lanes::<D, true>(&p, &law));

@@ -18,7 +18,8 @@
 //! the stored states, like every narrow phase, it lets every finder agree bit for bit.
 
 use crate::geom::Vector;
-use crate::growth::{toi_circle_circle_periodic_growing, GrowthLaw};
+use crate::growth::toi_circle_circle_periodic_growing;
+use crate::laws::Laws;
 use crate::narrow::{toi_circle_circle_shifted, Motion};
 
 /// Face index of the exit through the lower (`upper = false`, x = 0) or upper (x = L) face of
@@ -188,7 +189,7 @@ pub fn toi_circle_circle_periodic<const D: usize>(
 }
 
 /// [`toi_circle_circle_periodic`], or in a growing world its growing form (every image
-/// tried).
+/// tried). Periodic worlds have no gravity (scenes refuse it).
 #[must_use]
 #[inline]
 pub fn toi_pair_periodic<const D: usize>(
@@ -197,9 +198,10 @@ pub fn toi_pair_periodic<const D: usize>(
     b: &Motion<D>,
     rb: f64,
     size: &Vector<D>,
-    growth: Option<&GrowthLaw>,
+    laws: Option<&Laws<D>>,
 ) -> Option<f64> {
-    match growth {
+    debug_assert!(laws.is_none_or(|l| l.gravity.is_none()));
+    match laws.and_then(|l| l.growth.as_ref()) {
         None => toi_circle_circle_periodic(a, ra, b, rb, size),
         Some(law) => toi_circle_circle_periodic_growing(a, ra, b, rb, size, law),
     }

@@ -31,8 +31,16 @@ pub fn resolve_body_body_contact<const D: usize>(
     j: usize,
     t: f64,
 ) -> Contact<D> {
-    let (pi, pj) = (world.position_at(i, t), world.position_at(j, t));
-    let (vi, vj) = (world.velocity(i), world.velocity(j));
+    let (a, b) = (world.motion(i), world.motion(j));
+    let (pi, pj, vi, vj) = match world.gravity() {
+        None => (a.at(t), b.at(t), a.vel, b.vel),
+        Some(g) => (
+            a.falling_at(t, &g),
+            b.falling_at(t, &g),
+            a.falling_velocity(t, &g),
+            b.falling_velocity(t, &g),
+        ),
+    };
     let (mi, mj) = (world.mass(i), world.mass(j));
     let d = match world.periodic() {
         Some(size) => min_image(pj - pi, &size),
@@ -41,6 +49,7 @@ pub fn resolve_body_body_contact<const D: usize>(
     let dist = d.norm();
     let sigma = world.radius_at(i, t) + world.radius_at(j, t);
     let (mut vi2, mut vj2) = (vi, vj);
+    let e = world.pair_restitution(i, j, t);
     if let Some(law) = world.growth() {
         // Growing radii: reverse the speed at which the surfaces approach (see
         // `crate::growth`): u' = (1 + e)·σ̇ − e·u along the line of centres.
@@ -49,7 +58,7 @@ pub fn resolve_body_body_contact<const D: usize>(
             let grow = law.speed(world.radius(i) + world.radius(j));
             let vn = (vj - vi).dot(n);
             if vn < grow {
-                let k = (1.0 + world.restitution()) * (vn - grow);
+                let k = (1.0 + e) * (vn - grow);
                 vi2 = vi + n * (k * (mj / (mi + mj)));
                 vj2 = vj - n * (k * (mi / (mi + mj)));
             }
@@ -60,13 +69,14 @@ pub fn resolve_body_body_contact<const D: usize>(
         if vn < 0.0 {
             // Velocity changes J/mi and J/mj with J = −(1+e)·vn·mi·mj/(mi+mj), written as mass
             // fractions so that equal masses exchange normal velocities exactly (m/2m = 0.5).
-            let k = (1.0 + world.restitution()) * vn;
+            let k = (1.0 + e) * vn;
             vi2 = vi + n * (k * (mj / (mi + mj)));
             vj2 = vj - n * (k * (mi / (mi + mj)));
         }
     }
     world.set_state(i, pi, vi2, t);
     world.set_state(j, pj, vj2, t);
+    world.note_pair_collision(i, j, t);
     Contact {
         overlap: ((sigma - dist) / sigma).max(0.0),
         separation: d,
@@ -79,7 +89,7 @@ pub fn resolve_body_body_contact<const D: usize>(
 /// Returns the overlap depth at contact relative to the radius (0 when not overlapping).
 pub fn resolve_body_wall<const D: usize>(world: &mut World<D>, i: usize, w: usize, t: f64) -> f64 {
     let p = world.position_at(i, t);
-    let v = world.velocity(i);
+    let v = world.velocity_at(i, t);
     let wall = world.walls()[w];
     let r = world.radius_at(i, t);
     // Growing radii: the surface moves towards the wall at the growth speed too (see
@@ -89,11 +99,12 @@ pub fn resolve_body_wall<const D: usize>(world: &mut World<D>, i: usize, w: usiz
     if let Some(n) = wall_normal(&wall, p) {
         let vn = v.dot(n) - grow;
         if vn < 0.0 {
-            v2 = v - n * ((1.0 + world.restitution()) * vn);
+            v2 = v - n * ((1.0 + world.wall_restitution(i, t)) * vn);
         }
     }
     let clearance = crate::wall::wall_clearance(&wall, p);
     world.set_state(i, p, v2, t);
+    world.note_collision(i, t);
     ((r - clearance) / r).max(0.0)
 }
 
@@ -128,6 +139,7 @@ mod tests {
             vel: Vector([vx, 0.0]),
             radius: 0.5,
             mass: None,
+            restitution: None,
         }
     }
 

@@ -4,6 +4,7 @@
 //! dimension; [`Scene::validate`] checks everything the simulator relies on.
 
 use crate::geom::{ball_volume, Vector};
+use crate::gravity::Gravity;
 use crate::growth::Growth;
 use crate::resolution::{resolution_error, resolves, ulp, RESOLUTION_LIMIT};
 use crate::thermostat::Thermostat;
@@ -28,6 +29,11 @@ pub struct BodySpec<const D: usize> {
     /// Mass, kilograms; strictly positive. Defaults to unit density (the ball's area or volume).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub mass: Option<f64>,
+    /// This body's coefficient of restitution in `[0, 1]`; defaults to
+    /// `settings.restitution`. A pair collides with the mean of its two bodies' values, a
+    /// body and a wall with the body's.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub restitution: Option<f64>,
 }
 
 impl<const D: usize> BodySpec<D> {
@@ -40,6 +46,7 @@ impl<const D: usize> BodySpec<D> {
             vel,
             radius,
             mass: None,
+            restitution: None,
         }
     }
 
@@ -64,6 +71,16 @@ pub struct Settings {
     /// Growing radii (Lubachevsky–Stillinger compression), if any; see [`crate::growth`].
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub growth: Option<Growth>,
+    /// Uniform gravity, if any: the acceleration of every body, metres per second squared,
+    /// one component per dimension; see [`crate::gravity`].
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub gravity: Option<Gravity>,
+    /// The TC model of inelastic collapse (Luding & McNamara), seconds: a collision of a
+    /// body that already collided less than `tc` before is elastic, whatever the
+    /// restitution. Keeps inelastic bodies from collapsing into infinitely many collisions
+    /// in finite time (a ball bouncing on a floor under gravity, a dense granular gas).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub tc: Option<f64>,
 }
 
 fn one() -> f64 {
@@ -76,6 +93,8 @@ impl Default for Settings {
             restitution: 1.0,
             thermostat: None,
             growth: None,
+            gravity: None,
+            tc: None,
         }
     }
 }
@@ -207,6 +226,14 @@ pub enum SceneError {
         /// What is too coarse, with the numbers and a remedy.
         why: String,
     },
+    /// A setting cannot be combined with the rest of the scene.
+    #[error("field `{field}`: {why}")]
+    Unsupported {
+        /// The offending field, e.g. `settings.gravity`.
+        field: String,
+        /// Why, and what to do instead.
+        why: String,
+    },
     /// Reading the file failed.
     #[error("{0}")]
     Io(String),
@@ -312,6 +339,15 @@ impl<const D: usize> Scene<D> {
                 return Err(SceneError::NonPositive("settings.growth.rate".into()));
             }
         }
+        self.validate_gravity()?;
+        if let Some(tc) = self.settings.tc {
+            if !tc.is_finite() {
+                return Err(SceneError::NonFinite("settings.tc".into()));
+            }
+            if tc <= 0.0 {
+                return Err(SceneError::NonPositive("settings.tc".into()));
+            }
+        }
         if !self.start_time.is_finite() {
             return Err(SceneError::NonFinite("start_time".into()));
         }
@@ -331,6 +367,24 @@ impl<const D: usize> Scene<D> {
             }
             if b.radius <= 0.0 {
                 return Err(SceneError::NonPositive(f("radius")));
+            }
+            if let Some(e) = b.restitution {
+                if !e.is_finite() {
+                    return Err(SceneError::NonFinite(f("restitution")));
+                }
+                if !(0.0..=1.0).contains(&e) {
+                    return Err(SceneError::Field {
+                        path: f("restitution"),
+                        message: format!("{e} is outside [0, 1]"),
+                    });
+                }
+                if self.settings.growth.is_some() {
+                    return Err(SceneError::Unsupported {
+                        field: f("restitution"),
+                        why: "per-body restitution cannot be combined with settings.growth yet"
+                            .into(),
+                    });
+                }
             }
             let m = b.effective_mass();
             if !m.is_finite() {
@@ -383,6 +437,52 @@ impl<const D: usize> Scene<D> {
 }
 
 impl<const D: usize> Scene<D> {
+    /// The acceleration of `settings.gravity` as a vector of this dimension, if the scene has
+    /// gravity with the right number of components (see [`Scene::validate`]).
+    #[must_use]
+    pub fn gravity(&self) -> Option<Vector<D>> {
+        self.settings.gravity.and_then(|g| g.vector::<D>())
+    }
+
+    /// `settings.gravity`: one finite component per dimension, and none of what it cannot be
+    /// combined with yet (a periodic box, growing radii, segments in 3D).
+    fn validate_gravity(&self) -> Result<(), SceneError> {
+        let Some(g) = self.settings.gravity else {
+            return Ok(());
+        };
+        let field = || "settings.gravity".to_string();
+        let Some(v) = g.vector::<D>() else {
+            return Err(SceneError::Field {
+                path: field(),
+                message: format!("has {} components, the scene is {D}D", g.components().len()),
+            });
+        };
+        if !v.is_finite() {
+            return Err(SceneError::NonFinite(field()));
+        }
+        let unsupported = |why: &str| {
+            Err(SceneError::Unsupported {
+                field: field(),
+                why: why.into(),
+            })
+        };
+        if self.periodic.is_some() {
+            return unsupported(
+                "gravity in a periodic box is not supported (bodies would fall for ever); \
+                 use walls",
+            );
+        }
+        if self.settings.growth.is_some() {
+            return unsupported("gravity cannot be combined with settings.growth yet");
+        }
+        if D == 3 && self.walls.iter().any(|w| matches!(w, Wall::Segment { .. })) {
+            return unsupported(
+                "gravity with segment walls in 3D is not supported yet; use planes",
+            );
+        }
+        Ok(())
+    }
+
     /// Every body resolved at the start time (see [`crate::resolution`]).
     fn validate_resolution(&self) -> Result<(), SceneError> {
         let t = self.start_time;

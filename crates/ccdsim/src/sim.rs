@@ -103,6 +103,9 @@ pub struct Simulation<const D: usize> {
     images: Vec<[i64; D]>,
     /// The thermostat's reset sequence, if the scene has one.
     thermostat: Option<ResetClock>,
+    /// A wall event whose collision changed nothing (a body resting on a wall under
+    /// gravity): if the finder names it again, the run halts ([`Halt::Resting`]).
+    idle: Option<Event>,
 }
 
 impl<const D: usize> Simulation<D> {
@@ -142,6 +145,7 @@ impl<const D: usize> Simulation<D> {
             pending: None,
             halt: None,
             stats,
+            idle: None,
         })
     }
 
@@ -250,6 +254,14 @@ impl<const D: usize> Simulation<D> {
             // Finders return finite events only (`finite_event`); the two halts are the cold
             // paths.
             let answer = match self.finder.next_event(&self.world) {
+                Some(e) if self.idle.is_some_and(|idle| idle == e) => {
+                    self.halt = Some(Halt::Resting {
+                        time: e.time,
+                        body: e.a as usize,
+                        wall: e.b as usize,
+                    });
+                    None
+                }
                 Some(e) if self.guard.resolved(&self.world, &e) => Some(e),
                 Some(e) => {
                     self.halt = unresolved(&self.world, &e);
@@ -275,7 +287,7 @@ impl<const D: usize> Simulation<D> {
         };
         let t = clock.next_time();
         let halted_after = match self.halt {
-            Some(Halt::Resolution { time, .. }) => time > t,
+            Some(Halt::Resolution { time, .. } | Halt::Resting { time, .. }) => time > t,
             Some(Halt::BeyondRange { .. }) => true,
             None => found.is_none(),
         };
@@ -338,13 +350,16 @@ impl<const D: usize> Simulation<D> {
 
     fn resolve(&mut self, e: Event) -> Collision<D> {
         let (a, b) = (e.a as usize, e.b as usize);
+        if self.idle.is_some() {
+            self.idle = None;
+        }
         self.world.set_now(e.time.max(self.world.now()));
         let overlap;
         // Growing radii: collisions add kinetic energy, which the resolution guard must know.
         let energy_before = self.world.growth().map(|_| self.involved_energy(&e));
         let out = match e.kind {
             EventKind::Body => {
-                let before = self.world.velocity(a);
+                let before = self.world.velocity_at(a, e.time);
                 let contact = resolve_body_body_contact(&mut self.world, a, b, e.time);
                 overlap = contact.overlap;
                 self.stats.body_collisions += 1;
@@ -363,7 +378,18 @@ impl<const D: usize> Simulation<D> {
                 }
             }
             EventKind::Wall => {
+                let falling = self.world.gravity().is_some();
+                let before = falling.then(|| {
+                    (
+                        self.world.position_at(a, e.time),
+                        self.world.velocity_at(a, e.time),
+                    )
+                });
                 overlap = resolve_body_wall(&mut self.world, a, b, e.time);
+                if before == Some((self.world.position(a), self.world.velocity(a))) {
+                    // Nothing changed: the same event would come again (see `Halt::Resting`).
+                    self.idle = Some(e);
+                }
                 self.stats.wall_collisions += 1;
                 self.finder.update(&self.world, &[a]);
                 let w = &self.world;
@@ -442,7 +468,7 @@ impl<const D: usize> Simulation<D> {
         debug_assert_eq!((reset.time, reset.body), (time, i));
         let added = 0.5
             * self.world.mass(i)
-            * (reset.velocity.norm_sq() - self.world.velocity(i).norm_sq());
+            * (reset.velocity.norm_sq() - self.world.velocity_at(i, time).norm_sq());
         self.guard.add_energy(added);
         let p = self.world.position_at(i, time);
         self.world.set_state(i, p, reset.velocity, time);
@@ -485,7 +511,10 @@ impl<const D: usize> Simulation<D> {
         // The clock moves to `t` unless an event at or before `t` could not be resolved: a
         // run halted there stays where it stopped. (A contact beyond the largest time, or an
         // unresolved event after `t`, leaves nothing unresolved before `t`.)
-        let blocked = matches!(self.halt, Some(Halt::Resolution { time, .. }) if time <= t);
+        let blocked = matches!(
+            self.halt,
+            Some(Halt::Resolution { time, .. } | Halt::Resting { time, .. }) if time <= t
+        );
         if t > self.world.now() && !blocked {
             self.world.set_now(t);
         }
@@ -537,9 +566,10 @@ impl<const D: usize> Simulation<D> {
             )));
         }
         // The kinetic energy may grow: the guard's speed bound with it.
-        let added = 0.5 * self.world.mass(i) * (vel.norm_sq() - self.world.velocity(i).norm_sq());
-        self.guard.add_energy(added);
         let t = self.world.now();
+        let added =
+            0.5 * self.world.mass(i) * (vel.norm_sq() - self.world.velocity_at(i, t).norm_sq());
+        self.guard.add_energy(added);
         let image = self.image(i);
         let p = self.position(i);
         self.world.set_state(i, p, vel, t);

@@ -11,6 +11,7 @@
 
 use crate::geom::Vector;
 use crate::growth::GrowthLaw;
+use crate::laws::Laws;
 use crate::narrow::Motion;
 use crate::scene::{Scene, SceneError};
 use crate::wall::Wall;
@@ -43,8 +44,17 @@ pub struct World<const D: usize> {
     walls: Vec<Wall<D>>,
     periodic: Option<Vector<D>>,
     restitution: f64,
+    /// Per-body restitution, by body index; empty when every body has the scene's.
+    restitutions: Vec<f64>,
+    /// The TC model's duration, seconds, if any (see [`World::pair_restitution`]).
+    tc: Option<f64>,
+    /// Under the TC model: each body's last collision time, seconds (−∞ before any).
+    last_collision: Vec<f64>,
+    /// True when bodies have their own restitution or the TC model is on: collisions then
+    /// look up their restitution (see [`World::pair_restitution`]).
+    restitution_rules: bool,
     thermostat: Option<crate::thermostat::Thermostat>,
-    growth: Option<GrowthLaw>,
+    laws: Laws<D>,
     now: f64,
 }
 
@@ -72,11 +82,31 @@ impl<const D: usize> World<D> {
             walls: scene.walls.clone(),
             periodic: scene.periodic,
             restitution: scene.settings.restitution,
+            restitutions: if scene.bodies.iter().any(|b| b.restitution.is_some()) {
+                scene
+                    .bodies
+                    .iter()
+                    .map(|b| b.restitution.unwrap_or(scene.settings.restitution))
+                    .collect()
+            } else {
+                Vec::new()
+            },
+            tc: scene.settings.tc,
+            restitution_rules: scene.settings.tc.is_some()
+                || scene.bodies.iter().any(|b| b.restitution.is_some()),
+            last_collision: if scene.settings.tc.is_some() {
+                vec![f64::NEG_INFINITY; n]
+            } else {
+                Vec::new()
+            },
             thermostat: scene.settings.thermostat,
-            growth: scene.settings.growth.map(|g| GrowthLaw {
-                rate: g.rate,
-                origin: scene.start_time,
-            }),
+            laws: Laws {
+                growth: scene.settings.growth.map(|g| GrowthLaw {
+                    rate: g.rate,
+                    origin: scene.start_time,
+                }),
+                gravity: scene.gravity(),
+            },
             now: scene.start_time,
         })
     }
@@ -115,7 +145,21 @@ impl<const D: usize> World<D> {
     #[must_use]
     #[inline]
     pub fn position_at(&self, i: usize, t: f64) -> Vector<D> {
-        self.motion(i).at(t)
+        match &self.laws.gravity {
+            None => self.motion(i).at(t),
+            Some(g) => self.motion(i).falling_at(t, g),
+        }
+    }
+
+    /// Velocity of body `i` at time `t`, metres per second: its stored velocity, or under
+    /// gravity that velocity plus `g·(t − time)`.
+    #[must_use]
+    #[inline]
+    pub fn velocity_at(&self, i: usize, t: f64) -> Vector<D> {
+        match &self.laws.gravity {
+            None => self.bodies[i].motion.vel,
+            Some(g) => self.bodies[i].motion.falling_velocity(t, g),
+        }
     }
 
     /// Reference position of body `i`, metres (valid at its reference time [`World::time`]).
@@ -125,7 +169,8 @@ impl<const D: usize> World<D> {
         self.bodies[i].motion.pos
     }
 
-    /// Velocity of body `i`, metres per second.
+    /// Stored velocity of body `i`, metres per second (valid at its reference time
+    /// [`World::time`]; without gravity, at all times until its next change).
     #[must_use]
     #[inline]
     pub fn velocity(&self, i: usize) -> Vector<D> {
@@ -152,7 +197,7 @@ impl<const D: usize> World<D> {
     #[must_use]
     #[inline]
     pub fn radius_at(&self, i: usize, t: f64) -> f64 {
-        match &self.growth {
+        match &self.laws.growth {
             None => self.bodies[i].radius,
             Some(law) => law.radius_at(self.bodies[i].radius, t),
         }
@@ -163,13 +208,29 @@ impl<const D: usize> World<D> {
     #[must_use]
     #[inline]
     pub fn growth(&self) -> Option<&GrowthLaw> {
-        self.growth.as_ref()
+        self.laws.growth.as_ref()
+    }
+
+    /// The acceleration every body undergoes between events, metres per second squared, in a
+    /// world with gravity (see [`crate::gravity`]).
+    #[must_use]
+    #[inline]
+    pub fn gravity(&self) -> Option<Vector<D>> {
+        self.laws.gravity
+    }
+
+    /// The laws in force (growth, gravity) as the narrow phase's dispatchers take them:
+    /// `None` when radii are fixed and bodies move in straight lines.
+    #[must_use]
+    #[inline]
+    pub fn laws(&self) -> Option<&Laws<D>> {
+        self.laws.in_force()
     }
 
     /// Stops the growth at time `t`: the stored radii become the radii at `t`, and stay.
     /// A finder serving this world must be re-initialised.
     pub fn stop_growth(&mut self, t: f64) {
-        if let Some(law) = self.growth.take() {
+        if let Some(law) = self.laws.growth.take() {
             for b in &mut self.bodies {
                 b.radius = law.radius_at(b.radius, t);
             }
@@ -233,10 +294,84 @@ impl<const D: usize> World<D> {
         self.periodic
     }
 
-    /// Coefficient of restitution used for every collision.
+    /// The scene's coefficient of restitution (`settings.restitution`): every collision's,
+    /// unless bodies have their own or the TC model makes a collision elastic (see
+    /// [`World::pair_restitution`]).
     #[must_use]
     pub fn restitution(&self) -> f64 {
         self.restitution
+    }
+
+    /// Coefficient of restitution of body `i` (its own, or the scene's).
+    #[must_use]
+    #[inline]
+    pub fn body_restitution(&self, i: usize) -> f64 {
+        self.restitutions
+            .get(i)
+            .copied()
+            .unwrap_or(self.restitution)
+    }
+
+    /// The restitution of a collision of bodies `i` and `j` at time `t`: 1 under the TC model
+    /// when either collided less than `tc` before `t`, else the mean of their restitutions.
+    #[must_use]
+    #[inline]
+    pub fn pair_restitution(&self, i: usize, j: usize, t: f64) -> f64 {
+        if !self.restitution_rules {
+            return self.restitution;
+        }
+        if self.within_tc(i, t) || self.within_tc(j, t) {
+            return 1.0;
+        }
+        if self.restitutions.is_empty() {
+            self.restitution
+        } else {
+            0.5 * (self.restitutions[i] + self.restitutions[j])
+        }
+    }
+
+    /// The restitution of a collision of body `i` with a wall at time `t`: 1 under the TC
+    /// model when it collided less than `tc` before `t`, else its own restitution.
+    #[must_use]
+    #[inline]
+    pub fn wall_restitution(&self, i: usize, t: f64) -> f64 {
+        if !self.restitution_rules {
+            return self.restitution;
+        }
+        if self.within_tc(i, t) {
+            1.0
+        } else {
+            self.body_restitution(i)
+        }
+    }
+
+    /// The TC model's duration, seconds, if the scene sets one.
+    #[must_use]
+    pub fn tc(&self) -> Option<f64> {
+        self.tc
+    }
+
+    /// True under the TC model when body `i` collided less than `tc` before `t`.
+    #[inline]
+    fn within_tc(&self, i: usize, t: f64) -> bool {
+        self.tc.is_some_and(|tc| t - self.last_collision[i] < tc)
+    }
+
+    /// Notes that bodies `i` and `j` collided at time `t` (for the TC model).
+    #[inline]
+    pub(crate) fn note_pair_collision(&mut self, i: usize, j: usize, t: f64) {
+        if self.tc.is_some() {
+            self.last_collision[i] = t;
+            self.last_collision[j] = t;
+        }
+    }
+
+    /// Notes that body `i` collided at time `t` (for the TC model).
+    #[inline]
+    pub(crate) fn note_collision(&mut self, i: usize, t: f64) {
+        if self.tc.is_some() {
+            self.last_collision[i] = t;
+        }
     }
 
     /// The scene's Andersen thermostat, if any.
@@ -281,17 +416,42 @@ impl<const D: usize> World<D> {
     pub fn scale_velocities(&mut self, factor: f64) {
         let now = self.now;
         for i in 0..self.bodies.len() {
-            let m = self.bodies[i].motion;
-            self.set_state(i, m.at(now), m.vel * factor, now);
+            let (p, v) = (self.position_at(i, now), self.velocity_at(i, now));
+            self.set_state(i, p, v * factor, now);
         }
     }
 
-    /// Total kinetic energy, joules.
+    /// Total kinetic energy of the stored velocities, joules (under gravity each at its
+    /// body's reference time; see [`World::kinetic_energy_at`]).
     #[must_use]
     pub fn kinetic_energy(&self) -> f64 {
         self.bodies
             .iter()
             .map(|b| 0.5 * b.mass * b.motion.vel.norm_sq())
+            .sum()
+    }
+
+    /// Total kinetic energy at time `t`, joules: under gravity, of the velocities at `t`.
+    #[must_use]
+    pub fn kinetic_energy_at(&self, t: f64) -> f64 {
+        if self.laws.gravity.is_none() {
+            return self.kinetic_energy();
+        }
+        (0..self.len())
+            .map(|i| 0.5 * self.mass(i) * self.velocity_at(i, t).norm_sq())
+            .sum()
+    }
+
+    /// Potential energy in the gravity field at time `t`, joules: `−Σ m·g·x(t)` (zero at the
+    /// origin; zero without gravity). Kinetic plus potential energy is what elastic
+    /// collisions conserve under gravity.
+    #[must_use]
+    pub fn potential_energy_at(&self, t: f64) -> f64 {
+        let Some(g) = self.laws.gravity else {
+            return 0.0;
+        };
+        (0..self.len())
+            .map(|i| -self.mass(i) * g.dot(self.position_at(i, t)))
             .sum()
     }
 

@@ -1153,6 +1153,7 @@ fn inelastic_collapse_to_huge_times() {
         vel: Vector(vel),
         radius,
         mass: None,
+        restitution: None,
     };
     let corner = |x: f64, y: f64| Vector([x, y]);
     let scene = Scene::<2> {
@@ -1292,4 +1293,131 @@ fn growing_radii_with_edits_and_rescales() {
         check_periodic("growing edits 2D", &p2, 2500, drive);
         check_periodic("growing edits 3D", &p3, 2000, drive);
     }
+}
+
+/// `scene` under uniform gravity `g` (see `ccdsim::gravity`).
+fn falling<const D: usize>(mut scene: Scene<D>, g: [f64; D]) -> Scene<D> {
+    scene.settings.gravity = ccdsim::gravity::Gravity::new(&g);
+    scene
+}
+
+/// A 2D board of pegs (short segments, so the end points' quartic is exercised) inside a
+/// walled box, with balls dropped from above.
+fn peg_board(rows: usize, balls: usize, seed: u64) -> Scene<2> {
+    let width = 12.0;
+    let mut walls = box_walls(Vector([width, 16.0]));
+    for row in 0..rows {
+        let y = 3.0 + 1.5 * row as f64;
+        let shift = if row % 2 == 0 { 0.0 } else { 0.75 };
+        let mut x = 1.0 + shift;
+        while x < width - 1.0 {
+            walls.push(Wall::Segment {
+                a: Vector([x - 0.2, y]),
+                b: Vector([x + 0.2, y + 0.1]),
+            });
+            x += 1.5;
+        }
+    }
+    let mut bodies = Vec::new();
+    let mut state = seed;
+    for k in 0..balls {
+        state = state
+            .wrapping_mul(6_364_136_223_846_793_005)
+            .wrapping_add(1_442_695_040_888_963_407);
+        let jitter = (state >> 11) as f64 / (1u64 << 53) as f64;
+        let x = 0.6 + (k % 16) as f64 * 0.68 + 0.05 * jitter;
+        let y = 4.0 + 1.5 * rows as f64 + 0.7 * (k / 16) as f64;
+        bodies.push(BodySpec::new(
+            Vector([x, y]),
+            Vector([jitter - 0.5, 0.0]),
+            0.25,
+        ));
+    }
+    falling(
+        Scene {
+            bodies,
+            walls,
+            ..Scene::default()
+        },
+        [0.0, -9.81],
+    )
+}
+
+#[test]
+fn gravity() {
+    // Parabolic motion: pairs through the falling pair function, walls through the plane's
+    // quadratic and the segments' slab entries and end-point quartics, cells crossings by
+    // the face roots, bvh boxes around parabolic arcs; against the oracle before every step
+    // and with byte-identical run files.
+    for (k, &seed) in SMALL_SEEDS.iter().enumerate() {
+        let g2 = [[0.0, -9.81], [0.3, -1.0], [-2.0, 0.0]][k];
+        let g3 = [[0.0, 0.0, -9.81], [0.5, -1.0, 2.0], [0.0, -0.2, 0.0]][k];
+        for (disp, radii) in DISPERSITIES {
+            let s2 = falling(gas_scene::<2>(100, 0.3, radii, seed), g2);
+            let s3 = falling(gas_scene::<3>(70, 0.15, radii, seed), g3);
+            check_all(&format!("gravity {disp} 2D seed {seed}"), &s2, 2000);
+            check_all(&format!("gravity {disp} 3D seed {seed}"), &s3, 1500);
+        }
+        let open = falling(without_walls(gas_scene::<2>(40, 0.2, (0.3, 0.6), seed)), g2);
+        check_all(&format!("gravity open 2D seed {seed}"), &open, 600);
+        let board = peg_board(4, 24, seed);
+        check_all(&format!("peg board seed {seed}"), &board, 1500);
+    }
+}
+
+#[test]
+fn gravity_with_edits_frames_and_restitution() {
+    let mut s2 = falling(
+        gas_scene::<2>(90, 0.3, (0.2, 0.6), SMALL_SEEDS[0]),
+        [0.0, -3.0],
+    );
+    s2.settings.restitution = 0.9;
+    let s3 = falling(
+        gas_scene::<3>(60, 0.15, (0.3, 0.5), SMALL_SEEDS[1]),
+        [0.0, -2.0, 0.0],
+    );
+    let o = FinderOptions::default();
+    for drive in [Drive::Kicks { every: 9 }, Drive::Frames { dt: 1.0 / 60.0 }] {
+        let (o2, o3) = (
+            reference("gravity edits 2D", &s2, 1200, drive),
+            reference("gravity edits 3D", &s3, 1000, drive),
+        );
+        for name in finders() {
+            check_run("gravity edits 2D", &s2, name, &o, 1200, drive, &o2);
+            check_run("gravity edits 3D", &s3, name, &o, 1000, drive, &o3);
+        }
+    }
+    let board = peg_board(5, 32, 7);
+    let oracle = reference("peg board frames", &board, 2000, Drive::Frames { dt: 0.02 });
+    for name in finders() {
+        check_run(
+            "peg board frames",
+            &board,
+            name,
+            &o,
+            2000,
+            Drive::Frames { dt: 0.02 },
+            &oracle,
+        );
+    }
+}
+
+#[test]
+fn inelastic_gravity_with_the_tc_model_and_per_body_restitution() {
+    // Bounces die away and then stay at the TC model's elastic limit; restitution differs
+    // body by body (pairs take the mean).
+    let mut board = peg_board(5, 40, 11);
+    board.settings.restitution = 0.7;
+    board.settings.tc = Some(1e-3);
+    for (k, b) in board.bodies.iter_mut().enumerate() {
+        b.restitution = Some([0.2, 0.9, 1.0, 0.5][k % 4]);
+    }
+    check_all("inelastic peg board", &board, 3000);
+    let mut s3 = falling(
+        gas_scene::<3>(60, 0.2, (0.3, 0.5), SMALL_SEEDS[2]),
+        [0.0, 0.0, -9.81],
+    );
+    s3.settings.restitution = 0.6;
+    s3.settings.tc = Some(1e-4);
+    check_all("inelastic gravity 3D", &s3, 3000);
 }

@@ -42,7 +42,7 @@ fn refuses_other_versions_and_other_files() {
         // This build reads versions 1 (plain runs) to 3 (runs with growing radii).
         Err(RecordError::Version {
             found: 99,
-            supported: ccdsim::record::VERSION_GROWTH,
+            supported: ccdsim::record::VERSION_NEWEST,
             ..
         }) => {}
         other => panic!("expected a version error, got {:?}", other.err()),

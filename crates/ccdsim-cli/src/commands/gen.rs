@@ -1,7 +1,10 @@
 //! `ccdsim gen`: write a generated scene as JSON.
 
 use anyhow::{Context, Result};
-use ccdsim::generate::{gas, rack, thesis, GasConfig, Lattice, RackConfig, ThesisConfig};
+use ccdsim::generate::{
+    gas, pegs, rack, thesis, GasConfig, Lattice, PegsConfig, RackConfig, ThesisConfig,
+};
+use ccdsim::gravity::Gravity;
 use ccdsim::AnyScene;
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -14,6 +17,10 @@ pub struct Args {
     /// Write the scene here instead of to standard output.
     #[arg(long, global = true)]
     out: Option<PathBuf>,
+    /// Uniform gravity for the scene, one component per dimension, m/s² (e.g. `0,-9.81`);
+    /// sets `settings.gravity` (walled scenes only).
+    #[arg(long, global = true, value_delimiter = ',', allow_hyphen_values = true)]
+    gravity: Option<Vec<f64>>,
 }
 
 #[derive(clap::Subcommand)]
@@ -25,6 +32,27 @@ enum Kind {
     /// The thesis's benchmark scene (§5.2): a walled table of constant body density, sized for
     /// n; the constants are calibrated against its Table 5.1 (docs/benchmarks.md).
     Thesis(ThesisArgs),
+    /// A peg board under gravity (2D): balls dropped through staggered rows of pegs.
+    Pegs(PegsArgs),
+}
+
+#[derive(clap::Args)]
+struct PegsArgs {
+    /// Rows of pegs.
+    #[arg(long, default_value_t = PegsConfig::default().rows)]
+    rows: usize,
+    /// Number of balls.
+    #[arg(long, default_value_t = PegsConfig::default().balls)]
+    balls: usize,
+    /// Ball radius, metres (at most 0.3).
+    #[arg(long, default_value_t = PegsConfig::default().radius)]
+    radius: f64,
+    /// Coefficient of restitution, in [0, 1].
+    #[arg(long, default_value_t = PegsConfig::default().restitution)]
+    restitution: f64,
+    /// Random seed.
+    #[arg(long, default_value_t = 1)]
+    seed: u64,
 }
 
 #[derive(clap::Args)]
@@ -150,6 +178,15 @@ pub fn run(args: Args) -> Result<ExitCode> {
             scene.validate().context("rack")?;
             scene.into()
         }
+        Kind::Pegs(p) => pegs(&PegsConfig {
+            rows: p.rows,
+            balls: p.balls,
+            radius: p.radius,
+            restitution: p.restitution,
+            seed: p.seed,
+            ..PegsConfig::default()
+        })?
+        .into(),
         Kind::Thesis(t) => {
             let cfg = ThesisConfig {
                 wall_pieces: t.wall_pieces,
@@ -162,6 +199,10 @@ pub fn run(args: Args) -> Result<ExitCode> {
             }
         }
     };
+    let scene = match args.gravity {
+        None => scene,
+        Some(g) => with_gravity(scene, &g)?,
+    };
     let json = scene.to_json();
     match args.out {
         Some(path) => std::fs::write(&path, json + "\n")
@@ -169,4 +210,28 @@ pub fn run(args: Args) -> Result<ExitCode> {
         None => println!("{json}"),
     }
     Ok(ExitCode::SUCCESS)
+}
+
+/// `scene` with `settings.gravity` set to `g`, validated (a wrong number of components, a
+/// periodic box or growth are refused with the scene's own message).
+fn with_gravity(scene: AnyScene, g: &[f64]) -> Result<AnyScene> {
+    let gravity = Gravity::new(g).with_context(|| {
+        format!(
+            "--gravity: {} components given, one per dimension (2 or 3) expected",
+            g.len()
+        )
+    })?;
+    let scene = match scene {
+        AnyScene::D2(mut s) => {
+            s.settings.gravity = Some(gravity);
+            s.validate().context("--gravity")?;
+            AnyScene::D2(s)
+        }
+        AnyScene::D3(mut s) => {
+            s.settings.gravity = Some(gravity);
+            s.validate().context("--gravity")?;
+            AnyScene::D3(s)
+        }
+    };
+    Ok(scene)
 }

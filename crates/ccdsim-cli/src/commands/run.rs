@@ -89,6 +89,14 @@ struct Summary {
     /// Why the run stopped before `--until`/`--events` while events remained (a contact
     /// beyond the largest time, or f64 no longer resolving a body), or null.
     halt: Option<String>,
+    /// Potential energy in the gravity field at the start, joules (−Σ m g·x; 0 without
+    /// gravity).
+    potential_energy_start: f64,
+    /// Potential energy at the end, joules.
+    potential_energy_end: f64,
+    /// Relative drift of the total energy (kinetic + potential), against the larger of the
+    /// start and end kinetic energies: what elastic collisions conserve under gravity.
+    energy_drift: f64,
 }
 
 /// Runs the command.
@@ -132,6 +140,7 @@ fn simulate<const D: usize>(scene: &Scene<D>, args: &Args) -> Result<Summary> {
         _ => None,
     };
     let momentum_start = sim.world().momentum().0.to_vec();
+    let potential_start = sim.world().potential_energy_at(sim.time());
     // Everything is validated before the run file is created: bad input leaves no file.
     let mut sink = Sink {
         writer: match &args.record {
@@ -226,7 +235,14 @@ fn simulate<const D: usize>(scene: &Scene<D>, args: &Args) -> Result<Summary> {
     }
     let stats = *sim.stats();
     let observables = sim.observables();
-    let ke_end = sim.world().kinetic_energy();
+    let ke_end = sim.world().kinetic_energy_at(sim.time());
+    let potential_end = sim.world().potential_energy_at(sim.time());
+    let scale = ke_end.max(stats.kinetic_energy_start);
+    let energy_drift = if scale > 0.0 {
+        ((ke_end + potential_end) - (stats.kinetic_energy_start + potential_start)) / scale
+    } else {
+        0.0
+    };
     let drift = if stats.kinetic_energy_start > 0.0 {
         (ke_end - stats.kinetic_energy_start) / stats.kinetic_energy_start
     } else {
@@ -268,6 +284,9 @@ fn simulate<const D: usize>(scene: &Scene<D>, args: &Args) -> Result<Summary> {
             .map(|(name, count)| (name.to_string(), count))
             .collect(),
         halt: sim.halt().map(|h| h.to_string()),
+        potential_energy_start: potential_start,
+        potential_energy_end: potential_end,
+        energy_drift,
     })
 }
 
@@ -305,6 +324,14 @@ fn print_summary(s: &Summary, builtin: bool) {
         "kinetic energy {:.9e} -> {:.9e} J (relative drift {:.2e}); largest overlap {:.2e} of a contact distance",
         s.kinetic_energy_start, s.kinetic_energy_end, s.kinetic_energy_drift, s.max_overlap
     );
+    if s.potential_energy_start != 0.0 || s.potential_energy_end != 0.0 {
+        println!(
+            "under gravity: kinetic + potential energy {:.9e} -> {:.9e} J (relative drift {:.2e})",
+            s.kinetic_energy_start + s.potential_energy_start,
+            s.kinetic_energy_end + s.potential_energy_end,
+            s.energy_drift
+        );
+    }
     print!(
         "temperature kT {:.6e}; {:.6e} collisions per body per unit time",
         s.temperature, s.collision_rate

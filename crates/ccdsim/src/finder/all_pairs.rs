@@ -29,7 +29,7 @@ impl AllPairs {
 #[must_use]
 pub fn all_pairs_next_event<const D: usize>(world: &World<D>) -> Option<Event> {
     let n = world.len();
-    let growth = world.growth();
+    let laws = world.laws();
     let mut best: Option<Event> = None;
     if let Some(size) = world.periodic() {
         let faces_from = world.walls().len();
@@ -38,7 +38,7 @@ pub fn all_pairs_next_event<const D: usize>(world: &World<D>) -> Option<Event> {
             for j in i + 1..n {
                 let mj = world.motion(j);
                 if let Some(t) =
-                    toi_pair_periodic(&mi, world.radius(i), &mj, world.radius(j), &size, growth)
+                    toi_pair_periodic(&mi, world.radius(i), &mj, world.radius(j), &size, laws)
                 {
                     best = Event::earliest(best, Some(Event::body(t, i, j)));
                 }
@@ -57,13 +57,13 @@ pub fn all_pairs_next_event<const D: usize>(world: &World<D>) -> Option<Event> {
                 world.radius(i),
                 &world.motion(j),
                 world.radius(j),
-                growth,
+                laws,
             ) {
                 best = Event::earliest(best, Some(Event::body(t, i, j)));
             }
         }
         for (w, wall) in world.walls().iter().enumerate() {
-            if let Some(t) = toi_body_wall(&mi, world.radius(i), wall, growth) {
+            if let Some(t) = toi_body_wall(&mi, world.radius(i), wall, laws) {
                 best = Event::earliest(best, Some(Event::wall(t, i, w)));
             }
         }

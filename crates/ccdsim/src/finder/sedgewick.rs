@@ -166,8 +166,8 @@ impl Sedgewick {
             };
             let (ra, rb) = (world.radius(a), world.radius(b));
             let t = match &period {
-                None => toi_pair(&ma, ra, &mb, rb, world.growth()),
-                Some(size) => toi_pair_periodic(&ma, ra, &mb, rb, size, world.growth()),
+                None => toi_pair(&ma, ra, &mb, rb, world.laws()),
+                Some(size) => toi_pair_periodic(&ma, ra, &mb, rb, size, world.laws()),
             };
             if let Some(t) = t {
                 self.push(Entry::new(
@@ -178,7 +178,7 @@ impl Sedgewick {
             }
         }
         for (w, wall) in world.walls().iter().enumerate() {
-            if let Some(t) = toi_body_wall(&mi, world.radius(i), wall, world.growth()) {
+            if let Some(t) = toi_body_wall(&mi, world.radius(i), wall, world.laws()) {
                 self.push(Entry::new(Event::wall(t, i, w), ci, 0));
             }
         }

@@ -1,14 +1,16 @@
 //! Scene generators: gases (random or lattice starts, walled or periodic boxes), the
-//! billiard rack and the thesis benchmark scene.
+//! billiard rack, the thesis benchmark scene and a peg board under gravity.
 
 mod gas;
 mod lattice;
+mod pegs;
 mod place;
 mod rack;
 mod thesis;
 
 pub use gas::{gas, GasConfig};
 pub use lattice::Lattice;
+pub use pegs::{pegs, PegsConfig};
 pub use rack::{rack, RackConfig};
 pub use thesis::{thesis, ThesisConfig, THESIS_DURATION, THESIS_TABLE_5_1, THESIS_TABLE_5_2};
 

@@ -14,7 +14,8 @@ use crate::sim::{Collision, Simulation};
 /// impulse, as [`Stats::virial`](crate::Stats::virial) does for the trace. In a periodic world
 /// the kinetic part is taken in the centre-of-mass frame. Wall impulses are left out (the bulk
 /// pressure, as in [`thermodynamic`](super::thermodynamic)). Its trace over `D` is the scalar
-/// pressure of [`Simulation::observables`] for an elastic run.
+/// pressure of [`Simulation::observables`] for an elastic run. Not for worlds with gravity,
+/// whose velocities change between events.
 ///
 /// Feed it every collision of the stretch, in order (e.g. from
 /// [`Simulation::run_until_with`]), then read [`PressureTensor::tensor`]:

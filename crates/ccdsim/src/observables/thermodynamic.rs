@@ -55,7 +55,7 @@ pub fn temperature<const D: usize>(world: &World<D>) -> f64 {
     if n == 0 {
         return 0.0;
     }
-    let mut k = world.kinetic_energy();
+    let mut k = world.kinetic_energy_at(world.now());
     if world.periodic().is_some() {
         let m: f64 = world.masses().sum();
         k -= 0.5 * world.momentum().norm_sq() / m;

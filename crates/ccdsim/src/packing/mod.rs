@@ -241,6 +241,7 @@ pub fn compress<const D: usize>(
             vel: world.velocity(i),
             radius: radii[i] * (1.0 - 1e-13),
             mass: Some(world.mass(i)),
+            restitution: scene.bodies[i].restitution,
         })
         .collect();
     let mut settings = scene.settings;

@@ -19,6 +19,10 @@
 //! the records are the same, but their contacts and velocities follow the growth (see
 //! [`crate::growth`]), which a reader of version 2 would not know to check.
 //!
+//! Version 4 is version 2 for scenes with gravity (`settings.gravity` in the header): bodies
+//! move on parabolas between events (see [`crate::gravity`]), so positions, contacts and the
+//! energy a reader checks differ from straight motion.
+//!
 //! A record is: tag `u8` (1 body event, 2 wall event, 3 end of run, 4 reset), `a: u32`, `b: u32`,
 //! `t: f64`, then for two body slots the position at `t` and the velocity after the event
 //! (`D` `f64`s each; the second slot is zero for wall events and the end record), then an
@@ -39,13 +43,19 @@ pub const MAGIC: [u8; 8] = *b"CCDSIMRF";
 pub const VERSION: u32 = 1;
 /// Format version of run files of scenes with a thermostat (version 1 plus reset records).
 pub const VERSION_RESETS: u32 = 2;
-/// Format version of run files of scenes with growing radii; the newest this build reads.
+/// Format version of run files of scenes with growing radii.
 pub const VERSION_GROWTH: u32 = 3;
+/// Format version of run files of scenes with gravity.
+pub const VERSION_GRAVITY: u32 = 4;
+/// The newest format version this build reads.
+pub const VERSION_NEWEST: u32 = VERSION_GRAVITY;
 
 /// The format version a run of `scene` is written in.
 #[must_use]
 pub fn version_for<const D: usize>(scene: &crate::scene::Scene<D>) -> u32 {
-    if scene.settings.growth.is_some() {
+    if scene.settings.gravity.is_some() {
+        VERSION_GRAVITY
+    } else if scene.settings.growth.is_some() {
         VERSION_GROWTH
     } else if scene.settings.thermostat.is_some() {
         VERSION_RESETS

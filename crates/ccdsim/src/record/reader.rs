@@ -2,7 +2,7 @@
 
 use super::{
     fnv1a, record_len, RecordError, RunRecord, MAGIC, PREAMBLE_LEN, TAG_BODY, TAG_END, TAG_RESET,
-    TAG_WALL, VERSION, VERSION_GROWTH,
+    TAG_WALL, VERSION, VERSION_NEWEST,
 };
 use crate::event::Event;
 use crate::geom::Vector;
@@ -110,11 +110,11 @@ fn read_header<R: Read>(
         });
     }
     let version = u32::from_le_bytes(pre[8..12].try_into().expect("4 bytes"));
-    if !(VERSION..=VERSION_GROWTH).contains(&version) {
+    if !(VERSION..=VERSION_NEWEST).contains(&version) {
         return Err(RecordError::Version {
             path: name.into(),
             found: version,
-            supported: VERSION_GROWTH,
+            supported: VERSION_NEWEST,
         });
     }
     let dim = u32::from_le_bytes(pre[12..16].try_into().expect("4 bytes"));

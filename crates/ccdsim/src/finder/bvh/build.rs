@@ -24,9 +24,15 @@ impl<const D: usize> SweptTree<D> {
             None => self.shifts.clear(),
         }
         self.leaf_boxes.clear();
-        self.leaf_boxes.extend(
-            (0..n).map(|i| swept_box(&world.motion(i), world.radius_at(i, horizon), now, horizon)),
-        );
+        self.leaf_boxes.extend((0..n).map(|i| {
+            swept_box(
+                &world.motion(i),
+                world.radius_at(i, horizon),
+                now,
+                horizon,
+                world.gravity().as_ref(),
+            )
+        }));
         self.finite = self.leaf_boxes.iter().all(is_finite_box);
         self.extent_now = (0..n).fold(Aabb::EMPTY, |acc, i| {
             acc.union(Aabb::of_ball(

@@ -219,11 +219,17 @@ impl<const D: usize> BvhFinder<D> {
     /// earliest wall event.
     fn search(&mut self, world: &World<D>, wall: Option<Event>) -> Option<Event> {
         self.stats.searches += 1;
-        let v_max = world.velocities().map(l1).fold(0.0, f64::max);
+        // Under gravity the stored velocities hold at different times: take them now.
+        let now = world.now();
+        let v_max = match world.gravity() {
+            None => world.velocities().map(l1).fold(0.0, f64::max),
+            Some(_) => (0..world.len())
+                .map(|i| l1(world.velocity_at(i, now)))
+                .fold(0.0, f64::max),
+        };
         if world.len() < 2 || v_max == 0.0 {
             return wall;
         }
-        let now = world.now();
         self.build(world);
         self.stats.builds += 1;
         let extent = self.tree.extent_now;
@@ -262,8 +268,8 @@ impl<const D: usize> BvhFinder<D> {
             for j in i + 1..world.len() {
                 let (mj, ri, rj) = (world.motion(j), world.radius(i), world.radius(j));
                 let t = match world.periodic() {
-                    None => toi_pair(&mi, ri, &mj, rj, world.growth()),
-                    Some(size) => toi_pair_periodic(&mi, ri, &mj, rj, &size, world.growth()),
+                    None => toi_pair(&mi, ri, &mj, rj, world.laws()),
+                    Some(size) => toi_pair_periodic(&mi, ri, &mj, rj, &size, world.laws()),
                 };
                 if let Some(t) = t {
                     best = Event::earliest(best, Some(Event::body(t, i, j)));

@@ -157,7 +157,7 @@ fn swept_box_holds_the_ball_throughout() {
         vel: Vector([-3.0, 0.25, 1.0]),
         time: 0.5,
     };
-    let b = swept_box(&m, 0.1, 1.0, 3.0);
+    let b = swept_box(&m, 0.1, 1.0, 3.0, None);
     for k in 0..=20 {
         let t = 1.0 + 2.0 * f64::from(k) / 20.0;
         assert!(b.contains(&Aabb::of_ball(m.at(t), 0.1)), "t = {t}");
@@ -171,7 +171,9 @@ fn swept_box_holds_the_ball_throughout() {
         vel: Vector([1e300, 0.0, 0.0]),
         ..m
     };
-    assert!(!tree::is_finite_box(&swept_box(&huge, 0.1, 1.0, 1e300)));
+    assert!(!tree::is_finite_box(&swept_box(
+        &huge, 0.1, 1.0, 1e300, None
+    )));
 }
 
 #[test]
@@ -526,7 +528,10 @@ fn check_pair_boxes<const D: usize>(
     // The worst cases: the swept interval ends exactly at the computed time of impact, and
     // even starts there (the boxes are then the balls at that instant, padded).
     for now in [t0, toi] {
-        let (ba, bb) = (swept_box(&a, ra, now, toi), swept_box(&b, rb, now, toi));
+        let (ba, bb) = (
+            swept_box(&a, ra, now, toi, None),
+            swept_box(&b, rb, now, toi, None),
+        );
         prop_assert!(
             ba.overlaps(&bb),
             "now = {now}, toi = {toi}: {ba:?} vs {bb:?}"

@@ -175,8 +175,8 @@ impl<const D: usize> Check<'_, D> {
         let (mi, ri) = (self.world.motion(i), self.world.radius(i));
         let (mj, rj) = (self.world.motion(j), self.world.radius(j));
         let t = match &self.period {
-            None => toi_pair(&mi, ri, &mj, rj, self.world.growth()),
-            Some(size) => toi_pair_periodic(&mi, ri, &mj, rj, size, self.world.growth()),
+            None => toi_pair(&mi, ri, &mj, rj, self.world.laws()),
+            Some(size) => toi_pair_periodic(&mi, ri, &mj, rj, size, self.world.laws()),
         };
         let Some(t) = t else {
             return;

@@ -113,9 +113,59 @@ pub(crate) fn l1<const D: usize>(v: Vector<D>) -> f64 {
 /// `[now, horizon]`: the box of the ball at both ends (a moving ball's box is the convex hull
 /// of those two), grown by the padding that makes rounding unable to separate two bodies
 /// whose computed time of impact lies in the interval.
+///
+/// Under gravity `g` the ball follows a parabola: along each axis its coordinate is extreme
+/// at the ends or at the vertex, so the box of the three encloses it; speeds are bounded by
+/// the stored speed plus `|g|` times the longest time from the reference time.
 #[must_use]
 #[inline]
-pub(crate) fn swept_box<const D: usize>(m: &Motion<D>, r: f64, now: f64, horizon: f64) -> Aabb<D> {
+pub(crate) fn swept_box<const D: usize>(
+    m: &Motion<D>,
+    r: f64,
+    now: f64,
+    horizon: f64,
+    gravity: Option<&Vector<D>>,
+) -> Aabb<D> {
+    let Some(g) = gravity else {
+        return straight_swept_box(m, r, now, horizon);
+    };
+    let (mut lo, mut hi) = {
+        let (p0, p1) = (m.falling_at(now, g), m.falling_at(horizon, g));
+        (p0.min(p1), p0.max(p1))
+    };
+    for d in 0..D {
+        if g[d] != 0.0 {
+            let vertex = m.time - m.vel[d] / g[d];
+            if vertex > now && vertex < horizon {
+                let x = m.falling_at(vertex, g)[d];
+                lo[d] = lo[d].min(x);
+                hi[d] = hi[d].max(x);
+            }
+        }
+    }
+    let span = (now - m.time).abs().max((horizon - m.time).abs());
+    let speed = l1(m.vel) + l1(*g) * span;
+    let pad = ROOT_PAD * (r + speed * span)
+        + ROUND_PAD
+            * (max_abs(lo).max(max_abs(hi))
+                + speed * (m.time.abs() + horizon.abs())
+                + l1(*g) * span * span);
+    if !(lo.is_finite() && hi.is_finite() && pad.is_finite()) {
+        return Aabb {
+            min: Vector::splat(f64::NAN),
+            max: Vector::splat(f64::NAN),
+        };
+    }
+    let e = Vector::splat(r + pad);
+    Aabb {
+        min: lo - e,
+        max: hi + e,
+    }
+}
+
+/// [`swept_box`] without gravity.
+#[inline]
+fn straight_swept_box<const D: usize>(m: &Motion<D>, r: f64, now: f64, horizon: f64) -> Aabb<D> {
     let p0 = m.at(now);
     let p1 = m.at(horizon);
     let speed = l1(m.vel);

@@ -56,7 +56,15 @@ impl<const D: usize> SweptTree<D> {
             return fail(0, format!("order holds {} of {n} bodies", self.order.len()));
         }
         let boxes: Vec<Aabb<D>> = (0..n)
-            .map(|i| swept_box(&world.motion(i), world.radius(i), self.now, self.horizon))
+            .map(|i| {
+                swept_box(
+                    &world.motion(i),
+                    world.radius(i),
+                    self.now,
+                    self.horizon,
+                    world.gravity().as_ref(),
+                )
+            })
             .collect();
         self.check_node(world, &boxes, 0, 0, n, 0).map(|_| ())
     }
@@ -116,12 +124,15 @@ impl<const D: usize> SweptTree<D> {
         node: &Node<D>,
     ) -> Result<(), InvalidTree> {
         let i = self.body(node);
-        let (m, r) = (world.motion(i), world.radius(i));
+        let r = world.radius(i);
         if node.aabb != boxes[i] {
             return fail(k, format!("leaf box of body {i} is stale"));
         }
         for t in [self.now, self.horizon] {
-            if !node.aabb.contains(&Aabb::of_ball(m.at(t), r)) {
+            if !node
+                .aabb
+                .contains(&Aabb::of_ball(world.position_at(i, t), r))
+            {
                 return fail(k, format!("leaf box misses body {i} at t = {t}"));
             }
         }

@@ -48,7 +48,7 @@ impl WallCache {
             let m = world.motion(i);
             let mut best = None;
             for (w, wall) in world.walls().iter().enumerate() {
-                if let Some(t) = toi_body_wall(&m, r, wall, world.growth()) {
+                if let Some(t) = toi_body_wall(&m, r, wall, world.laws()) {
                     best = Event::earliest(best, Some(Event::wall(t, i, w)));
                 }
             }

@@ -15,21 +15,32 @@ use crate::world::World;
 impl<const D: usize> Cells<D> {
     /// `recompute` in crossing mode: the 3^D block of cells around the body's, its walls and
     /// box exit; then its next crossing is scheduled.
-    pub(super) fn recompute_in_cells(&mut self, world: &World<D>, p: &Probe<D>) {
+    pub(super) fn recompute_in_cells<const FALLING: bool>(
+        &mut self,
+        world: &World<D>,
+        p: &Probe<D>,
+    ) {
         let i = p.i;
         let mut best = Best::NONE;
         self.scan_neighbours(world, p, &mut best);
         self.scan_walls(world, p, &mut best);
         self.scan_exit(world, p, &mut best);
         self.store(world, i, &best, true);
-        self.schedule_crossing(i, &p.b.motion);
+        self.schedule_crossing::<FALLING>(i, &p.b.motion);
     }
 
     /// `schedule` in crossing mode: the queue key is the body's next crossing or its cached
     /// event, whichever is first.
-    pub(super) fn schedule_crossing(&mut self, i: usize, mi: &Motion<D>) {
+    /// Under gravity (`FALLING`, the mode `FallingCrossings`) crossings are the roots of
+    /// quadratics, from the finder's clock on.
+    pub(super) fn schedule_crossing<const FALLING: bool>(&mut self, i: usize, mi: &Motion<D>) {
         let k = self.cached[i].coords;
-        let key = match self.grid.next_crossing(&k, mi) {
+        let crossing = if FALLING {
+            self.next_crossing_falling(&k, mi)
+        } else {
+            self.grid.next_crossing(&k, mi)
+        };
+        let key = match crossing {
             Some((t, code)) => {
                 let crossing = Key::crossing(t, i);
                 if crossing < self.cached[i].best {
@@ -46,6 +57,16 @@ impl<const D: usize> Cells<D> {
             }
         };
         self.queue.set(i, key);
+    }
+
+    /// The next crossing of a body with motion `mi` filed at `k` under gravity (see
+    /// [`Grid::next_crossing_falling`](super::grid::Grid::next_crossing_falling)), from the
+    /// finder's clock on.
+    #[cold]
+    #[inline(never)]
+    fn next_crossing_falling(&self, k: &[u32; D], mi: &Motion<D>) -> Option<(f64, u8)> {
+        let g = self.gravity.expect("a world with gravity");
+        self.grid.next_crossing_falling(k, mi, &g, self.clock)
     }
 
     /// `update` in crossing mode: crossings after the earliest changed state are undone, the
@@ -121,10 +142,11 @@ impl<const D: usize> Cells<D> {
         for i in 0..world.len() {
             let m = world.motion(i);
             let k = self.cached[i].coords;
-            let crossing = self
-                .grid
-                .next_crossing(&k, &m)
-                .map_or(Key::NEVER, |(t, _)| Key::crossing(t, i));
+            let crossing = match &self.gravity {
+                Some(g) => self.grid.next_crossing_falling(&k, &m, g, clock),
+                None => self.grid.next_crossing(&k, &m),
+            }
+            .map_or(Key::NEVER, |(t, _)| Key::crossing(t, i));
             let key = self.queue.key(i);
             if key != crossing.min(self.cached[i].best) {
                 return Err(format!("body {i}: queue key is not min(event, crossing)"));
@@ -135,10 +157,12 @@ impl<const D: usize> Cells<D> {
                 ));
             }
             self.validate_cached(world, i)?;
-            let p = m.at(clock);
+            let p = world.position_at(i, clock);
             let (lo, hi) = self.grid.cell_box(&k.map(|x| x as usize));
             for d in 0..D {
-                let tol = 1e-9 * (1.0 + p[d].abs() + m.vel[d].abs() * (clock - m.time).abs());
+                let dt = (clock - m.time).abs();
+                let fall = world.gravity().map_or(0.0, |g| g[d].abs() * dt * dt);
+                let tol = 1e-9 * (1.0 + p[d].abs() + m.vel[d].abs() * dt + fall);
                 if p[d] < lo[d] - tol || p[d] > hi[d] + tol {
                     return Err(format!(
                         "body {i} at {:?} (t = {clock}) is outside its cell {:?}..{:?}",

@@ -35,7 +35,7 @@ use super::key::{ordered, Key};
 use super::predict::{Best, Probe};
 use super::Cells;
 use crate::geom::Vector;
-use crate::growth::GrowthLaw;
+use crate::laws::Laws;
 use crate::narrow_lanes::{toi_sides, toi_sides_growing, Lanes, Side, ALL_LANES, LANES};
 use crate::world::Body;
 use wide::{f64x4, i32x4, CmpGt};
@@ -138,7 +138,7 @@ impl<const D: usize> Cells<D> {
     #[inline(always)]
     #[allow(clippy::too_many_arguments)]
     pub(super) fn scan_gathered<const PERIODIC: bool, const GROW: bool>(
-        law: Option<&GrowthLaw>,
+        law: Option<&Laws<D>>,
         bodies: &[Body<D>],
         p: &Probe<D>,
         probe: &Side<D>,
@@ -161,7 +161,7 @@ impl<const D: usize> Cells<D> {
     #[inline(always)]
     #[allow(clippy::too_many_arguments)]
     pub(super) fn scan_gathered_both<const PERIODIC: bool, const GROW: bool>(
-        law: Option<&GrowthLaw>,
+        law: Option<&Laws<D>>,
         bodies: &[Body<D>],
         (pi, si, bi): (&Probe<D>, &Side<D>, &mut Best),
         (pj, sj, bj): (&Probe<D>, &Side<D>, &mut Best),
@@ -184,7 +184,7 @@ impl<const D: usize> Cells<D> {
     #[inline(always)]
     #[allow(clippy::too_many_arguments)]
     fn offer_quad<const PERIODIC: bool, const GROW: bool>(
-        law: Option<&GrowthLaw>,
+        law: Option<&Laws<D>>,
         bodies: &[Body<D>],
         p: &Probe<D>,
         probe: &Side<D>,
@@ -198,7 +198,15 @@ impl<const D: usize> Cells<D> {
         let sb = Side::select(mask, other, probe);
         let zero = [f64x4::ZERO; D];
         let lanes = match (GROW, law) {
-            (true, Some(law)) => toi_sides_growing::<D, PERIODIC>(&sa, &sb, &zero, law),
+            (
+                true,
+                Some(Laws {
+                    growth: Some(growth),
+                    gravity: None,
+                }),
+            ) => toi_sides_growing::<D, PERIODIC>(&sa, &sb, &zero, growth),
+            // Gravity: every lane goes to the scalar falling function.
+            (true, Some(_)) => Lanes::all_rare(),
             _ => toi_sides::<D, PERIODIC>(&sa, &sb, &zero),
         }
         .only(valid);
@@ -232,7 +240,7 @@ impl<const D: usize> Cells<D> {
     #[cold]
     #[inline(never)]
     fn offer_rare_lanes<const PERIODIC: bool>(
-        law: Option<&GrowthLaw>,
+        law: Option<&Laws<D>>,
         bodies: &[Body<D>],
         p: &Probe<D>,
         quad: [u32; LANES],

@@ -775,7 +775,7 @@ impl<const D: usize> Grid<D> {
     /// between two cells, with the face's code `2·axis + up`: faces of the outer cells of an
     /// open world towards infinity, and the faces of a periodic box (box exits are real
     /// events) are not crossings. Ties go to the lower axis.
-    #[inline]
+    #[inline(always)]
     pub fn next_crossing(&self, k: &[u32; D], m: &Motion<D>) -> Option<(f64, u8)> {
         // Every axis is evaluated and the choices are selects: whether a body moves up or
         // down an axis, and which axis it leaves by first, are coin flips a branch
@@ -800,6 +800,57 @@ impl<const D: usize> Grid<D> {
             found |= valid;
         }
         found.then_some((best_t, best_code))
+    }
+
+    /// [`Grid::next_crossing`] for a body falling under the acceleration `g` (see
+    /// [`crate::gravity`]): along each axis with a component of `g` the body crosses the
+    /// lower face where its coordinate falls through it and the upper face where it rises
+    /// through it, at the root of the face's quadratic, taken only when it lies at or after
+    /// `after` (the time from which the body is known to lie in its cell: it may have left
+    /// through that face and come back before). A face the parabola only grazes (equal or
+    /// disordered roots after rounding) is not crossed: both cells sharing it compute the same
+    /// two roots from the same bound, so a body never bounces between them at one time.
+    /// Axes without gravity cross as in [`Grid::next_crossing`]. Ties go to the lower axis.
+    #[inline(never)]
+    pub fn next_crossing_falling(
+        &self,
+        k: &[u32; D],
+        m: &Motion<D>,
+        g: &Vector<D>,
+        after: f64,
+    ) -> Option<(f64, u8)> {
+        let mut best: Option<(f64, u8)> = None;
+        for (d, &kd) in k.iter().enumerate() {
+            let kd = kd as usize;
+            let (x, v, a) = (m.pos[d], m.vel[d], 0.5 * g[d]);
+            let lower = (kd > 0).then(|| self.origin[d] + kd as f64 * self.width[d]);
+            let upper =
+                (kd + 1 < self.dims[d]).then(|| self.origin[d] + (kd + 1) as f64 * self.width[d]);
+            let mut offer = |t: f64, up: bool| {
+                if best.is_none_or(|(bt, _)| t < bt) {
+                    best = Some((t, (2 * d) as u8 | u8::from(up)));
+                }
+            };
+            if a == 0.0 {
+                if let (true, Some(bound)) = (v > 0.0, upper) {
+                    offer(m.time + (bound - x) / v, true);
+                } else if let (true, Some(bound)) = (v < 0.0, lower) {
+                    offer(m.time + (bound - x) / v, false);
+                }
+                continue;
+            }
+            for (bound, up) in [(lower, false), (upper, true)] {
+                let Some(bound) = bound else { continue };
+                let Some((falls, rises)) = crate::gravity::face_roots(x - bound, v, a) else {
+                    continue;
+                };
+                let t = m.time + if up { rises } else { falls };
+                if t >= after && t.is_finite() {
+                    offer(t, up);
+                }
+            }
+        }
+        best
     }
 
     /// The closed box of cell coordinates `k` (outer cells of open worlds are unbounded).

@@ -297,6 +297,9 @@ pub struct CellsStats {
 enum Mode<const D: usize> {
     /// Cell crossings.
     Crossings,
+    /// Cell crossings of bodies falling under gravity (the roots of quadratics): a mode of
+    /// its own, so that the straight-line crossings pay nothing for gravity.
+    FallingCrossings,
     /// Neighbour lists, with their structures.
     Lists(Lists<D>),
 }
@@ -360,6 +363,11 @@ pub struct Cells<const D: usize> {
     /// The world's growth law, if radii grow: pairs then take the growing functions (and the
     /// four-lane kernel its growing form).
     growth: Option<crate::growth::GrowthLaw>,
+    /// The world's laws, if any is in force (growth, gravity): what the narrow phase's
+    /// dispatchers are given.
+    laws: Option<crate::laws::Laws<D>>,
+    /// The world's gravity, if any: crossings are then the roots of quadratics.
+    gravity: Option<Vector<D>>,
 }
 
 impl<const D: usize> Default for Cells<D> {
@@ -390,6 +398,8 @@ impl<const D: usize> Cells<D> {
             wanted_horizon: f64::NEG_INFINITY,
             regrids_in_a_row: 0,
             growth: None,
+            laws: None,
+            gravity: None,
         }
     }
 
@@ -427,7 +437,7 @@ impl<const D: usize> Cells<D> {
             + std::mem::size_of::<Cached<D>>() * self.cached.capacity()
             + std::mem::size_of::<(u32, u8, f64)>() * self.log.capacity()
             + match &self.mode {
-                Mode::Crossings => 0,
+                Mode::Crossings | Mode::FallingCrossings => 0,
                 Mode::Lists(lists) => lists.bytes(),
             }
     }
@@ -440,7 +450,7 @@ impl<const D: usize> Cells<D> {
         self.grid.validate(|i| self.cached[i].coords)?;
         self.queue.validate()?;
         match self.mode {
-            Mode::Crossings => self.validate_crossing_mode(world),
+            Mode::Crossings | Mode::FallingCrossings => self.validate_crossing_mode(world),
             Mode::Lists(_) => self.validate_list_mode(world),
         }
     }
@@ -495,7 +505,9 @@ impl<const D: usize> Cells<D> {
         for i in std::iter::once(a).chain(partner) {
             self.queue.prefetch_path(i);
             match &self.mode {
-                Mode::Crossings => self.grid.prefetch_block(&self.cached[i].coords),
+                Mode::Crossings | Mode::FallingCrossings => {
+                    self.grid.prefetch_block(&self.cached[i].coords)
+                }
                 Mode::Lists(lists) => lists.prefetch_list(i),
             }
         }
@@ -590,6 +602,8 @@ impl<const D: usize> Finder<D> for Cells<D> {
         // Growing radii: size everything for the radii at a horizon, rebuilt before it passes.
         self.horizon = f64::INFINITY;
         self.growth = world.growth().copied();
+        self.laws = world.laws().copied();
+        self.gravity = world.gravity();
         let mut grown = 1.0;
         if let Some(law) = world.growth() {
             let window = (law.scale(now) * GROWTH_HEADROOM / law.rate).max(0.0);
@@ -652,7 +666,11 @@ impl<const D: usize> Finder<D> for Cells<D> {
                 self.grid.cell_count(),
             ))
         } else {
-            Mode::Crossings
+            if world.gravity().is_some() {
+                Mode::FallingCrossings
+            } else {
+                Mode::Crossings
+            }
         };
         self.cached = vec![Cached::NONE; n];
         for i in 0..n {
@@ -699,7 +717,9 @@ impl<const D: usize> Finder<D> for Cells<D> {
             return;
         };
         match self.mode {
-            Mode::Crossings => self.update_crossing_mode(world, t, changed),
+            Mode::Crossings | Mode::FallingCrossings => {
+                self.update_crossing_mode(world, t, changed)
+            }
             Mode::Lists(_) => self.update_list_mode(world, t, changed),
         }
     }
@@ -722,7 +742,7 @@ impl<const D: usize> Finder<D> for Cells<D> {
             }
             if key.is_crossing() {
                 match self.mode {
-                    Mode::Crossings => self.cross(world, i, key.seconds()),
+                    Mode::Crossings | Mode::FallingCrossings => self.cross(world, i, key.seconds()),
                     Mode::Lists(_) => self.exit_shell(world, i, key.seconds()),
                 }
                 continue;

@@ -47,7 +47,7 @@ use super::key::Key;
 use super::predict::{Best, Probe};
 use super::{Cells, Mode};
 use crate::geom::Vector;
-use crate::growth::GrowthLaw;
+use crate::laws::Laws;
 use crate::narrow_lanes::Side;
 use crate::prefetch::prefetch;
 use crate::world::{Body, World};
@@ -155,7 +155,7 @@ impl<const D: usize> Cells<D> {
         let parts = (e0, e1, g.n);
         let (i, j) = ((pi, &si, bi), (pj, &sj, bj));
         // The world's kind, once per scan: the loops are compiled for each.
-        let law = self.growth.as_ref();
+        let law = self.laws.as_ref();
         match (self.periodic, law.is_some()) {
             (true, false) => Self::scan_pair_parts::<true, false>(law, bodies, i, j, ids, parts),
             (false, false) => Self::scan_pair_parts::<false, false>(law, bodies, i, j, ids, parts),
@@ -170,7 +170,7 @@ impl<const D: usize> Cells<D> {
     /// to `parts.2` to `pj`.
     #[inline(always)]
     fn scan_pair_parts<const PERIODIC: bool, const GROW: bool>(
-        law: Option<&GrowthLaw>,
+        law: Option<&Laws<D>>,
         bodies: &[Body<D>],
         (pi, si, bi): (&Probe<D>, &Side<D>, &mut Best),
         (pj, sj, bj): (&Probe<D>, &Side<D>, &mut Best),

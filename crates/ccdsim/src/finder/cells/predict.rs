@@ -7,7 +7,7 @@ use super::grid::Grid;
 use super::key::{ordered, Key};
 use super::{Cells, Mode, NO_CROSSING, SECOND_KNOWN};
 use crate::geom::Vector;
-use crate::growth::GrowthLaw;
+use crate::laws::Laws;
 use crate::narrow::{toi_body_wall, toi_pair, toi_pair_shifted, Motion};
 use crate::narrow_lanes::Side;
 use crate::periodic::toi_box_exit;
@@ -144,16 +144,10 @@ impl<const D: usize> Cells<D> {
         let (a, b) = if i < j { (bi, bj) } else { (bj, bi) };
         if self.periodic {
             let s = if i < j { *shift } else { Vector::ZERO - *shift };
-            let law = self.growth.as_ref();
+            let law = self.laws.as_ref();
             toi_pair_shifted(&a.motion, a.radius, &b.motion, b.radius, s, law)
         } else {
-            toi_pair(
-                &a.motion,
-                a.radius,
-                &b.motion,
-                b.radius,
-                self.growth.as_ref(),
-            )
+            toi_pair(&a.motion, a.radius, &b.motion, b.radius, self.laws.as_ref())
         }
     }
 
@@ -169,7 +163,7 @@ impl<const D: usize> Cells<D> {
     #[inline(always)]
     #[allow(clippy::too_many_arguments)]
     pub(super) fn offer_body<const PERIODIC: bool>(
-        law: Option<&GrowthLaw>,
+        law: Option<&Laws<D>>,
         p: &Probe<D>,
         j: usize,
         bj: &Body<D>,
@@ -269,7 +263,7 @@ impl<const D: usize> Cells<D> {
             for j in self.grid.bodies_in(c) {
                 let j = j as usize;
                 if j != p.i {
-                    let law = self.growth.as_ref();
+                    let law = self.laws.as_ref();
                     Self::offer_body::<PERIODIC>(law, p, j, &bodies[j], shift, &neg, image, best);
                 }
             }
@@ -331,7 +325,7 @@ impl<const D: usize> Cells<D> {
         }
         let probe = Side::splat(&p.b.motion, p.b.radius);
         let ids = &g.ids;
-        let law = self.growth.as_ref();
+        let law = self.laws.as_ref();
         match (self.periodic, law.is_some()) {
             (true, false) => {
                 Self::scan_gathered::<true, false>(law, bodies, p, &probe, ids, 0, g.n, best)
@@ -396,7 +390,7 @@ impl<const D: usize> Cells<D> {
                 continue;
             }
             let wall = &world.walls()[w as usize];
-            if let Some(t) = toi_body_wall(&p.b.motion, p.b.radius, wall, self.growth.as_ref()) {
+            if let Some(t) = toi_body_wall(&p.b.motion, p.b.radius, wall, self.laws.as_ref()) {
                 best.offer(Key::wall(t, p.i, w as usize), Grid::<D>::ZERO_IMAGE);
             }
         }
@@ -464,7 +458,8 @@ impl<const D: usize> Cells<D> {
         self.stats.recomputes += 1;
         let p = Probe::of(world, i);
         match self.mode {
-            Mode::Crossings => self.recompute_in_cells(world, &p),
+            Mode::Crossings => self.recompute_in_cells::<false>(world, &p),
+            Mode::FallingCrossings => self.recompute_in_cells::<true>(world, &p),
             Mode::Lists(_) => self.recompute_listed(world, &p),
         }
     }
@@ -519,7 +514,8 @@ impl<const D: usize> Cells<D> {
     /// Sets body `i`'s queue key: its next crossing or its cached event, whichever is first.
     pub(super) fn schedule(&mut self, i: usize, mi: &Motion<D>) {
         match self.mode {
-            Mode::Crossings => self.schedule_crossing(i, mi),
+            Mode::Crossings => self.schedule_crossing::<false>(i, mi),
+            Mode::FallingCrossings => self.schedule_crossing::<true>(i, mi),
             Mode::Lists(_) => self.schedule_listed(i),
         }
     }

@@ -24,7 +24,9 @@ impl<const D: usize> Cells<D> {
     pub(in super::super) fn lists(&self) -> &Lists<D> {
         match &self.mode {
             Mode::Lists(lists) => lists,
-            Mode::Crossings => unreachable!("list-mode code runs in list mode only"),
+            Mode::Crossings | Mode::FallingCrossings => {
+                unreachable!("list-mode code runs in list mode only")
+            }
         }
     }
 
@@ -33,7 +35,9 @@ impl<const D: usize> Cells<D> {
     fn lists_mut(&mut self) -> &mut Lists<D> {
         match &mut self.mode {
             Mode::Lists(lists) => lists,
-            Mode::Crossings => unreachable!("list-mode code runs in list mode only"),
+            Mode::Crossings | Mode::FallingCrossings => {
+                unreachable!("list-mode code runs in list mode only")
+            }
         }
     }
 
@@ -63,7 +67,7 @@ impl<const D: usize> Cells<D> {
         if self.hints {
             self.prefetch_partners(world, p.i);
         }
-        match (self.periodic, self.growth.is_some()) {
+        match (self.periodic, self.laws.is_some()) {
             (true, false) => self.scan_quads::<true, false>(bodies, p, entries, above, best),
             (false, false) => self.scan_quads::<false, false>(bodies, p, entries, above, best),
             (true, true) => self.scan_quads::<true, true>(bodies, p, entries, above, best),
@@ -138,7 +142,11 @@ impl<const D: usize> Cells<D> {
                 [f64x4::ZERO; D]
             }
         };
-        let law = if GROW { self.growth.as_ref() } else { None };
+        let law = if GROW {
+            self.laws.as_ref().and_then(|l| l.growth.as_ref())
+        } else {
+            None
+        };
         // The fixed-radius kernel, or (growing radii) its growing form.
         let kernel = |sa: &Side<D>, sb: &Side<D>, shift: &[f64x4; D]| match law {
             Some(law) => toi_sides_growing::<D, PERIODIC>(sa, sb, shift, law),
@@ -206,7 +214,7 @@ impl<const D: usize> Cells<D> {
                 b: &b.motion,
                 rb: b.radius,
                 shift: &lists.shifts[image],
-                growth: self.growth.as_ref(),
+                laws: self.laws.as_ref(),
             }
         } else {
             PairArgs {
@@ -215,7 +223,7 @@ impl<const D: usize> Cells<D> {
                 b: &p.b.motion,
                 rb: p.b.radius,
                 shift: &lists.neg_shifts[image],
-                growth: self.growth.as_ref(),
+                laws: self.laws.as_ref(),
             }
         }
     }
@@ -251,16 +259,10 @@ impl<const D: usize> Cells<D> {
                     &c.motion,
                     c.radius,
                     s,
-                    self.growth.as_ref(),
+                    self.laws.as_ref(),
                 )
             } else {
-                toi_pair(
-                    &a.motion,
-                    a.radius,
-                    &c.motion,
-                    c.radius,
-                    self.growth.as_ref(),
-                )
+                toi_pair(&a.motion, a.radius, &c.motion, c.radius, self.laws.as_ref())
             };
             if let Some(t) = t {
                 let bits = super::super::key::ordered(t);

@@ -1,0 +1,476 @@
+//! Uniform gravity: every body accelerates by the same `g` between events, so it follows a
+//! parabola, `x(t) = p + v·(t − t_i) + ½·g·(t − t_i)²`, with velocity `v + g·(t − t_i)`.
+//!
+//! # Pair contacts stay the same quadratic
+//!
+//! Two bodies under the same acceleration have relative acceleration `g − g = 0`: at any
+//! time `T`, their offset is `dp(t) = dp(T) + dv(T)·(t − T)` exactly, with `dp(T)` and `dv(T)`
+//! the differences of their positions and velocities at `T`. So the time of impact of a pair
+//! is [`first_contact`] of `dp(T)` and `dv(T)`, evaluated from `T = max(t_a, t_b)` like the
+//! fixed-velocity narrow phase ([`toi_circle_circle_falling`]); when both bodies were last
+//! changed at the same time the gravity terms vanish and the bits are the fixed-velocity
+//! function's.
+//!
+//! # Walls
+//!
+//! Against a plane, the distance of the centre is a quadratic in time: `gap + v_n·t + ½·g_n·t²`
+//! ([`toi_circle_plane_falling`]). Against a segment (2D), the signed distance of the centre
+//! from the segment's line is such a quadratic too: the ball meets the interior where it
+//! enters the slab of half-width `r` around the line with its foot on the segment, and the
+//! end points where `|w + v·t + ½·g·t²| = r`, a quartic whose first root is isolated by
+//! [`first_contact_accelerating`]. A parabola may enter the slab beyond an end, leave it and
+//! come back over the segment, so every entry into the slab is a candidate, not just the
+//! first (unlike straight motion, where a first entry beyond the end can only be followed by
+//! the end point's contact).
+//!
+//! # What "approaching" means
+//!
+//! As for straight motion, a pair (or body and wall) in contact collides at once only while
+//! it approaches; one that rounding left overlapping while it recedes is given the next time
+//! it comes back: the later root, or, if it never leaves the overlap, the time it turns to
+//! approach (the vertex of the parabola).
+
+use crate::accelerated_contact::first_contact_accelerating;
+use crate::geom::Vector;
+use crate::narrow::{first_contact, toi_circle_plane, toi_circle_segment, Motion};
+use crate::wall::Wall;
+use serde::{Deserialize, Serialize};
+
+/// The gravity setting of a scene (`settings.gravity` in a scene file): the acceleration
+/// every body undergoes, metres per second squared, with as many components as the scene
+/// has dimensions.
+///
+/// ```json
+/// "settings": { "gravity": [0.0, -9.81] }
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Gravity {
+    components: [f64; 3],
+    len: usize,
+}
+
+impl Gravity {
+    /// Gravity with the given components (2 or 3); `None` for any other count.
+    #[must_use]
+    pub fn new(components: &[f64]) -> Option<Self> {
+        if !(2..=3).contains(&components.len()) {
+            return None;
+        }
+        let mut c = [0.0; 3];
+        c[..components.len()].copy_from_slice(components);
+        Some(Gravity {
+            components: c,
+            len: components.len(),
+        })
+    }
+
+    /// The components as written.
+    #[must_use]
+    pub fn components(&self) -> &[f64] {
+        &self.components[..self.len]
+    }
+
+    /// The acceleration as a vector of a `D`-dimensional world; `None` when the setting has
+    /// another number of components.
+    #[must_use]
+    pub fn vector<const D: usize>(&self) -> Option<Vector<D>> {
+        Vector::from_slice(self.components())
+    }
+}
+
+impl Serialize for Gravity {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        self.components().serialize(s)
+    }
+}
+
+impl<'de> Deserialize<'de> for Gravity {
+    fn deserialize<De: serde::Deserializer<'de>>(d: De) -> Result<Self, De::Error> {
+        let v = Vec::<f64>::deserialize(d)?;
+        Gravity::new(&v).ok_or_else(|| {
+            serde::de::Error::custom(format!(
+                "gravity has {} components; it needs one per dimension (2 or 3)",
+                v.len()
+            ))
+        })
+    }
+}
+
+impl<const D: usize> Motion<D> {
+    /// Position at time `t` under the acceleration `g`, metres:
+    /// `pos + vel·dt + g·(½·dt²)` with `dt = t − time`.
+    #[must_use]
+    #[inline]
+    pub fn falling_at(&self, t: f64, g: &Vector<D>) -> Vector<D> {
+        let dt = t - self.time;
+        self.pos + self.vel * dt + *g * (0.5 * dt * dt)
+    }
+
+    /// Velocity at time `t` under the acceleration `g`, metres per second: `vel + g·dt`.
+    #[must_use]
+    #[inline]
+    pub fn falling_velocity(&self, t: f64, g: &Vector<D>) -> Vector<D> {
+        self.vel + *g * (t - self.time)
+    }
+}
+
+/// Time of impact of two balls (radii `ra`, `rb`) falling under the same acceleration `g`,
+/// ball `b` displaced by `shift`: [`first_contact`] of their offset and relative velocity at
+/// `T = max(a.time, b.time)` (see the module docs), as an absolute time, or `None`.
+#[must_use]
+#[inline]
+pub fn toi_circle_circle_falling<const D: usize>(
+    a: &Motion<D>,
+    ra: f64,
+    b: &Motion<D>,
+    rb: f64,
+    shift: Vector<D>,
+    g: &Vector<D>,
+) -> Option<f64> {
+    let t0 = a.time.max(b.time);
+    let dp = (b.falling_at(t0, g) - a.falling_at(t0, g)) + shift;
+    let dv = b.falling_velocity(t0, g) - a.falling_velocity(t0, g);
+    first_contact(dp, dv, ra + rb).map(|dt| t0 + dt)
+}
+
+/// The first `t ≥ 0` at which the gap `c + b·t + a·t²` (positive apart, metres) enters
+/// contact: reaches zero while shrinking, or `0` when it is already `≤ 0` and shrinking
+/// (`b < 0`). A gap that is `≤ 0` but not shrinking is given the time it next comes back: its
+/// later root if it opens first, or the vertex if it never does (see the module docs).
+/// Roots are taken in the cancellation-free forms; `None` when the gap never closes or the
+/// time is not finite.
+#[must_use]
+pub fn first_entry(c: f64, b: f64, a: f64) -> Option<f64> {
+    let t = if a == 0.0 {
+        if b >= 0.0 {
+            return None;
+        }
+        if c <= 0.0 {
+            0.0
+        } else {
+            c / -b
+        }
+    } else if c > 0.0 {
+        let disc = b * b - 4.0 * a * c;
+        if disc < 0.0 {
+            return None;
+        }
+        if b < 0.0 {
+            // The smaller root when a > 0, the only positive one when a < 0.
+            2.0 * c / (disc.sqrt() - b)
+        } else if a < 0.0 {
+            (b + disc.sqrt()) / (-2.0 * a)
+        } else {
+            return None;
+        }
+    } else if b < 0.0 {
+        0.0
+    } else if a > 0.0 {
+        return None;
+    } else {
+        let disc = b * b - 4.0 * a * c;
+        if disc < 0.0 {
+            b / (-2.0 * a)
+        } else {
+            (b + disc.sqrt()) / (-2.0 * a)
+        }
+    };
+    Some(t).filter(|t| t.is_finite() && *t >= 0.0)
+}
+
+/// Time of impact of a ball (radius `r`) falling under `g` with the one-sided plane through
+/// `point` whose `normal` points to the ball's side: the first entry of the gap
+/// `gap + v_n·t + ½·g_n·t²` ([`first_entry`]), from the ball's reference time. When `g` lies
+/// in the plane this is [`toi_circle_plane`] bit for bit.
+#[must_use]
+pub fn toi_circle_plane_falling<const D: usize>(
+    m: &Motion<D>,
+    r: f64,
+    point: Vector<D>,
+    normal: Vector<D>,
+    g: &Vector<D>,
+) -> Option<f64> {
+    let len = normal.norm();
+    let gn = g.dot(normal) / len;
+    if gn == 0.0 {
+        return toi_circle_plane(m, r, point, normal);
+    }
+    let vn = m.vel.dot(normal) / len;
+    let gap = (m.pos - point).dot(normal) / len - r;
+    first_entry(gap, vn, 0.5 * gn).map(|dt| m.time + dt)
+}
+
+/// The roots of `h(t) = k`, `h(t) = c + b·t + a·t²`, at which `h` falls through `k`
+/// (`falling`) or rises through it: at most one each for a proper parabola, taken in the
+/// cancellation-free forms; tangent touches (a zero discriminant) are no crossing.
+fn crossing(c: f64, b: f64, a: f64, k: f64, falling: bool) -> Option<f64> {
+    let c = c - k;
+    if a == 0.0 {
+        return ((b < 0.0) == falling && b != 0.0).then(|| -c / b);
+    }
+    let disc = b * b - 4.0 * a * c;
+    if disc <= 0.0 {
+        return None;
+    }
+    let s = disc.sqrt();
+    // The falling root is (−b − s)/2a, the rising one (−b + s)/2a, whatever the sign of a.
+    let q = -0.5 * (b + if b >= 0.0 { s } else { -s });
+    let (falls, rises) = if b >= 0.0 {
+        (q / a, c / q)
+    } else {
+        (c / q, q / a)
+    };
+    Some(if falling { falls } else { rises })
+}
+
+/// The two roots of `c + b·t + a·t² = 0` (`a ≠ 0`) as `(falling, rising)`: where the
+/// quadratic falls through zero and where it rises through it, in the cancellation-free
+/// forms; `None` when it does not cross zero, or when rounding left the two roots equal or in
+/// the wrong order (`falling < rising` when `a > 0`, the reverse when `a < 0`): a graze.
+#[must_use]
+pub(crate) fn face_roots(c: f64, b: f64, a: f64) -> Option<(f64, f64)> {
+    let disc = b * b - 4.0 * a * c;
+    if disc.is_nan() || disc <= 0.0 {
+        return None;
+    }
+    let s = disc.sqrt();
+    let q = -0.5 * (b + if b >= 0.0 { s } else { -s });
+    let (falls, rises) = if b >= 0.0 {
+        (q / a, c / q)
+    } else {
+        (c / q, q / a)
+    };
+    let ordered = if a > 0.0 {
+        falls < rises
+    } else {
+        rises < falls
+    };
+    ordered.then_some((falls, rises))
+}
+
+/// Time of impact of a ball (radius `r`) falling under `g` with the segment `[a, b]` (2D
+/// only; scenes with gravity refuse segments in 3D): the first entry into the slab around its
+/// line whose foot lies on the segment, or the first contact with an end point
+/// ([`first_contact_accelerating`]), from the ball's reference time. With zero gravity this is
+/// [`toi_circle_segment`] bit for bit.
+#[must_use]
+pub fn toi_circle_segment_falling<const D: usize>(
+    m: &Motion<D>,
+    r: f64,
+    a: Vector<D>,
+    b: Vector<D>,
+    g: &Vector<D>,
+) -> Option<f64> {
+    if *g == Vector::ZERO || D != 2 {
+        return toi_circle_segment(m, r, a, b);
+    }
+    let u = b - a;
+    let l2 = u.norm_sq();
+    let w = m.pos - a;
+    // The signed distance from the line, along the unit normal n: h(t) = h0 + hv·t + ha·t².
+    let len = l2.sqrt();
+    let mut n = Vector::<D>::ZERO;
+    n[0] = -u[1] / len;
+    n[1] = u[0] / len;
+    let (h0, hv, ha) = (w.dot(n), m.vel.dot(n), 0.5 * g.dot(n));
+    let foot = |dt: f64| {
+        let s = (w + m.vel * dt + *g * (0.5 * dt * dt)).dot(u) / l2;
+        (0.0..=1.0).contains(&s)
+    };
+    let inside = h0.abs() <= r;
+    let approaching = h0 * hv < 0.0;
+    // Every way into contact with the line is a candidate, kept if its foot lies on the
+    // segment: touching it now while approaching; each entry into the slab (falling through
+    // +r, rising through −r), which may follow a stay in the slab beyond an end; and, in the
+    // slab and not approaching, the vertex if the ball turns back before leaving it.
+    let mut candidates = [
+        (inside && approaching).then_some(0.0),
+        crossing(h0, hv, ha, r, true),
+        crossing(h0, hv, ha, -r, false),
+        None,
+    ];
+    if inside && !approaching && ha != 0.0 {
+        let vertex = hv / (-2.0 * ha);
+        let h_vertex = h0 + hv * vertex + ha * vertex * vertex;
+        let turns_inward = (h0 >= 0.0) == (ha < 0.0);
+        if vertex > 0.0 && h_vertex.abs() <= r && turns_inward {
+            candidates[3] = Some(vertex);
+        }
+    }
+    let interior = candidates
+        .into_iter()
+        .flatten()
+        .filter(|&dt| dt >= 0.0 && dt.is_finite() && foot(dt))
+        .reduce(f64::min);
+    let end_a = first_contact_accelerating(w, m.vel, *g, r);
+    let end_b = first_contact_accelerating(m.pos - b, m.vel, *g, r);
+    [interior, end_a, end_b]
+        .into_iter()
+        .flatten()
+        .reduce(f64::min)
+        .map(|dt| m.time + dt)
+        .filter(|t| t.is_finite())
+}
+
+/// Time of impact of a ball (radius `r`) falling under `g` with a wall of either kind.
+#[must_use]
+#[inline]
+pub fn toi_circle_wall_falling<const D: usize>(
+    m: &Motion<D>,
+    r: f64,
+    wall: &Wall<D>,
+    g: &Vector<D>,
+) -> Option<f64> {
+    match *wall {
+        Wall::Segment { a, b } => toi_circle_segment_falling(m, r, a, b, g),
+        Wall::Plane { point, normal } => toi_circle_plane_falling(m, r, point, normal, g),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const G: Vector<2> = Vector([0.0, -10.0]);
+
+    fn m2(p: [f64; 2], v: [f64; 2], t: f64) -> Motion<2> {
+        Motion {
+            pos: Vector(p),
+            vel: Vector(v),
+            time: t,
+        }
+    }
+
+    #[test]
+    fn gravity_setting_reads_two_or_three_components() {
+        let g: Gravity = serde_json::from_str("[0, -9.81]").unwrap();
+        assert_eq!(g.vector::<2>(), Some(Vector([0.0, -9.81])));
+        assert_eq!(g.vector::<3>(), None);
+        assert_eq!(serde_json::to_string(&g).unwrap(), "[0.0,-9.81]");
+        let err = serde_json::from_str::<Gravity>("[1]").unwrap_err();
+        assert!(err.to_string().contains("1 components"), "{err}");
+    }
+
+    #[test]
+    fn a_dropped_ball_meets_the_floor_at_the_free_fall_time() {
+        // Centre 6 above a floor at y = 0, radius 1: falls 5 m, t = √(2·5/10) = 1.
+        let m = m2([0.0, 6.0], [0.0, 0.0], 2.0);
+        let floor = (Vector([0.0, 0.0]), Vector([0.0, 1.0]));
+        let t = toi_circle_plane_falling(&m, 1.0, floor.0, floor.1, &G).unwrap();
+        assert!((t - 3.0).abs() < 1e-15, "{t}");
+        // Thrown up at 10 m/s it rises 5 m for 1 s, then falls 10 m: 1 + √2 s.
+        let m = m2([0.0, 6.0], [3.0, 10.0], 0.0);
+        let t = toi_circle_plane_falling(&m, 1.0, floor.0, floor.1, &G).unwrap();
+        assert!((t - (1.0 + 2f64.sqrt())).abs() < 1e-14, "{t}");
+        // A ceiling at y = 10 (normal down): the ball thrown at 10 m/s peaks at 11 − 1 = 10.
+        let ceiling = (Vector([0.0, 10.0]), Vector([0.0, -1.0]));
+        let m = m2([0.0, 6.0], [0.0, 8.0], 0.0);
+        assert_eq!(
+            toi_circle_plane_falling(&m, 1.0, ceiling.0, ceiling.1, &G),
+            None
+        );
+        let m = m2([0.0, 6.0], [0.0, 10.0], 0.0);
+        assert!(toi_circle_plane_falling(&m, 1.0, ceiling.0, ceiling.1, &G).is_some());
+    }
+
+    #[test]
+    fn first_entry_covers_every_case() {
+        assert_eq!(first_entry(1.0, -1.0, 0.0), Some(1.0));
+        assert_eq!(first_entry(1.0, 1.0, 0.0), None);
+        assert_eq!(first_entry(-1.0, -1.0, 0.5), Some(0.0));
+        // Receding from an overlap, pulled back: the later root of −1 + t − t² … none real:
+        // the vertex at t = 0.5.
+        assert_eq!(first_entry(-1.0, 1.0, -1.0), Some(0.5));
+        // −0.25 + 2t − t²: roots 2 ± √3.75; the later one.
+        let t = first_entry(-0.25, 2.0, -1.0).unwrap();
+        assert!((t - (1.0 + 0.75f64.sqrt())).abs() < 1e-15, "{t}");
+        // Convex and receding: never.
+        assert_eq!(first_entry(-1.0, 1.0, 1.0), None);
+        assert_eq!(first_entry(1.0, 1.0, 1.0), None);
+    }
+
+    #[test]
+    fn falling_pairs_meet_as_their_relative_motion_says() {
+        // Same reference time: exactly the straight-line function.
+        let a = m2([0.0, 0.0], [1.0, 0.0], 0.0);
+        let b = m2([10.0, 0.0], [-1.0, 0.0], 0.0);
+        assert_eq!(
+            toi_circle_circle_falling(&a, 1.0, &b, 1.0, Vector::ZERO, &G),
+            Some(4.0)
+        );
+        // b last changed at t = 1: at t = 1 both have fallen alike; a is at (1, −5), moving
+        // (1, −10); b is put at (8, −5) moving (−1, −10): gap 7 − 2 = 5 closing at 2.
+        let b = m2([8.0, -5.0], [-1.0, -10.0], 1.0);
+        let t = toi_circle_circle_falling(&a, 1.0, &b, 1.0, Vector::ZERO, &G).unwrap();
+        assert!((t - 3.5).abs() < 1e-14, "{t}");
+    }
+
+    #[test]
+    fn a_ball_arcing_over_the_end_lands_on_the_segment() {
+        // A segment from (0, 0) to (4, 0); the ball starts below and beyond it, rises past
+        // the end at x = 5.5 (clear of the end point), and falls onto the top near x = 3.
+        let m = m2([7.0, -3.0], [-1.0, 10.0], 0.0);
+        let (a, b) = (Vector([0.0, 0.0]), Vector([4.0, 0.0]));
+        let t = toi_circle_segment_falling(&m, 0.5, a, b, &G).unwrap();
+        let p = m.falling_at(t, &G);
+        assert!((p[1] - 0.5).abs() < 1e-12, "{p:?} at {t}");
+        assert!(p[0] > 0.0 && p[0] < 4.0, "{p:?}");
+        assert!(m.falling_velocity(t, &G)[1] < 0.0);
+        // Straight motion would only see the first entry into the slab, beyond the end.
+        assert_eq!(toi_circle_segment(&m, 0.5, a, b), None);
+    }
+
+    #[test]
+    fn a_ball_in_the_slab_beyond_the_end_still_lands_on_the_segment_later() {
+        // Found on a peg board: the ball starts within r of the peg's line but far beyond its
+        // end, moving towards the line; it leaves the slab upwards and falls onto the peg.
+        let m = m2(
+            [0.274_104_261_426_211_9, 10.089_703_996_966_115],
+            [3.081_532_178_361_167_3, 3.759_927_848_700_852],
+            0.0,
+        );
+        let g = Vector([0.0, -9.81]);
+        let (a, b) = (Vector([1.55, 10.5]), Vector([1.95, 10.6]));
+        let t = toi_circle_segment_falling(&m, 0.25, a, b, &g).unwrap();
+        assert!((t - 0.452_101_698_227_093).abs() < 1e-12, "{t}");
+    }
+
+    #[test]
+    fn end_points_catch_a_falling_ball() {
+        let (a, b) = (Vector([0.0, 0.0]), Vector([4.0, 0.0]));
+        // Dropped 0.3 beyond the end: hits the corner where |p − b| = 0.5.
+        let m = m2([4.3, 3.0], [0.0, 0.0], 0.0);
+        let t = toi_circle_segment_falling(&m, 0.5, a, b, &G).unwrap();
+        let d = (m.falling_at(t, &G) - b).norm();
+        assert!((d - 0.5).abs() < 1e-12, "{d}");
+    }
+
+    proptest::proptest! {
+        /// The plane's time is a contact (gap zero, closing) with no earlier one, checked
+        /// against a fine sampling of the exact parabola.
+        #[test]
+        fn plane_contacts_are_first_roots(
+            y in 0.6..20.0f64,
+            vy in -20.0..20.0f64,
+            gy in -20.0..20.0f64,
+        ) {
+            let g = Vector([0.0, gy]);
+            let m = m2([0.0, y], [0.0, vy], 0.0);
+            let gap = |t: f64| y + vy * t + 0.5 * gy * t * t - 0.5;
+            match toi_circle_plane_falling(&m, 0.5, Vector::ZERO, Vector([0.0, 1.0]), &g) {
+                Some(t) => {
+                    proptest::prop_assert!(gap(t).abs() < 1e-9 * (1.0 + y + vy.abs() * t + gy.abs() * t * t));
+                    for k in 0..400 {
+                        let s = t * f64::from(k) / 400.0;
+                        proptest::prop_assert!(gap(s) > -1e-9);
+                    }
+                }
+                None => {
+                    for k in 0..4000 {
+                        proptest::prop_assert!(gap(f64::from(k) * 0.01) > -1e-9);
+                    }
+                }
+            }
+        }
+    }
+}

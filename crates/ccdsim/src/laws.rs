@@ -1,0 +1,33 @@
+//! The laws that shape motion between events besides each body's velocity: growing radii
+//! ([`crate::growth`]) and uniform gravity ([`crate::gravity`]).
+//!
+//! Every finder passes them to the narrow phase's dispatchers ([`crate::narrow::toi_pair`],
+//! [`crate::narrow::toi_body_wall`], …) as `Option<&Laws<D>>`: `None` in a world with neither,
+//! where the dispatchers are the fixed-radius straight-line functions, unchanged.
+
+use crate::geom::Vector;
+use crate::growth::GrowthLaw;
+
+/// The laws in force in a world.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Laws<const D: usize> {
+    /// Growing radii, if they grow.
+    pub growth: Option<GrowthLaw>,
+    /// The acceleration of every body, metres per second squared, if there is gravity.
+    pub gravity: Option<Vector<D>>,
+}
+
+impl<const D: usize> Laws<D> {
+    /// No law: fixed radii, straight lines.
+    pub const NONE: Laws<D> = Laws {
+        growth: None,
+        gravity: None,
+    };
+
+    /// `Some(self)` when any law is in force, `None` otherwise: what the dispatchers take.
+    #[must_use]
+    #[inline]
+    pub fn in_force(&self) -> Option<&Self> {
+        (self.growth.is_some() || self.gravity.is_some()).then_some(self)
+    }
+}

@@ -1,0 +1,179 @@
+//! Uniform gravity: scene validation, analytic bounces, pairs that fall together, run files of
+//! format version 4, and the halt of a ball come to rest.
+
+use ccdsim::generate::{box_walls, pegs, PegsConfig};
+use ccdsim::gravity::Gravity;
+use ccdsim::record::{RunReader, RunRecord, RunWriter, VERSION_GRAVITY};
+use ccdsim::{AnyScene, BodySpec, Halt, Scene, SceneError, Simulation, Vector, Wall};
+
+/// A 3D ball dropped from height `h` (centre `h + r` above the floor) in a box.
+fn dropped_ball(h: f64, restitution: f64) -> Scene<3> {
+    let mut scene = Scene::<3> {
+        bodies: vec![BodySpec::new(
+            Vector([2.0, 2.0, 0.5 + h]),
+            Vector([0.0, 0.0, 0.0]),
+            0.5,
+        )],
+        walls: box_walls(Vector([4.0, 4.0, 40.0])),
+        ..Scene::default()
+    };
+    scene.settings.gravity = Gravity::new(&[0.0, 0.0, -9.81]);
+    scene.settings.restitution = restitution;
+    scene
+}
+
+#[test]
+fn an_elastic_ball_bounces_with_the_free_fall_period() {
+    // Falls h = 5 m in √(2h/g), then bounces every 2√(2h/g), back to the same height.
+    let h = 5.0;
+    let fall = (2.0 * h / 9.81f64).sqrt();
+    for finder in ["all-pairs", "bvh", "sedgewick", "cells"] {
+        let mut sim = Simulation::new(&dropped_ball(h, 1.0), finder).unwrap();
+        for k in 0..20 {
+            let c = sim.step_event().unwrap();
+            let want = fall * (1.0 + 2.0 * f64::from(k));
+            assert!(
+                (c.event.time - want).abs() < 1e-12 * (1.0 + want),
+                "[{finder}] bounce {k} at {} not {want}",
+                c.event.time
+            );
+            assert!((c.pos[0][2] - 0.5).abs() < 1e-12, "{:?}", c.pos[0]);
+            assert!((c.vel[0][2] - (2.0 * 9.81 * h).sqrt()).abs() < 1e-10);
+        }
+        let w = sim.world();
+        let t = sim.time();
+        let total = w.kinetic_energy_at(t) + w.potential_energy_at(t);
+        let start = -w.mass(0) * -9.81 * (0.5 + h);
+        assert!((total - start).abs() < 1e-10 * start, "{total} vs {start}");
+    }
+}
+
+#[test]
+fn bodies_falling_together_meet_as_without_gravity() {
+    // Relative acceleration is zero: a head-on pair meets at the same time with or without
+    // gravity, whatever their reference times.
+    let pair = |g: Option<Gravity>| {
+        let mut scene = Scene::<2> {
+            bodies: vec![
+                BodySpec::new(Vector([0.0, 100.0]), Vector([1.0, 0.0]), 0.5),
+                BodySpec::new(Vector([10.0, 100.0]), Vector([-1.0, 0.0]), 0.5),
+            ],
+            ..Scene::default()
+        };
+        scene.settings.gravity = g;
+        Simulation::new(&scene, "cells")
+            .unwrap()
+            .step_event()
+            .unwrap()
+    };
+    let plain = pair(None);
+    let falling = pair(Gravity::new(&[0.0, -9.81]));
+    assert_eq!(plain.event.time, 4.5);
+    assert_eq!(falling.event.time, 4.5);
+    assert_eq!(falling.vel[0][0], -1.0);
+    // Both fell alike: 0.5·g·t² below the start.
+    let drop = 0.5 * 9.81 * 4.5 * 4.5;
+    assert!((falling.pos[0][1] - (100.0 - drop)).abs() < 1e-12);
+}
+
+#[test]
+fn scenes_with_gravity_are_validated() {
+    let text = |settings: &str, extra: &str| {
+        format!(
+            r#"{{"dim": 2, "settings": {settings}, "bodies": [{{"pos": [1, 1], "vel": [0, 0], "radius": 0.5}}]{extra}}}"#
+        )
+    };
+    let scene = AnyScene::from_json(&text(r#"{"gravity": [0, -9.81]}"#, "")).unwrap();
+    let AnyScene::D2(s) = scene else { panic!("2D") };
+    assert_eq!(s.gravity(), Some(Vector([0.0, -9.81])));
+    let err = |settings: &str, extra: &str| {
+        AnyScene::from_json(&text(settings, extra))
+            .unwrap_err()
+            .to_string()
+    };
+    let e = err(r#"{"gravity": [0, -9.81, 0]}"#, "");
+    assert!(
+        e.contains("settings.gravity") && e.contains("3 components"),
+        "{e}"
+    );
+    let e = err(r#"{"gravity": [1]}"#, "");
+    assert!(
+        e.contains("settings.gravity") && e.contains("1 components"),
+        "{e}"
+    );
+    let e = err(r#"{"gravity": "down"}"#, "");
+    assert!(e.contains("settings.gravity"), "{e}");
+    let e = err(r#"{"gravity": [0, -1]}"#, r#", "periodic": [10, 10]"#);
+    assert!(e.contains("periodic box"), "{e}");
+    let e = err(r#"{"gravity": [0, -1], "growth": {"rate": 0.1}}"#, "");
+    assert!(e.contains("settings.growth"), "{e}");
+    // NaN cannot be written in JSON; through the API it is refused too.
+    let mut s = dropped_ball(1.0, 1.0);
+    s.settings.gravity = Gravity::new(&[0.0, f64::NAN, 0.0]);
+    assert_eq!(
+        s.validate(),
+        Err(SceneError::NonFinite("settings.gravity".into()))
+    );
+    // Segments in 3D are not supported under gravity yet.
+    let mut s = dropped_ball(1.0, 1.0);
+    s.walls.push(Wall::Segment {
+        a: Vector([1.0, 1.0, 30.0]),
+        b: Vector([3.0, 1.0, 30.0]),
+    });
+    let e = s.validate().unwrap_err().to_string();
+    assert!(e.contains("segment walls in 3D"), "{e}");
+}
+
+#[test]
+fn run_files_of_gravity_scenes_are_version_4_and_read_back() {
+    let scene = pegs(&PegsConfig {
+        balls: 16,
+        rows: 3,
+        ..PegsConfig::default()
+    })
+    .unwrap();
+    let mut sim = Simulation::new(&scene, "cells").unwrap();
+    let mut w = RunWriter::new(Vec::new(), "cells".into(), &scene).unwrap();
+    let mut events = Vec::new();
+    sim.run_events_with(300, |c| {
+        w.write_event(c).unwrap();
+        events.push(*c);
+    });
+    let bytes = w.finish(sim.time()).unwrap();
+    assert_eq!(
+        u32::from_le_bytes(bytes[8..12].try_into().unwrap()),
+        VERSION_GRAVITY
+    );
+    let mut r = RunReader::<_, 2>::new(&bytes[..], "run".into()).unwrap();
+    assert_eq!(r.scene().gravity(), Some(Vector([0.0, -9.81])));
+    let mut read = Vec::new();
+    while let Some(RunRecord::Event(c)) = r.next_record().unwrap() {
+        read.push(c);
+    }
+    assert_eq!(read, events);
+}
+
+#[test]
+fn a_ball_that_comes_to_rest_halts_the_run_at_the_same_event_with_every_finder() {
+    // Restitution 0.5: the bounces die away geometrically (a Zeno sequence), until the ball
+    // touches the floor with no normal speed; resting contacts are not simulated yet, so the
+    // run stops there, saying so, instead of looping at one instant.
+    let mut ends = Vec::new();
+    for finder in ["all-pairs", "bvh", "sedgewick", "cells"] {
+        let mut sim = Simulation::new(&dropped_ball(1.0, 0.5), finder).unwrap();
+        let n = sim.run_events(100_000);
+        assert!(n < 100_000, "[{finder}] the run must stop");
+        let Some(Halt::Resting { body, wall, time }) = sim.halt() else {
+            panic!("[{finder}] expected a resting halt, got {:?}", sim.halt());
+        };
+        assert_eq!((body, wall), (0, 4), "[{finder}] the floor is wall 4");
+        // The Zeno time of the bounces: t₁ (1 + 2e/(1 − e)) with t₁ the first fall.
+        let t1 = (2.0 / 9.81f64).sqrt();
+        assert!((time - t1 * 3.0).abs() < 1e-6, "[{finder}] rests at {time}");
+        ends.push((n, time.to_bits()));
+        // It stays halted: run_until does not move the clock past the rest.
+        sim.run_until(time + 1.0);
+        assert_eq!(sim.time().to_bits(), time.to_bits());
+    }
+    assert!(ends.windows(2).all(|w| w[0] == w[1]), "{ends:?}");
+}

@@ -1,0 +1,86 @@
+//! Per-body restitution and the TC model of inelastic collapse (`settings.tc`).
+
+use ccdsim::generate::box_walls;
+use ccdsim::gravity::Gravity;
+use ccdsim::{AnyScene, BodySpec, Scene, Simulation, Vector};
+
+fn ball(pos: [f64; 2], vel: [f64; 2], restitution: Option<f64>) -> BodySpec<2> {
+    BodySpec {
+        restitution,
+        ..BodySpec::new(Vector(pos), Vector(vel), 0.5)
+    }
+}
+
+#[test]
+fn bodies_bounce_with_their_own_restitution_and_pairs_with_the_mean() {
+    let scene = Scene::<2> {
+        bodies: vec![
+            ball([2.0, 2.0], [-1.0, 0.0], Some(0.5)),
+            ball([6.0, 2.0], [1.0, 0.0], None),
+        ],
+        walls: box_walls(Vector([8.0, 4.0])),
+        ..Scene::default()
+    };
+    let mut sim = Simulation::new(&scene, "cells").unwrap();
+    // Both reach their side walls at t = 1.5: body 0 keeps half its speed, body 1 all of it.
+    let a = sim.step_event().unwrap();
+    let b = sim.step_event().unwrap();
+    assert_eq!((a.event.a, b.event.a), (0, 1));
+    assert_eq!(a.vel[0].0, [0.5, 0.0]);
+    assert_eq!(b.vel[0].0, [-1.0, 0.0]);
+    // They meet head on: e = (0.5 + 1)/2 = 0.75 between equal masses.
+    let c = sim.step_event().unwrap();
+    let closing = 1.5;
+    let parting = c.vel[1][0] - c.vel[0][0];
+    assert!((parting - 0.75 * closing).abs() < 1e-12, "{:?}", c.vel);
+}
+
+#[test]
+fn the_tc_model_turns_a_zeno_collapse_into_lasting_small_bounces() {
+    // A ball bouncing on a floor with restitution 0.5 under gravity would stop after finitely
+    // many bounces in finite time (the run halts, see tests/gravity.rs); with tc = 1 ms its
+    // bounces become elastic once they come closer than 1 ms apart, so it keeps bouncing,
+    // about 5 mm high, and the run goes on with every finder alike.
+    let mut scene = Scene::<2> {
+        bodies: vec![ball([2.0, 1.5], [0.0, 0.0], None)],
+        walls: box_walls(Vector([4.0, 4.0])),
+        ..Scene::default()
+    };
+    scene.settings.restitution = 0.5;
+    scene.settings.gravity = Gravity::new(&[0.0, -9.81]);
+    scene.settings.tc = Some(1e-3);
+    let mut runs = Vec::new();
+    for finder in ["all-pairs", "bvh", "sedgewick", "cells"] {
+        let mut sim = Simulation::new(&scene, finder).unwrap();
+        let mut log = Vec::new();
+        sim.run_until_with(3.0, |c| log.push((c.event.time.to_bits(), c.vel[0].0)));
+        assert!(sim.halt().is_none(), "[{finder}] {:?}", sim.halt());
+        assert_eq!(sim.time(), 3.0);
+        let p = sim.position(0);
+        assert!(p[1] >= 0.5 - 1e-9 && p[1] < 0.52, "[{finder}] at {p:?}");
+        runs.push(log);
+    }
+    assert!(runs[0].len() > 100);
+    assert!(runs.windows(2).all(|w| w[0] == w[1]));
+}
+
+#[test]
+fn restitution_and_tc_are_validated() {
+    let scene = |body: &str, settings: &str| {
+        AnyScene::from_json(&format!(
+            r#"{{"dim": 2, "settings": {settings}, "bodies": [{{"pos": [1, 1], "vel": [0, 0], "radius": 0.5{body}}}]}}"#
+        ))
+        .map(|_| ())
+        .map_err(|e| e.to_string())
+    };
+    assert_eq!(scene(r#", "restitution": 0.3"#, r#"{"tc": 0.01}"#), Ok(()));
+    let e = scene(r#", "restitution": 1.5"#, "{}").unwrap_err();
+    assert!(
+        e.contains("bodies[0].restitution") && e.contains("outside [0, 1]"),
+        "{e}"
+    );
+    let e = scene("", r#"{"tc": 0}"#).unwrap_err();
+    assert!(e.contains("settings.tc"), "{e}");
+    let e = scene(r#", "restitution": 0.3"#, r#"{"growth": {"rate": 0.1}}"#).unwrap_err();
+    assert!(e.contains("settings.growth"), "{e}");
+}
