@@ -2,7 +2,9 @@
 // to play) and draws it with the software rasteriser of raster.js.
 //
 // State is kept as the simulator keeps it: body i is at P[i] at time T0[i] and moves with
-// V[i], so drawing at time t is P + V·(t − T0) and an event only rewrites its two bodies.
+// V[i], so drawing at time t is P + V·(t − T0) and an event only rewrites its two bodies. In
+// a run with gravity g (meta.gravity) bodies fall between events: P + V·dt + ½·g·dt², with
+// velocity V + g·dt, dt = t − T0.
 'use strict';
 
 (() => {
@@ -21,7 +23,7 @@
   const S = {
     meta: null, D: 2, n: 0, stride: 12,
     radius: null, ids: null, idBucket: null,
-    P: null, V: null, T0: null, flash: null, evTime: null,
+    P: null, V: null, T0: null, G: null, flash: null, evTime: null,
     time: 0, applied: 0, lastEvent: null,
     buf: { start: 0, count: 0, data: new Float64Array(0) },
     fetching: false, seekToken: 0, seekBusy: false, seekWanted: null,
@@ -271,23 +273,25 @@
   }
 
   function position(i, t, out) {
-    const D = S.D, dt = t - S.T0[i];
+    const D = S.D, dt = t - S.T0[i], G = S.G;
     for (let k = 0; k < D; k++) out[k] = S.P[i * D + k] + S.V[i * D + k] * dt;
+    if (G) for (let k = 0; k < D; k++) out[k] += 0.5 * G[k] * dt * dt;
     return out;
   }
 
-  function bodyWord(i) {
+  // Body i's colour word at time t (its speed changes between events under gravity).
+  function bodyWord(i, t) {
     if (S.colour === 'speed') {
-      const D = S.D;
+      const D = S.D, G = S.G, dt = t - S.T0[i];
       let v2 = 0;
-      for (let k = 0; k < D; k++) v2 += S.V[i * D + k] ** 2;
+      for (let k = 0; k < D; k++) v2 += (S.V[i * D + k] + (G ? G[k] * dt : 0)) ** 2;
       return Raster.SPEED_WORDS[Raster.speedBucket(Math.sqrt(v2), S.meta.max_speed)];
     }
     return Raster.ID_WORDS[S.idBucket[i]];
   }
 
-  function bodyRgb(i) {
-    const w = bodyWord(i);
+  function bodyRgb(i, t) {
+    const w = bodyWord(i, t);
     return [w & 255, (w >>> 8) & 255, (w >>> 16) & 255];
   }
 
@@ -369,7 +373,7 @@
         const [x, y] = cam.project(p[0], p[1]);
         const r = S.radius[i] * grown(t) * cam.scale;
         if (lit(i)) { flashing.push(i); continue; }
-        surf.disc(x, y, r, bodyWord(i));
+        surf.disc(x, y, r, bodyWord(i, t));
       }
     } else {
       surf.useDepth();
@@ -379,7 +383,7 @@
         const r = S.radius[i] * grown(t) * cam.scale;
         const on = lit(i);
         if (on) flashing.push(i);
-        surf.sphere(x, y, z, r, on ? Raster.FLASH_FILL : bodyRgb(i));
+        surf.sphere(x, y, z, r, on ? Raster.FLASH_FILL : bodyRgb(i, t));
       }
     }
     drawBoxes(cam, surf);
@@ -567,6 +571,7 @@
       S.D = meta.dim;
       S.n = meta.bodies;
       S.stride = 4 + 4 * meta.dim;
+      S.G = meta.gravity || null;
       const bodies = new Float64Array(await bin('/api/bodies'));
       S.radius = bodies.subarray(0, S.n);
       S.ids = bodies.subarray(S.n, 2 * S.n);

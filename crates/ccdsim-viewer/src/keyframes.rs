@@ -99,8 +99,9 @@ impl<const D: usize> KeyframeIndex<D> {
                             why: format!("event {events} at t = {t} is earlier than the one before it (t = {last})"),
                         });
                     }
+                    // The extent reads the states the collision ends (their arcs under gravity).
+                    extent.add(&c, &states);
                     states.apply(&c);
-                    extent.add(&c);
                     events += 1;
                     last = t;
                     if events % interval == 0 {

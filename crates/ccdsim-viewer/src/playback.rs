@@ -297,3 +297,115 @@ fn open_file(path: &Path) -> Result<(File, u64), ViewerError> {
     let len = file.metadata().map_err(io)?.len();
     Ok((file, len))
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::wire::{encode_snapshot, meta_json, STATE_HEADER};
+    use ccdsim::generate::{gas, GasConfig};
+    use ccdsim::gravity::Gravity;
+    use ccdsim::record::RunWriter;
+    use ccdsim::{BodySpec, Simulation, Vector};
+    use std::path::PathBuf;
+
+    fn temp_file(name: &str) -> PathBuf {
+        let dir =
+            std::env::temp_dir().join(format!("ccdsim-viewer-unit-{name}-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        dir.join("run.ccdrun")
+    }
+
+    fn record<const D: usize>(scene: &Scene<D>, until: f64, path: &Path) -> u64 {
+        let mut sim = Simulation::new(scene, "all-pairs").unwrap();
+        let mut w = RunWriter::create(path, scene).unwrap();
+        let n = sim.run_until_with(until, |c| w.write_event(c).unwrap());
+        w.finish(until).unwrap();
+        n
+    }
+
+    /// Small keyframe intervals, so that snapshots replay from several keyframes.
+    const DENSE: KeyframeOptions = KeyframeOptions {
+        budget_bytes: 1 << 20,
+        min_interval: 16,
+    };
+
+    #[test]
+    fn gravity_runs_play_back_on_parabolas() {
+        let mut scene = gas::<2>(&GasConfig {
+            n: 30,
+            packing: 0.2,
+            seed: 4,
+            ..GasConfig::default()
+        })
+        .unwrap();
+        scene.settings.gravity = Gravity::new(&[0.5, -9.81]);
+        let path = temp_file("gravity");
+        let events = record(&scene, 3.0, &path);
+        assert!(events > 100, "{events}");
+        let mut p = Playback::<2>::open(&path, &DENSE).unwrap();
+        assert!(p.index().keyframes.len() > 3);
+        assert_eq!(
+            meta_json(&p, "cells")["gravity"],
+            serde_json::json!([0.5, -9.81])
+        );
+        // Between events, the snapshot's bodies are where the simulation has them.
+        let mut sim = Simulation::new(&scene, "all-pairs").unwrap();
+        for k in 1..=20 {
+            let t = 0.1371 * f64::from(k);
+            sim.run_until(t);
+            let snap = p.snapshot_at(t).unwrap();
+            let wire = encode_snapshot(&snap);
+            let floats: Vec<f32> = wire[8 * STATE_HEADER..]
+                .chunks_exact(4)
+                .map(|c| f32::from_le_bytes(c.try_into().unwrap()))
+                .collect();
+            for i in 0..snap.states.len() {
+                let (want_p, want_v) = (sim.position(i), sim.world().velocity_at(i, t));
+                let (got_p, got_v) = (snap.states.position_at(i, t), snap.states.velocity_at(i, t));
+                assert!((got_p - want_p).norm() < 1e-12, "t = {t}, body {i}");
+                assert!((got_v - want_v).norm() < 1e-12, "t = {t}, body {i}");
+                // The page is sent the velocity at the snapshot's time.
+                let n = snap.states.len();
+                for d in 0..2 {
+                    let sent = f64::from(floats[2 * n + 2 * i + d]);
+                    assert!((sent - want_v[d]).abs() < 1e-5 * (1.0 + want_v.norm()));
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn the_extent_holds_the_tops_of_the_arcs() {
+        // Two balls thrown up in an open world, no walls and no collision: the bounds must
+        // reach the tops of their arcs, which neither the start nor the end shows.
+        let mut scene = Scene::<2> {
+            bodies: vec![
+                BodySpec::new(Vector([0.0, 0.0]), Vector([1.0, 10.0]), 0.5),
+                BodySpec::new(Vector([5.0, 0.0]), Vector([-1.0, 5.0]), 0.5),
+            ],
+            ..Scene::default()
+        };
+        scene.settings.gravity = Gravity::new(&[0.0, -10.0]);
+        let path = temp_file("arcs");
+        assert_eq!(record(&scene, 2.0, &path), 0);
+        let p = Playback::<2>::open(&path, &DENSE).unwrap();
+        let e = *p.extent();
+        // Ball 0 peaks at y = 5 at t = 1 (top of the ball 5.5) and is back at 0 at t = 2.
+        assert!((e.bounds.max[1] - 5.5).abs() < 1e-12, "{e:?}");
+        // Ball 1 ends lowest: y = 5·2 − 5·2² = −10.
+        assert!((e.bounds.min[1] + 10.5).abs() < 1e-12, "{e:?}");
+        // Speeds grow as they fall: ball 1 ends at √(1 + 15²).
+        assert!((e.max_speed - 226f64.sqrt()).abs() < 1e-12, "{e:?}");
+        let states = crate::states::BodyStates::from_scene(&scene);
+        for k in 0..=200 {
+            let t = 0.01 * f64::from(k);
+            for i in 0..2 {
+                let q = states.position_at(i, t);
+                for d in 0..2 {
+                    assert!(q[d] - 0.5 >= e.bounds.min[d] - 1e-12);
+                    assert!(q[d] + 0.5 <= e.bounds.max[d] + 1e-12);
+                }
+            }
+        }
+    }
+}

@@ -4,7 +4,9 @@ use ccdsim::narrow::Motion;
 use ccdsim::{Collision, EventKind, Scene, Vector};
 
 /// The stored state of every body (structure of arrays): body `i` is at `pos[i]` at time
-/// `time[i]` and moves with `vel[i]`, so its position at `t` is `pos + vel·(t − time)`.
+/// `time[i]` and moves with `vel[i]`, so its position at `t` is `pos + vel·(t − time)`, or,
+/// in a run with gravity `g`, `pos + vel·(t − time) + ½·g·(t − time)²` (its velocity then
+/// is `vel + g·(t − time)`).
 ///
 /// Replaying a run's collisions with [`BodyStates::apply`] reproduces the simulation's stored
 /// states bit for bit, since a run file records exactly the states a collision stored.
@@ -16,6 +18,9 @@ pub struct BodyStates<const D: usize> {
     pub vel: Vec<Vector<D>>,
     /// Reference times, seconds.
     pub time: Vec<f64>,
+    /// The acceleration of every body between events (the scene's `settings.gravity`), if
+    /// the run has gravity, metres per second squared.
+    pub gravity: Option<Vector<D>>,
 }
 
 impl<const D: usize> BodyStates<D> {
@@ -26,6 +31,7 @@ impl<const D: usize> BodyStates<D> {
             pos: scene.bodies.iter().map(|b| b.pos).collect(),
             vel: scene.bodies.iter().map(|b| b.vel).collect(),
             time: vec![scene.start_time; scene.bodies.len()],
+            gravity: scene.gravity(),
         }
     }
 
@@ -67,10 +73,24 @@ impl<const D: usize> BodyStates<D> {
         }
     }
 
-    /// Position of body `i` at time `t`, metres.
+    /// Position of body `i` at time `t`, metres: on its straight line, or on its parabola
+    /// in a run with gravity.
     #[must_use]
     pub fn position_at(&self, i: usize, t: f64) -> Vector<D> {
-        self.motion(i).at(t)
+        match &self.gravity {
+            Some(g) => self.motion(i).falling_at(t, g),
+            None => self.motion(i).at(t),
+        }
+    }
+
+    /// Velocity of body `i` at time `t`, metres per second: the stored one, or in a run with
+    /// gravity that plus `g·(t − time)`.
+    #[must_use]
+    pub fn velocity_at(&self, i: usize, t: f64) -> Vector<D> {
+        match &self.gravity {
+            Some(g) => self.motion(i).falling_velocity(t, g),
+            None => self.vel[i],
+        }
     }
 
     /// Heap bytes held, for the keyframe budget.

@@ -4,7 +4,7 @@
 //! | endpoint | layout |
 //! |---|---|
 //! | `/api/bodies` | `f64` radii (`n`), then `f64` ids (`n`) |
-//! | `/api/state` | `f64` header of [`STATE_HEADER`] values, then `f32` positions at the snapshot time (`n·D`), then `f32` velocities (`n·D`) |
+//! | `/api/state` | `f64` header of [`STATE_HEADER`] values, then `f32` positions at the snapshot time (`n·D`), then `f32` velocities at the snapshot time (`n·D`) |
 //! | `/api/events` | per event `4 + 4·D` `f64`s: `t`, kind (0 body, 1 wall, 2 thermostat reset), `a`, `b`, position and velocity of slot 0, then of slot 1 |
 //! | `/api/boxes` | per box `2 + 2·D` `f32`s: depth, leaf (0/1), min corner, max corner |
 
@@ -46,7 +46,8 @@ pub fn encode_bodies<const D: usize>(p: &Playback<D>) -> Vec<u8> {
     out
 }
 
-/// A snapshot: header, positions at its time, velocities.
+/// A snapshot: header, positions at its time, velocities at its time (under gravity the
+/// stored velocities hold only at each body's last event).
 #[must_use]
 pub fn encode_snapshot<const D: usize>(s: &Snapshot<D>) -> Vec<u8> {
     let n = s.states.len();
@@ -74,7 +75,8 @@ pub fn encode_snapshot<const D: usize>(s: &Snapshot<D>) -> Vec<u8> {
             put_f32(&mut out, p[k]);
         }
     }
-    for v in &s.states.vel {
+    for i in 0..n {
+        let v = s.states.velocity_at(i, s.time);
         for k in 0..D {
             put_f32(&mut out, v[k]);
         }
@@ -120,9 +122,10 @@ pub fn encode_boxes<const D: usize>(boxes: &[DebugBox<D>]) -> Vec<u8> {
 }
 
 /// The run's description as JSON: file, dimension, counts, times, walls, bounds, the
-/// largest speed, the keyframe interval, the finders that can draw boxes, and the growth of
+/// largest speed, the keyframe interval, the finders that can draw boxes, the growth of
 /// the radii (`{"rate", "origin"}`: radii at time `t` are `/api/bodies`'s times
-/// `1 + rate·(t − origin)`), or `null`.
+/// `1 + rate·(t − origin)`), or `null`, and the gravity (`[gx, gy(, gz)]`: a body at `p`
+/// with velocity `v` at time `t0` is at `p + v·dt + ½·g·dt²` at `t0 + dt`), or `null`.
 #[must_use]
 pub fn meta_json<const D: usize>(p: &Playback<D>, finder: &str) -> serde_json::Value {
     let e = p.extent();
@@ -145,5 +148,6 @@ pub fn meta_json<const D: usize>(p: &Playback<D>, finder: &str) -> serde_json::V
             "rate": g.rate,
             "origin": p.scene().start_time,
         })),
+        "gravity": p.scene().settings.gravity,
     })
 }

@@ -58,9 +58,26 @@ fn check<R: Read, const D: usize>(
             if let Some(warning) = reader.tail().warning() {
                 eprintln!("warning: {warning}");
             }
-            let drift = if report.kinetic_energy_start > 0.0 {
-                (report.kinetic_energy_end - report.kinetic_energy_start)
-                    / report.kinetic_energy_start
+            // Under gravity kinetic energy changes as bodies fall: the total is what is kept.
+            let gravity = reader.scene().settings.gravity.is_some();
+            let (label, start, end_energy, scale) = if gravity {
+                let scale = report.kinetic_energy_start.max(report.kinetic_energy_end);
+                (
+                    "kinetic + potential energy drift",
+                    report.energy_start(),
+                    report.energy_end(),
+                    scale,
+                )
+            } else {
+                (
+                    "kinetic energy drift",
+                    report.kinetic_energy_start,
+                    report.kinetic_energy_end,
+                    report.kinetic_energy_start,
+                )
+            };
+            let drift = if scale > 0.0 {
+                (end_energy - start) / scale
             } else {
                 0.0
             };
@@ -70,7 +87,7 @@ fn check<R: Read, const D: usize>(
                 String::new()
             };
             println!(
-                "OK {}: {} events ({} body-body, {} body-wall{resets}) up to t = {end}; largest overlap {:.2e}; kinetic energy drift {:.2e}",
+                "OK {}: {} events ({} body-body, {} body-wall{resets}) up to t = {end}; largest overlap {:.2e}; {label} {:.2e}",
                 reader.path(),
                 report.events,
                 report.body_collisions,

@@ -171,7 +171,7 @@ fn draw_bodies<const D: usize>(pm: &mut Pixmap, cam: &Camera, f: &FrameInput<'_,
         |i: usize| s.time[i] > start && s.time[i] <= t && t - s.time[i] <= f.flash_window;
     let bucket = |i: usize| match f.colour {
         ColourBy::Id => colour::id_bucket(f.scene.id_of(i)),
-        ColourBy::Speed => colour::speed_bucket(s.vel[i].norm(), f.max_speed),
+        ColourBy::Speed => colour::speed_bucket(s.velocity_at(i, t).norm(), f.max_speed),
     };
     let bucket_colour = |b: usize| match f.colour {
         ColourBy::Id => colour::id_colour(b),

@@ -73,7 +73,9 @@ impl<const D: usize> Frame<D> {
             ids: world.ids().to_vec(),
             positions: (0..n).map(|i| sim.position(i)).collect(),
             images: (0..n).map(|i| sim.image(i)).collect(),
-            velocities: world.velocities().collect(),
+            // At the frame's time: under gravity the stored velocities hold only at each
+            // body's reference time.
+            velocities: (0..n).map(|i| world.velocity_at(i, sim.time())).collect(),
             radii: (0..n).map(|i| world.radius_at(i, sim.time())).collect(),
             masses: world.masses().collect(),
         }
@@ -109,5 +111,38 @@ impl<const D: usize> Frame<D> {
                 u
             })
             .collect()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::gravity::Gravity;
+    use crate::scene::{BodySpec, Scene};
+
+    #[test]
+    fn frames_between_events_fall() {
+        // Two balls far apart in an open world: no event, so every frame is between events.
+        let mut scene = Scene::<2> {
+            bodies: vec![
+                BodySpec::new(Vector([0.0, 0.0]), Vector([1.0, 2.0]), 0.5),
+                BodySpec::new(Vector([10.0, 0.0]), Vector([0.0, 0.0]), 0.5),
+            ],
+            ..Scene::default()
+        };
+        scene.settings.gravity = Gravity::new(&[0.0, -4.0]);
+        let mut sim = Simulation::new(&scene, "all-pairs").unwrap();
+        assert!(sim.advance(1.5).is_empty());
+        let f = Frame::of(&sim);
+        assert_eq!(f.time, 1.5);
+        // x = p + v·t + ½·g·t², v(t) = v + g·t.
+        let want_p = [[1.5, 3.0 - 4.5], [10.0, -4.5]];
+        let want_v = [[1.0, 2.0 - 6.0], [0.0, -6.0]];
+        for i in 0..2 {
+            for d in 0..2 {
+                assert!((f.positions[i][d] - want_p[i][d]).abs() < 1e-12, "{f:?}");
+                assert!((f.velocities[i][d] - want_v[i][d]).abs() < 1e-12, "{f:?}");
+            }
+        }
     }
 }

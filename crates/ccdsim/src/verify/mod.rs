@@ -19,8 +19,18 @@
 //! search, and kinetic energy, which growth collisions add, is not checked: instead the
 //! impulse must lie along the line of centres (the wall's normal) and give the normal
 //! relative velocity the growth rule asks for, `u' = (1 + e)·σ̇ − e·u`.
+//!
+//! Under uniform gravity ([`crate::gravity`]) bodies follow parabolas between events: the
+//! expected positions are the falling ones and velocities just before an event are the stored
+//! ones plus `g` times the time since. Two bodies share the acceleration, so a pair's relative
+//! motion stays linear and the pair checks run on positions and velocities taken at the start
+//! of each stretch; the closest approach to a wall follows the parabola (see [`falling`]).
+//! Kinetic energy is not conserved between events, so an elastic collision must conserve the
+//! kinetic energy of the pair (of the body, at a wall) at the contact time, and the report
+//! carries the potential energy as well.
 
 mod closest;
+mod falling;
 mod proximity;
 
 use crate::event::EventKind;
@@ -33,6 +43,7 @@ use crate::sim::Collision;
 use crate::thermostat::ResetClock;
 use crate::wall::{wall_clearance, Wall};
 use closest::{closest_approach, closest_approach_growing, closest_to_wall};
+use falling::closest_to_wall_falling;
 use proximity::Proximity;
 
 /// Allowed overlap relative to the contact distance.
@@ -67,8 +78,29 @@ pub struct VerifyReport {
     pub max_overlap: f64,
     /// Kinetic energy at the start, joules.
     pub kinetic_energy_start: f64,
-    /// Kinetic energy at the end, joules.
+    /// Kinetic energy at the end, joules (under gravity, of the velocities at the end time).
     pub kinetic_energy_end: f64,
+    /// Potential energy in the gravity field at the start, joules: `−Σ m·g·x` (zero at the
+    /// origin, and zero without gravity). Kinetic plus potential energy is what elastic
+    /// collisions conserve under gravity.
+    pub potential_energy_start: f64,
+    /// Potential energy in the gravity field at the end, joules (see
+    /// [`VerifyReport::potential_energy_start`]).
+    pub potential_energy_end: f64,
+}
+
+impl VerifyReport {
+    /// Kinetic plus potential energy at the start, joules.
+    #[must_use]
+    pub fn energy_start(&self) -> f64 {
+        self.kinetic_energy_start + self.potential_energy_start
+    }
+
+    /// Kinetic plus potential energy at the end, joules.
+    #[must_use]
+    pub fn energy_end(&self) -> f64 {
+        self.kinetic_energy_end + self.potential_energy_end
+    }
 }
 
 /// Replays a run event by event, checking each.
@@ -89,6 +121,8 @@ pub struct Verifier<const D: usize> {
     slab: f64,
     /// Growing radii, if the scene has them (origin: its start time).
     growth: Option<GrowthLaw>,
+    /// The acceleration of every body, if the scene has gravity.
+    gravity: Option<Vector<D>>,
 }
 
 impl<const D: usize> Verifier<D> {
@@ -115,15 +149,13 @@ impl<const D: usize> Verifier<D> {
             rate: g.rate,
             origin: scene.start_time,
         });
+        let gravity = scene.gravity();
         let r_max = radius.iter().fold(0.0f64, |m, &r| m.max(r));
         let mean_speed =
             motion.iter().map(|m| m.vel.norm()).sum::<f64>() / motion.len().max(1) as f64;
-        let slab = if mean_speed > 0.0 {
-            2.0 * r_max / mean_speed
-        } else {
-            f64::INFINITY
-        };
-        let mut grid = Proximity::new(&radius, scene.periodic, scene.start_time);
+        let slab = slab_length(r_max, mean_speed, gravity).unwrap_or(f64::INFINITY);
+        let pe = potential_energy(&motion, &mass, gravity, scene.start_time);
+        let mut grid = Proximity::new(&radius, scene.periodic, gravity, scene.start_time);
         grid.start_slab(scene.start_time, scene.start_time + slab);
         let grown = growth.map_or(1.0, |g| g.scale(grid.end));
         for (i, m) in motion.iter().enumerate() {
@@ -131,6 +163,7 @@ impl<const D: usize> Verifier<D> {
         }
         Verifier {
             growth,
+            gravity,
             grid: Some(grid),
             slab,
             motion,
@@ -147,6 +180,8 @@ impl<const D: usize> Verifier<D> {
             report: VerifyReport {
                 kinetic_energy_start: ke,
                 kinetic_energy_end: ke,
+                potential_energy_start: pe,
+                potential_energy_end: pe,
                 ..Default::default()
             },
         }
@@ -195,9 +230,10 @@ impl<const D: usize> Verifier<D> {
         let k = c.body_count();
         let ids = [c.event.a as usize, c.event.b as usize];
         for (s, &i) in ids[..k].iter().enumerate() {
-            let expect = self.motion[i].at(t);
-            let scale =
-                1.0 + expect.norm() + self.motion[i].vel.norm() * (t - self.motion[i].time).abs();
+            let expect = self.pos_at(&self.motion[i], t);
+            let dt = (t - self.motion[i].time).abs();
+            let fall = self.gravity.map_or(0.0, |g| 0.5 * g.norm() * dt * dt);
+            let scale = 1.0 + expect.norm() + self.motion[i].vel.norm() * dt + fall;
             if self.image(c.pos[s] - expect).norm() > 1e-9 * scale {
                 return Err(self.fail(
                     t,
@@ -251,7 +287,11 @@ impl<const D: usize> Verifier<D> {
         }
         self.report.max_overlap = self.report.max_overlap.max(-gap);
         let (mi, mj) = (self.mass[i], self.mass[j]);
-        let (vi, vj) = (self.motion[i].vel, self.motion[j].vel);
+        // Just before the collision: under gravity the stored velocities have changed since.
+        let (vi, vj) = (
+            self.vel_at(&self.motion[i], t),
+            self.vel_at(&self.motion[j], t),
+        );
         let p0 = vi * mi + vj * mj;
         let p1 = c.vel[0] * mi + c.vel[1] * mj;
         let scale = (vi * mi).norm() + (vj * mj).norm() + f64::MIN_POSITIVE;
@@ -303,7 +343,7 @@ impl<const D: usize> Verifier<D> {
                 ),
             ));
         }
-        let e0 = 0.5 * mass * self.motion[i].vel.norm_sq();
+        let e0 = 0.5 * mass * self.vel_at(&self.motion[i], t).norm_sq();
         let e1 = 0.5 * mass * c.vel[0].norm_sq();
         self.report.resets += 1;
         self.report.kinetic_energy_end += e1 - e0;
@@ -325,12 +365,13 @@ impl<const D: usize> Verifier<D> {
         }
         self.report.max_overlap = self.report.max_overlap.max(-gap);
         let m = self.mass[i];
-        let e0 = 0.5 * m * self.motion[i].vel.norm_sq();
+        let before = self.vel_at(&self.motion[i], t);
+        let e0 = 0.5 * m * before.norm_sq();
         let e1 = 0.5 * m * c.vel[0].norm_sq();
         match (self.growth, wall_normal(&self.walls[w], c.pos[0])) {
             (Some(law), Some(n)) => {
                 let grow = law.speed(self.radius[i]);
-                let (v0, v1) = (self.motion[i].vel, c.vel[0]);
+                let (v0, v1) = (before, c.vel[0]);
                 self.check_growth_rule(t, n, v0, v1, grow, &format!("body {i} at wall {w}"))?;
             }
             (Some(_), None) => {}
@@ -422,8 +463,16 @@ impl<const D: usize> Verifier<D> {
             return None;
         }
         let grow = self.growth_speed(i) + self.growth_speed(j);
-        // `d` is the distance less what the contact distance grew by since `t0`.
-        let (d, at) = self.approach(mi.at(t0), mi.vel, mj.at(t0), mj.vel, t1 - t0, grow);
+        // `d` is the distance less what the contact distance grew by since `t0`. Under
+        // gravity the relative motion is linear from the states at `t0`.
+        let (d, at) = self.approach(
+            self.pos_at(&mi, t0),
+            self.vel_at(&mi, t0),
+            self.pos_at(&mj, t0),
+            self.vel_at(&mj, t0),
+            t1 - t0,
+            grow,
+        );
         let sigma_at = self.radius_at(i, t0 + at) + self.radius_at(j, t0 + at);
         Some(((sigma0 - d) / sigma_at, t0 + at))
     }
@@ -432,7 +481,10 @@ impl<const D: usize> Verifier<D> {
     /// reference time to `t`, and when.
     fn wall_overlap(&self, i: usize, w: usize, t: f64) -> (f64, f64) {
         let mi = self.motion[i];
-        let (d, at) = closest_to_wall(&self.walls[w], &mi, t, self.growth_speed(i));
+        let (d, at) = match &self.gravity {
+            Some(g) => closest_to_wall_falling(&self.walls[w], &mi, t, g),
+            None => closest_to_wall(&self.walls[w], &mi, t, self.growth_speed(i)),
+        };
         let r0 = self.radius_at(i, mi.time);
         (((r0 - d) / self.radius_at(i, at)), at)
     }
@@ -493,8 +545,10 @@ impl<const D: usize> Verifier<D> {
             .motion
             .iter()
             .zip(&self.mass)
-            .map(|(m, ms)| 0.5 * ms * m.vel.norm_sq())
+            .map(|(m, ms)| 0.5 * ms * self.vel_at(m, end).norm_sq())
             .sum();
+        self.report.potential_energy_end =
+            potential_energy(&self.motion, &self.mass, self.gravity, end);
         Ok(self.report)
     }
 
@@ -578,11 +632,15 @@ impl<const D: usize> Verifier<D> {
             return Ok(());
         }
         self.check_pairs_until(end, "")?;
-        let mean_speed =
-            self.motion.iter().map(|m| m.vel.norm()).sum::<f64>() / self.motion.len().max(1) as f64;
+        let mean_speed = self
+            .motion
+            .iter()
+            .map(|m| self.vel_at(m, end).norm())
+            .sum::<f64>()
+            / self.motion.len().max(1) as f64;
         let r_max = self.radius.iter().fold(0.0f64, |m, &r| m.max(r));
-        if mean_speed > 0.0 {
-            self.slab = 2.0 * r_max / mean_speed;
+        if let Some(slab) = slab_length(r_max, mean_speed, self.gravity) {
+            self.slab = slab;
         }
         let next_end = (end + self.slab).max(t);
         let grown = self.growth.map_or(1.0, |g| g.scale(next_end));
@@ -619,9 +677,28 @@ impl<const D: usize> Verifier<D> {
     /// image-by-image search; it never skips a pair that comes close (the distance to any
     /// image changes no faster than the relative speed).
     fn stay_apart(&self, mi: &Motion<D>, mj: &Motion<D>, t0: f64, t1: f64, sigma: f64) -> bool {
-        let d0 = self.image(mj.at(t0) - mi.at(t0)).norm();
-        let travel = (mj.vel - mi.vel).norm() * (t1 - t0).max(0.0);
+        let d0 = self.image(self.pos_at(mj, t0) - self.pos_at(mi, t0)).norm();
+        // Under gravity the relative velocity is the same at all times.
+        let dv = self.vel_at(mj, t0) - self.vel_at(mi, t0);
+        let travel = dv.norm() * (t1 - t0).max(0.0);
         d0 - travel > sigma * (1.0 + 1e-6)
+    }
+
+    /// Position at `t` of a body moving as `m`: along a straight line, or falling.
+    fn pos_at(&self, m: &Motion<D>, t: f64) -> Vector<D> {
+        match &self.gravity {
+            Some(g) => m.falling_at(t, g),
+            None => m.at(t),
+        }
+    }
+
+    /// Velocity at `t` of a body moving as `m`: the stored one, or under gravity that plus
+    /// `g` times the time since its reference time.
+    fn vel_at(&self, m: &Motion<D>, t: f64) -> Vector<D> {
+        match &self.gravity {
+            Some(g) => m.falling_velocity(t, g),
+            None => m.vel,
+        }
     }
 
     /// The displacement `dp` itself, or its nearest image in a periodic scene.
@@ -681,4 +758,36 @@ impl<const D: usize> Verifier<D> {
         }
         best
     }
+}
+
+/// The length of a slab of the proximity grid, seconds: the time a body at the mean speed
+/// takes to cross `2 r_max`, about a cell, falling under `gravity` if the scene has it
+/// (`speed·τ + ½|g|·τ² = 2 r_max`); `None` when nothing moves or falls.
+fn slab_length<const D: usize>(r_max: f64, speed: f64, gravity: Option<Vector<D>>) -> Option<f64> {
+    let reach = 2.0 * r_max;
+    let g = gravity.map_or(0.0, |g| g.norm());
+    if g > 0.0 {
+        // The positive root of ½g·τ² + speed·τ − reach, in the cancellation-free form.
+        let tau = 2.0 * reach / (speed + (speed * speed + 2.0 * g * reach).sqrt());
+        return (tau > 0.0 && tau.is_finite()).then_some(tau);
+    }
+    (speed > 0.0).then(|| reach / speed)
+}
+
+/// Potential energy at `t` of bodies moving as `motion` in the gravity field, joules:
+/// `−Σ m·g·x(t)`; zero without gravity.
+fn potential_energy<const D: usize>(
+    motion: &[Motion<D>],
+    mass: &[f64],
+    gravity: Option<Vector<D>>,
+    t: f64,
+) -> f64 {
+    let Some(g) = gravity else {
+        return 0.0;
+    };
+    motion
+        .iter()
+        .zip(mass)
+        .map(|(m, ms)| -ms * g.dot(m.falling_at(t, &g)))
+        .sum()
 }

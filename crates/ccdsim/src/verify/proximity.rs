@@ -15,6 +15,10 @@
 //! their motions is checked exactly once, by the closed-form closest approach, for every
 //! pair whose boxes overlap, and pairs whose boxes never overlap were never close.
 //!
+//! Under gravity a body's path in a slab is a parabola: along each axis its coordinate is
+//! extreme at the ends of its stretch or at the vertex, so the box of those (up to three)
+//! points holds the whole arc, and the argument above stands.
+//!
 //! In a periodic box the cells tile the box and their indices wrap around, so a body is
 //! filed in the cells of every image its box reaches (a box as long as the box covers all).
 //! A body whose box would cover more than [`WIDE_CELLS`] cells (a fast body in a long slab)
@@ -53,12 +57,19 @@ pub(super) struct Proximity<const D: usize> {
     pub(super) start: f64,
     /// End of the current slab, seconds.
     pub(super) end: f64,
+    /// The acceleration of every body, if the world has gravity.
+    gravity: Option<Vector<D>>,
 }
 
 impl<const D: usize> Proximity<D> {
     /// A grid with cells of `2 · r_max` (at least), for a world whose periodic box, if any,
-    /// is `period`; no body filed yet.
-    pub(super) fn new(radii: &[f64], period: Option<Vector<D>>, start: f64) -> Self {
+    /// is `period`, and whose bodies fall under `gravity`, if any; no body filed yet.
+    pub(super) fn new(
+        radii: &[f64],
+        period: Option<Vector<D>>,
+        gravity: Option<Vector<D>>,
+        start: f64,
+    ) -> Self {
         let r_max = radii.iter().fold(0.0f64, |m, &r| m.max(r));
         let side = (2.0 * r_max).max(f64::MIN_POSITIVE);
         let mut cell = [side; D];
@@ -86,6 +97,7 @@ impl<const D: usize> Proximity<D> {
             is_wide: vec![false; radii.len()],
             start,
             end: start,
+            gravity,
         }
     }
 
@@ -141,14 +153,41 @@ impl<const D: usize> Proximity<D> {
     /// replacing where it was filed.
     pub(super) fn file(&mut self, i: usize, m: &Motion<D>, r: f64, from: f64) {
         self.unfile(i);
-        let (a, b) = (m.at(from), m.at(self.end.max(from)));
-        // Grown by the radius and a hair for the rounding of positions.
-        let mut lo = a;
-        let mut hi = a;
+        let end = self.end.max(from);
+        let (a, b, lo, hi) = match &self.gravity {
+            None => {
+                let (a, b) = (m.at(from), m.at(end));
+                (a, b, a.min(b), a.max(b))
+            }
+            Some(g) => {
+                let (a, b) = (m.falling_at(from, g), m.falling_at(end, g));
+                let (mut lo, mut hi) = (a.min(b), a.max(b));
+                for d in 0..D {
+                    if g[d] != 0.0 {
+                        let vertex = m.time - m.vel[d] / g[d];
+                        if vertex > from && vertex < end {
+                            let x = m.falling_at(vertex, g)[d];
+                            lo[d] = lo[d].min(x);
+                            hi[d] = hi[d].max(x);
+                        }
+                    }
+                }
+                (a, b, lo, hi)
+            }
+        };
+        // Grown by the radius and a hair for the rounding of positions (of their terms,
+        // under gravity, which may be much larger than the positions they add up to).
+        let dt = (end - m.time).abs().max((from - m.time).abs());
+        let (mut lo, mut hi) = (lo, hi);
         for d in 0..D {
-            let grow = r * (1.0 + 1e-6) + 1e-12 * (a[d].abs() + b[d].abs());
-            lo[d] = a[d].min(b[d]) - grow;
-            hi[d] = a[d].max(b[d]) + grow;
+            let terms = a[d].abs()
+                + b[d].abs()
+                + self
+                    .gravity
+                    .map_or(0.0, |g| (m.vel[d].abs() + g[d].abs() * dt) * dt);
+            let grow = r * (1.0 + 1e-6) + 1e-12 * terms;
+            lo[d] -= grow;
+            hi[d] += grow;
         }
         let f = self.range(lo, hi);
         let count = (0..D).fold(1i64, |c, d| c.saturating_mul(f.hi[d] - f.lo[d] + 1));
