@@ -273,7 +273,7 @@
   }
 
   function position(i, t, out) {
-    const D = S.D, dt = t - S.T0[i], G = S.G;
+    const D = S.D, dt = t - S.T0[i], G = S.kinematic.has(i) ? null : S.G;
     for (let k = 0; k < D; k++) out[k] = S.P[i * D + k] + S.V[i * D + k] * dt;
     if (G) for (let k = 0; k < D; k++) out[k] += 0.5 * G[k] * dt * dt;
     return out;
@@ -282,7 +282,7 @@
   // Body i's colour word at time t (its speed changes between events under gravity).
   function bodyWord(i, t) {
     if (S.colour === 'speed') {
-      const D = S.D, G = S.G, dt = t - S.T0[i];
+      const D = S.D, G = S.kinematic.has(i) ? null : S.G, dt = t - S.T0[i];
       let v2 = 0;
       for (let k = 0; k < D; k++) v2 += (S.V[i * D + k] + (G ? G[k] * dt : 0)) ** 2;
       return Raster.SPEED_WORDS[Raster.speedBucket(Math.sqrt(v2), S.meta.max_speed)];
@@ -572,6 +572,8 @@
       S.n = meta.bodies;
       S.stride = 4 + 4 * meta.dim;
       S.G = meta.gravity || null;
+      // Kinematic bodies (by index) move in straight lines: gravity does not move them.
+      S.kinematic = new Set(meta.kinematic || []);
       const bodies = new Float64Array(await bin('/api/bodies'));
       S.radius = bodies.subarray(0, S.n);
       S.ids = bodies.subarray(S.n, 2 * S.n);

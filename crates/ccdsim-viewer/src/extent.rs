@@ -24,6 +24,8 @@ pub(crate) struct ExtentBuilder<const D: usize> {
     radius: Vec<f64>,
     extent: Extent<D>,
     gravity: Option<Vector<D>>,
+    /// Which bodies are kinematic (they do not fall).
+    kinematic: Vec<bool>,
 }
 
 impl<const D: usize> ExtentBuilder<D> {
@@ -41,6 +43,7 @@ impl<const D: usize> ExtentBuilder<D> {
             radius: scene.bodies.iter().map(|b| b.radius).collect(),
             extent,
             gravity: scene.gravity(),
+            kinematic: scene.bodies.iter().map(|b| b.kinematic).collect(),
         }
     }
 
@@ -48,7 +51,7 @@ impl<const D: usize> ExtentBuilder<D> {
     /// the vertex of the parabola on each axis where it lies in between, and its speed at
     /// `t`. The ends of the arc are taken in elsewhere.
     fn add_arc(&mut self, i: usize, m: &Motion<D>, t: f64) {
-        let Some(g) = self.gravity else {
+        let Some(g) = self.gravity.filter(|_| !self.kinematic[i]) else {
             return;
         };
         let r = self.radius[i];

@@ -21,6 +21,8 @@ pub struct BodyStates<const D: usize> {
     /// The acceleration of every body between events (the scene's `settings.gravity`), if
     /// the run has gravity, metres per second squared.
     pub gravity: Option<Vector<D>>,
+    /// Which bodies are kinematic, by index (they move in straight lines even under gravity).
+    pub kinematic: Vec<bool>,
 }
 
 impl<const D: usize> BodyStates<D> {
@@ -32,6 +34,7 @@ impl<const D: usize> BodyStates<D> {
             vel: scene.bodies.iter().map(|b| b.vel).collect(),
             time: vec![scene.start_time; scene.bodies.len()],
             gravity: scene.gravity(),
+            kinematic: scene.bodies.iter().map(|b| b.kinematic).collect(),
         }
     }
 
@@ -78,8 +81,8 @@ impl<const D: usize> BodyStates<D> {
     #[must_use]
     pub fn position_at(&self, i: usize, t: f64) -> Vector<D> {
         match &self.gravity {
-            Some(g) => self.motion(i).falling_at(t, g),
-            None => self.motion(i).at(t),
+            Some(g) if !self.kinematic[i] => self.motion(i).falling_at(t, g),
+            _ => self.motion(i).at(t),
         }
     }
 
@@ -88,8 +91,8 @@ impl<const D: usize> BodyStates<D> {
     #[must_use]
     pub fn velocity_at(&self, i: usize, t: f64) -> Vector<D> {
         match &self.gravity {
-            Some(g) => self.motion(i).falling_velocity(t, g),
-            None => self.vel[i],
+            Some(g) if !self.kinematic[i] => self.motion(i).falling_velocity(t, g),
+            _ => self.vel[i],
         }
     }
 

@@ -149,5 +149,13 @@ pub fn meta_json<const D: usize>(p: &Playback<D>, finder: &str) -> serde_json::V
             "origin": p.scene().start_time,
         })),
         "gravity": p.scene().settings.gravity,
+        "kinematic": p
+            .scene()
+            .bodies
+            .iter()
+            .enumerate()
+            .filter(|(_, b)| b.kinematic)
+            .map(|(i, _)| i)
+            .collect::<Vec<_>>(),
     })
 }

@@ -125,7 +125,8 @@ impl ResolutionGuard {
     /// worlds get no fast path.
     pub(crate) fn new<const D: usize>(world: &World<D>) -> Self {
         // Under gravity kinetic energy grows as bodies fall: no speed bound, no fast path.
-        let coordinate_bound = if world.gravity().is_some() {
+        // Kinematic bodies go as fast as they are told, and push others faster.
+        let coordinate_bound = if world.gravity().is_some() || world.has_kinematic() {
             None
         } else if let Some(size) = world.periodic() {
             Some(2.0 * size.0.iter().fold(0.0f64, |m, &l| m.max(l)))

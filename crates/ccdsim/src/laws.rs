@@ -13,8 +13,12 @@ use crate::growth::GrowthLaw;
 pub struct Laws<const D: usize> {
     /// Growing radii, if they grow.
     pub growth: Option<GrowthLaw>,
-    /// The acceleration of every body, metres per second squared, if there is gravity.
+    /// The acceleration of every dynamic body, metres per second squared, if there is
+    /// gravity (kinematic bodies do not fall).
     pub gravity: Option<Vector<D>>,
+    /// True when the world has kinematic bodies (infinite mass, see
+    /// [`crate::BodySpec::kinematic`]): pairs of them, and their pairs with walls, never meet.
+    pub kinematic: bool,
 }
 
 impl<const D: usize> Laws<D> {
@@ -22,12 +26,13 @@ impl<const D: usize> Laws<D> {
     pub const NONE: Laws<D> = Laws {
         growth: None,
         gravity: None,
+        kinematic: false,
     };
 
     /// `Some(self)` when any law is in force, `None` otherwise: what the dispatchers take.
     #[must_use]
     #[inline]
     pub fn in_force(&self) -> Option<&Self> {
-        (self.growth.is_some() || self.gravity.is_some()).then_some(self)
+        (self.growth.is_some() || self.gravity.is_some() || self.kinematic).then_some(self)
     }
 }

@@ -9,6 +9,7 @@ use crate::gravity::{toi_circle_circle_falling, toi_circle_wall_falling};
 use crate::growth::{toi_circle_circle_growing, toi_circle_wall_growing};
 use crate::laws::Laws;
 use crate::wall::Wall;
+use crate::world::Body;
 
 /// A body's stored linear motion: at time `time` it is at `pos`, moving with `vel`.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -285,6 +286,62 @@ fn toi_pair_under<const D: usize>(
         (Some(g), _) => toi_circle_circle_falling(a, ra, b, rb, shift, g),
         (None, Some(law)) => toi_circle_circle_growing(a, ra, b, rb, shift, law),
         (None, None) => toi_circle_circle_shifted(a, ra, b, rb, shift),
+    }
+}
+
+/// Time of impact of two bodies (records `a` and `b`, lower index first) as every finder of
+/// an open world evaluates it: [`toi_pair`], except in a world with kinematic bodies, where
+/// two kinematic bodies never meet and a kinematic body, which gravity does not move, meets
+/// a falling one at the first root of the quartic of their relative motion
+/// ([`crate::gravity::toi_circle_circle_accelerating`]).
+#[must_use]
+#[inline(always)]
+pub fn toi_pair_bodies<const D: usize>(
+    a: &Body<D>,
+    b: &Body<D>,
+    laws: Option<&Laws<D>>,
+) -> Option<f64> {
+    match laws {
+        Some(l) if l.kinematic => toi_kinematic_pair(a, b, l),
+        _ => toi_pair(&a.motion, a.radius, &b.motion, b.radius, laws),
+    }
+}
+
+/// [`toi_pair_bodies`] in a world with kinematic bodies (out of line: such worlds are rare).
+#[inline(never)]
+fn toi_kinematic_pair<const D: usize>(a: &Body<D>, b: &Body<D>, laws: &Laws<D>) -> Option<f64> {
+    let (ka, kb) = (a.is_kinematic(), b.is_kinematic());
+    if ka && kb {
+        return None;
+    }
+    match &laws.gravity {
+        Some(g) if ka || kb => {
+            let acc = |k: bool| if k { Vector::ZERO } else { *g };
+            crate::gravity::toi_circle_circle_accelerating(
+                &a.motion,
+                a.radius,
+                &acc(ka),
+                &b.motion,
+                b.radius,
+                &acc(kb),
+            )
+        }
+        _ => toi_pair(&a.motion, a.radius, &b.motion, b.radius, Some(laws)),
+    }
+}
+
+/// Time of impact of a body (record `b`) with a wall as every finder evaluates it:
+/// [`toi_body_wall`], except that kinematic bodies meet no wall.
+#[must_use]
+#[inline]
+pub fn toi_body_wall_of<const D: usize>(
+    b: &Body<D>,
+    wall: &Wall<D>,
+    laws: Option<&Laws<D>>,
+) -> Option<f64> {
+    match laws {
+        Some(l) if l.kinematic && b.is_kinematic() => None,
+        _ => toi_body_wall(&b.motion, b.radius, wall, laws),
     }
 }
 

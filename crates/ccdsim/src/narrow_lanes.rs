@@ -624,6 +624,7 @@ mod tests {
             let laws = Laws {
                 growth: Some(law),
                 gravity: None,
+                kinematic: false,
             };
             let p: [PairArgs<'_, D>; LANES] = std::array::from_fn(|k| {
                 let (x, y) = pattern[k];

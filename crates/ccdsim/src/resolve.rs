@@ -34,14 +34,22 @@ pub fn resolve_body_body_contact<const D: usize>(
     let (a, b) = (world.motion(i), world.motion(j));
     let (pi, pj, vi, vj) = match world.gravity() {
         None => (a.at(t), b.at(t), a.vel, b.vel),
-        Some(g) => (
-            a.falling_at(t, &g),
-            b.falling_at(t, &g),
-            a.falling_velocity(t, &g),
-            b.falling_velocity(t, &g),
+        Some(_) => (
+            world.position_at(i, t),
+            world.position_at(j, t),
+            world.velocity_at(i, t),
+            world.velocity_at(j, t),
         ),
     };
+    // Each body's share of the velocity change: `m_j/(m_i + m_j)` and `m_i/(m_i + m_j)`, or,
+    // against a kinematic body (infinite mass), all of it for the other (∞/∞ is no number).
     let (mi, mj) = (world.mass(i), world.mass(j));
+    let (share_i, share_j) = match (mi == f64::INFINITY, mj == f64::INFINITY) {
+        (false, false) => (mj / (mi + mj), mi / (mi + mj)),
+        (false, true) => (1.0, 0.0),
+        (true, false) => (0.0, 1.0),
+        (true, true) => (0.0, 0.0),
+    };
     let d = match world.periodic() {
         Some(size) => min_image(pj - pi, &size),
         None => pj - pi,
@@ -59,8 +67,8 @@ pub fn resolve_body_body_contact<const D: usize>(
             let vn = (vj - vi).dot(n);
             if vn < grow {
                 let k = (1.0 + e) * (vn - grow);
-                vi2 = vi + n * (k * (mj / (mi + mj)));
-                vj2 = vj - n * (k * (mi / (mi + mj)));
+                vi2 = vi + n * (k * share_i);
+                vj2 = vj - n * (k * share_j);
             }
         }
     } else if dist > 0.0 {
@@ -70,8 +78,8 @@ pub fn resolve_body_body_contact<const D: usize>(
             // Velocity changes J/mi and J/mj with J = −(1+e)·vn·mi·mj/(mi+mj), written as mass
             // fractions so that equal masses exchange normal velocities exactly (m/2m = 0.5).
             let k = (1.0 + e) * vn;
-            vi2 = vi + n * (k * (mj / (mi + mj)));
-            vj2 = vj - n * (k * (mi / (mi + mj)));
+            vi2 = vi + n * (k * share_i);
+            vj2 = vj - n * (k * share_j);
         }
     }
     world.set_state(i, pi, vi2, t);
@@ -140,6 +148,7 @@ mod tests {
             radius: 0.5,
             mass: None,
             restitution: None,
+            kinematic: false,
         }
     }
 

@@ -34,6 +34,11 @@ pub struct BodySpec<const D: usize> {
     /// body and a wall with the body's.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub restitution: Option<f64>,
+    /// A kinematic body: infinite mass, moved only by its velocity (which a program sets, say
+    /// every frame), never by collisions or gravity. It collides with ordinary (dynamic)
+    /// bodies, not with walls or other kinematic bodies.
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub kinematic: bool,
 }
 
 impl<const D: usize> BodySpec<D> {
@@ -47,12 +52,17 @@ impl<const D: usize> BodySpec<D> {
             radius,
             mass: None,
             restitution: None,
+            kinematic: false,
         }
     }
 
-    /// The mass to simulate with: the given one, or unit density.
+    /// The mass to simulate with: infinite for a kinematic body, else the given one, or unit
+    /// density.
     #[must_use]
     pub fn effective_mass(&self) -> f64 {
+        if self.kinematic {
+            return f64::INFINITY;
+        }
         self.mass.unwrap_or_else(|| ball_volume::<D>(self.radius))
     }
 }
@@ -385,6 +395,27 @@ impl<const D: usize> Scene<D> {
                             .into(),
                     });
                 }
+            }
+            if b.kinematic {
+                let refuse = |why: &str| {
+                    Err(SceneError::Unsupported {
+                        field: f("kinematic"),
+                        why: why.into(),
+                    })
+                };
+                if b.mass.is_some() {
+                    return refuse("a kinematic body has infinite mass: drop its `mass`");
+                }
+                if self.periodic.is_some() {
+                    return refuse("kinematic bodies are not supported in a periodic box yet");
+                }
+                if self.settings.growth.is_some() || self.settings.thermostat.is_some() {
+                    return refuse(
+                        "kinematic bodies cannot be combined with settings.growth or \
+                         settings.thermostat",
+                    );
+                }
+                continue;
             }
             let m = b.effective_mass();
             if !m.is_finite() {

@@ -567,9 +567,13 @@ impl<const D: usize> Simulation<D> {
         }
         // The kinetic energy may grow: the guard's speed bound with it.
         let t = self.world.now();
-        let added =
-            0.5 * self.world.mass(i) * (vel.norm_sq() - self.world.velocity_at(i, t).norm_sq());
-        self.guard.add_energy(added);
+        if !self.world.is_kinematic(i) {
+            // (A kinematic body's infinite mass would make this ∞ − ∞; worlds with one have
+            // no fast path to bound anyway.)
+            let added =
+                0.5 * self.world.mass(i) * (vel.norm_sq() - self.world.velocity_at(i, t).norm_sq());
+            self.guard.add_energy(added);
+        }
         let image = self.image(i);
         let p = self.position(i);
         self.world.set_state(i, p, vel, t);

@@ -106,6 +106,7 @@ impl<const D: usize> World<D> {
                     origin: scene.start_time,
                 }),
                 gravity: scene.gravity(),
+                kinematic: scene.bodies.iter().any(|b| b.kinematic),
             },
             now: scene.start_time,
         })
@@ -146,9 +147,31 @@ impl<const D: usize> World<D> {
     #[inline]
     pub fn position_at(&self, i: usize, t: f64) -> Vector<D> {
         match &self.laws.gravity {
-            None => self.motion(i).at(t),
-            Some(g) => self.motion(i).falling_at(t, g),
+            Some(g) if !self.bodies[i].is_kinematic() => self.motion(i).falling_at(t, g),
+            _ => self.motion(i).at(t),
         }
+    }
+
+    /// The acceleration of body `i` between events, m/s²: the world's gravity, or `None`
+    /// without gravity or for a kinematic body (which moves in a straight line).
+    #[must_use]
+    #[inline]
+    pub fn gravity_of(&self, i: usize) -> Option<Vector<D>> {
+        self.laws.gravity.filter(|_| !self.bodies[i].is_kinematic())
+    }
+
+    /// True for a kinematic body (infinite mass, see [`crate::BodySpec::kinematic`]).
+    #[must_use]
+    #[inline]
+    pub fn is_kinematic(&self, i: usize) -> bool {
+        self.bodies[i].is_kinematic()
+    }
+
+    /// True when the world has kinematic bodies.
+    #[must_use]
+    #[inline]
+    pub fn has_kinematic(&self) -> bool {
+        self.laws.kinematic
     }
 
     /// Velocity of body `i` at time `t`, metres per second: its stored velocity, or under
@@ -157,8 +180,10 @@ impl<const D: usize> World<D> {
     #[inline]
     pub fn velocity_at(&self, i: usize, t: f64) -> Vector<D> {
         match &self.laws.gravity {
-            None => self.bodies[i].motion.vel,
-            Some(g) => self.bodies[i].motion.falling_velocity(t, g),
+            Some(g) if !self.bodies[i].is_kinematic() => {
+                self.bodies[i].motion.falling_velocity(t, g)
+            }
+            _ => self.bodies[i].motion.vel,
         }
     }
 
@@ -422,11 +447,13 @@ impl<const D: usize> World<D> {
     }
 
     /// Total kinetic energy of the stored velocities, joules (under gravity each at its
-    /// body's reference time; see [`World::kinetic_energy_at`]).
+    /// body's reference time; see [`World::kinetic_energy_at`]). Kinematic bodies, of
+    /// infinite mass, are left out.
     #[must_use]
     pub fn kinetic_energy(&self) -> f64 {
         self.bodies
             .iter()
+            .filter(|b| !b.is_kinematic())
             .map(|b| 0.5 * b.mass * b.motion.vel.norm_sq())
             .sum()
     }
@@ -438,6 +465,7 @@ impl<const D: usize> World<D> {
             return self.kinetic_energy();
         }
         (0..self.len())
+            .filter(|&i| !self.is_kinematic(i))
             .map(|i| 0.5 * self.mass(i) * self.velocity_at(i, t).norm_sq())
             .sum()
     }
@@ -451,15 +479,27 @@ impl<const D: usize> World<D> {
             return 0.0;
         };
         (0..self.len())
+            .filter(|&i| !self.is_kinematic(i))
             .map(|i| -self.mass(i) * g.dot(self.position_at(i, t)))
             .sum()
     }
 
-    /// Total momentum, kg·m/s.
+    /// Total momentum of the dynamic bodies, kg·m/s (kinematic ones, of infinite mass, are
+    /// left out).
     #[must_use]
     pub fn momentum(&self) -> Vector<D> {
         self.bodies
             .iter()
+            .filter(|b| !b.is_kinematic())
             .fold(Vector::ZERO, |acc, b| acc + b.motion.vel * b.mass)
+    }
+}
+
+impl<const D: usize> Body<D> {
+    /// True for a kinematic body: infinite mass (see [`crate::BodySpec::kinematic`]).
+    #[must_use]
+    #[inline]
+    pub fn is_kinematic(&self) -> bool {
+        self.mass == f64::INFINITY
     }
 }

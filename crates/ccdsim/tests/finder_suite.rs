@@ -1154,6 +1154,7 @@ fn inelastic_collapse_to_huge_times() {
         radius,
         mass: None,
         restitution: None,
+        kinematic: false,
     };
     let corner = |x: f64, y: f64| Vector([x, y]);
     let scene = Scene::<2> {
@@ -1420,4 +1421,44 @@ fn inelastic_gravity_with_the_tc_model_and_per_body_restitution() {
     s3.settings.restitution = 0.6;
     s3.settings.tc = Some(1e-4);
     check_all("inelastic gravity 3D", &s3, 3000);
+}
+
+/// `scene` with its first `k` bodies made kinematic (infinite mass; see `BodySpec::kinematic`).
+fn with_kinematic<const D: usize>(mut scene: Scene<D>, k: usize) -> Scene<D> {
+    for b in scene.bodies.iter_mut().take(k) {
+        b.kinematic = true;
+        b.mass = None;
+    }
+    scene
+}
+
+#[test]
+fn kinematic_bodies() {
+    // Kinematic bodies move in straight lines whatever happens, push dynamic bodies, and meet
+    // no wall and no other kinematic body; under gravity a dynamic body meets one at the
+    // first root of their relative parabola's quartic. Kicks reset velocities, kinematic
+    // bodies' included, as a game steering its paddles does.
+    for &seed in &SMALL_SEEDS {
+        let s2 = with_kinematic(gas_scene::<2>(80, 0.3, (0.2, 0.6), seed), 4);
+        let s3 = with_kinematic(gas_scene::<3>(60, 0.15, (0.3, 0.5), seed), 3);
+        let f2 = falling(s2.clone(), [0.0, -9.81]);
+        let f3 = falling(s3.clone(), [0.0, 0.0, -9.81]);
+        let board = with_kinematic(peg_board(4, 24, seed), 2);
+        check_all(&format!("kinematic 2D seed {seed}"), &s2, 1500);
+        check_all(&format!("kinematic 3D seed {seed}"), &s3, 1200);
+        check_all(&format!("kinematic gravity 2D seed {seed}"), &f2, 1500);
+        check_all(&format!("kinematic gravity 3D seed {seed}"), &f3, 1200);
+        check_all(&format!("kinematic peg board seed {seed}"), &board, 1500);
+    }
+    let o = FinderOptions::default();
+    let s2 = falling(
+        with_kinematic(gas_scene::<2>(80, 0.3, (0.2, 0.6), SMALL_SEEDS[1]), 5),
+        [0.0, -3.0],
+    );
+    for drive in [Drive::Kicks { every: 3 }, Drive::Frames { dt: 1.0 / 60.0 }] {
+        let oracle = reference("kinematic edits", &s2, 1500, drive);
+        for name in finders() {
+            check_run("kinematic edits", &s2, name, &o, 1500, drive, &oracle);
+        }
+    }
 }

@@ -2,7 +2,7 @@
 
 use super::{finite_event, Finder, FinderError};
 use crate::event::Event;
-use crate::narrow::{toi_body_wall, toi_pair};
+use crate::narrow::{toi_body_wall_of, toi_pair_bodies};
 use crate::periodic::{toi_box_exit, toi_pair_periodic};
 use crate::world::World;
 
@@ -49,21 +49,15 @@ pub fn all_pairs_next_event<const D: usize>(world: &World<D>) -> Option<Event> {
         }
         return finite_event(best);
     }
+    let bodies = world.bodies();
     for i in 0..n {
-        let mi = world.motion(i);
         for j in i + 1..n {
-            if let Some(t) = toi_pair(
-                &mi,
-                world.radius(i),
-                &world.motion(j),
-                world.radius(j),
-                laws,
-            ) {
+            if let Some(t) = toi_pair_bodies(&bodies[i], &bodies[j], laws) {
                 best = Event::earliest(best, Some(Event::body(t, i, j)));
             }
         }
         for (w, wall) in world.walls().iter().enumerate() {
-            if let Some(t) = toi_body_wall(&mi, world.radius(i), wall, laws) {
+            if let Some(t) = toi_body_wall_of(&bodies[i], wall, laws) {
                 best = Event::earliest(best, Some(Event::wall(t, i, w)));
             }
         }

@@ -25,7 +25,7 @@
 
 use super::{finite_event, Finder, FinderError, FinderMemory};
 use crate::event::{Event, EventKind};
-use crate::narrow::{toi_body_wall, toi_pair};
+use crate::narrow::{toi_body_wall_of, toi_pair_bodies};
 use crate::periodic::{toi_box_exit, toi_pair_periodic};
 use crate::world::World;
 use std::cmp::Reverse;
@@ -166,7 +166,7 @@ impl Sedgewick {
             };
             let (ra, rb) = (world.radius(a), world.radius(b));
             let t = match &period {
-                None => toi_pair(&ma, ra, &mb, rb, world.laws()),
+                None => toi_pair_bodies(&world.bodies()[a], &world.bodies()[b], world.laws()),
                 Some(size) => toi_pair_periodic(&ma, ra, &mb, rb, size, world.laws()),
             };
             if let Some(t) = t {
@@ -178,7 +178,7 @@ impl Sedgewick {
             }
         }
         for (w, wall) in world.walls().iter().enumerate() {
-            if let Some(t) = toi_body_wall(&mi, world.radius(i), wall, world.laws()) {
+            if let Some(t) = toi_body_wall_of(&world.bodies()[i], wall, world.laws()) {
                 self.push(Entry::new(Event::wall(t, i, w), ci, 0));
             }
         }

@@ -242,6 +242,7 @@ pub fn compress<const D: usize>(
             radius: radii[i] * (1.0 - 1e-13),
             mass: Some(world.mass(i)),
             restitution: scene.bodies[i].restitution,
+            kinematic: false,
         })
         .collect();
     let mut settings = scene.settings;

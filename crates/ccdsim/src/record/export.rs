@@ -32,13 +32,20 @@ struct Header<'a, const D: usize> {
     /// The Andersen thermostat, for thermostatted scenes only.
     #[serde(skip_serializing_if = "Option::is_none")]
     thermostat: Option<crate::thermostat::Thermostat>,
+    /// Uniform gravity, for scenes with gravity only.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    gravity: Option<crate::gravity::Gravity>,
 }
 
 #[derive(Serialize)]
 struct BodyOut<const D: usize> {
     id: u64,
     radius: f64,
-    mass: f64,
+    /// `null` for a kinematic body (infinite mass).
+    mass: Option<f64>,
+    /// Kinematic bodies only.
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    kinematic: bool,
     pos: Vector<D>,
     vel: Vector<D>,
 }
@@ -71,7 +78,8 @@ pub fn export_jsonl<R: Read, W: Write, const D: usize>(
             .map(|(i, b)| BodyOut {
                 id: scene.id_of(i),
                 radius: b.radius,
-                mass: b.effective_mass(),
+                mass: Some(b.effective_mass()).filter(|m| m.is_finite()),
+                kinematic: b.kinematic,
                 pos: b.pos,
                 vel: b.vel,
             })
@@ -81,6 +89,7 @@ pub fn export_jsonl<R: Read, W: Write, const D: usize>(
         restitution: scene.settings.restitution,
         periodic: scene.periodic,
         thermostat: scene.settings.thermostat,
+        gravity: scene.settings.gravity,
     };
     serde_json::to_writer(&mut *out, &header).map_err(std::io::Error::from)?;
     out.write_all(b"\n")?;

@@ -23,6 +23,10 @@
 //! move on parabolas between events (see [`crate::gravity`]), so positions, contacts and the
 //! energy a reader checks differ from straight motion.
 //!
+//! Version 5 is version 4 for scenes with kinematic bodies (`bodies[].kinematic`): bodies of
+//! infinite mass that move in straight lines, meet no wall and no other kinematic body, and
+//! whose collisions conserve neither momentum nor energy.
+//!
 //! A record is: tag `u8` (1 body event, 2 wall event, 3 end of run, 4 reset), `a: u32`, `b: u32`,
 //! `t: f64`, then for two body slots the position at `t` and the velocity after the event
 //! (`D` `f64`s each; the second slot is zero for wall events and the end record), then an
@@ -47,13 +51,17 @@ pub const VERSION_RESETS: u32 = 2;
 pub const VERSION_GROWTH: u32 = 3;
 /// Format version of run files of scenes with gravity.
 pub const VERSION_GRAVITY: u32 = 4;
+/// Format version of run files of scenes with kinematic bodies (with or without gravity).
+pub const VERSION_KINEMATIC: u32 = 5;
 /// The newest format version this build reads.
-pub const VERSION_NEWEST: u32 = VERSION_GRAVITY;
+pub const VERSION_NEWEST: u32 = VERSION_KINEMATIC;
 
 /// The format version a run of `scene` is written in.
 #[must_use]
 pub fn version_for<const D: usize>(scene: &crate::scene::Scene<D>) -> u32 {
-    if scene.settings.gravity.is_some() {
+    if scene.bodies.iter().any(|b| b.kinematic) {
+        VERSION_KINEMATIC
+    } else if scene.settings.gravity.is_some() {
         VERSION_GRAVITY
     } else if scene.settings.growth.is_some() {
         VERSION_GROWTH

@@ -30,7 +30,7 @@ impl<const D: usize> SweptTree<D> {
                 world.radius_at(i, horizon),
                 now,
                 horizon,
-                world.gravity().as_ref(),
+                world.gravity_of(i).as_ref(),
             )
         }));
         self.finite = self.leaf_boxes.iter().all(is_finite_box);

@@ -107,7 +107,7 @@ pub use validate::InvalidTree;
 
 use super::{finite_event, DebugBox, Finder, FinderError, FinderOptions};
 use crate::event::Event;
-use crate::narrow::toi_pair;
+use crate::narrow::toi_pair_bodies;
 use crate::periodic::toi_pair_periodic;
 use crate::world::World;
 use tree::{children, l1, SweptTree};
@@ -268,7 +268,7 @@ impl<const D: usize> BvhFinder<D> {
             for j in i + 1..world.len() {
                 let (mj, ri, rj) = (world.motion(j), world.radius(i), world.radius(j));
                 let t = match world.periodic() {
-                    None => toi_pair(&mi, ri, &mj, rj, world.laws()),
+                    None => toi_pair_bodies(&world.bodies()[i], &world.bodies()[j], world.laws()),
                     Some(size) => toi_pair_periodic(&mi, ri, &mj, rj, &size, world.laws()),
                 };
                 if let Some(t) = t {

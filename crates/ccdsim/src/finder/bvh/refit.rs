@@ -20,7 +20,7 @@ impl<const D: usize> SweptTree<D> {
                     world.radius_at(i, horizon),
                     self.now,
                     horizon,
-                    world.gravity().as_ref(),
+                    world.gravity_of(i).as_ref(),
                 );
                 finite &= is_finite_box(&b);
                 b

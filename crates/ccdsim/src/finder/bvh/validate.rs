@@ -62,7 +62,7 @@ impl<const D: usize> SweptTree<D> {
                     world.radius(i),
                     self.now,
                     self.horizon,
-                    world.gravity().as_ref(),
+                    world.gravity_of(i).as_ref(),
                 )
             })
             .collect();

@@ -2,7 +2,7 @@
 //! cached and recomputed only for bodies whose stored state changed.
 
 use crate::event::Event;
-use crate::narrow::toi_body_wall;
+use crate::narrow::toi_body_wall_of;
 use crate::periodic::toi_box_exit;
 use crate::world::World;
 
@@ -40,7 +40,7 @@ impl WallCache {
         }
         let mut recomputed = 0;
         let (period, faces_from) = (world.periodic(), world.walls().len());
-        for (i, r) in world.radii().enumerate() {
+        for i in 0..world.len() {
             let count = world.change_count(i);
             if self.fresh[i] && self.seen[i] == count {
                 continue;
@@ -48,7 +48,7 @@ impl WallCache {
             let m = world.motion(i);
             let mut best = None;
             for (w, wall) in world.walls().iter().enumerate() {
-                if let Some(t) = toi_body_wall(&m, r, wall, world.laws()) {
+                if let Some(t) = toi_body_wall_of(&world.bodies()[i], wall, world.laws()) {
                     best = Event::earliest(best, Some(Event::wall(t, i, w)));
                 }
             }

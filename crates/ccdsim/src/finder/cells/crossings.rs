@@ -36,7 +36,7 @@ impl<const D: usize> Cells<D> {
     pub(super) fn schedule_crossing<const FALLING: bool>(&mut self, i: usize, mi: &Motion<D>) {
         let k = self.cached[i].coords;
         let crossing = if FALLING {
-            self.next_crossing_falling(&k, mi)
+            self.next_crossing_falling(i, &k, mi)
         } else {
             self.grid.next_crossing(&k, mi)
         };
@@ -64,8 +64,12 @@ impl<const D: usize> Cells<D> {
     /// finder's clock on.
     #[cold]
     #[inline(never)]
-    fn next_crossing_falling(&self, k: &[u32; D], mi: &Motion<D>) -> Option<(f64, u8)> {
+    fn next_crossing_falling(&self, i: usize, k: &[u32; D], mi: &Motion<D>) -> Option<(f64, u8)> {
         let g = self.gravity.expect("a world with gravity");
+        if self.kinematic.get(i).copied().unwrap_or(false) {
+            // Kinematic bodies do not fall.
+            return self.grid.next_crossing(k, mi);
+        }
         self.grid.next_crossing_falling(k, mi, &g, self.clock)
     }
 
@@ -142,7 +146,7 @@ impl<const D: usize> Cells<D> {
         for i in 0..world.len() {
             let m = world.motion(i);
             let k = self.cached[i].coords;
-            let crossing = match &self.gravity {
+            let crossing = match &world.gravity_of(i) {
                 Some(g) => self.grid.next_crossing_falling(&k, &m, g, clock),
                 None => self.grid.next_crossing(&k, &m),
             }

@@ -203,6 +203,7 @@ impl<const D: usize> Cells<D> {
                 Some(Laws {
                     growth: Some(growth),
                     gravity: None,
+                    kinematic: false,
                 }),
             ) => toi_sides_growing::<D, PERIODIC>(&sa, &sb, &zero, growth),
             // Gravity: every lane goes to the scalar falling function.

@@ -368,6 +368,8 @@ pub struct Cells<const D: usize> {
     laws: Option<crate::laws::Laws<D>>,
     /// The world's gravity, if any: crossings are then the roots of quadratics.
     gravity: Option<Vector<D>>,
+    /// Which bodies are kinematic (they do not fall), by index; empty when none is.
+    kinematic: Vec<bool>,
 }
 
 impl<const D: usize> Default for Cells<D> {
@@ -400,6 +402,7 @@ impl<const D: usize> Cells<D> {
             growth: None,
             laws: None,
             gravity: None,
+            kinematic: Vec::new(),
         }
     }
 
@@ -604,6 +607,11 @@ impl<const D: usize> Finder<D> for Cells<D> {
         self.growth = world.growth().copied();
         self.laws = world.laws().copied();
         self.gravity = world.gravity();
+        self.kinematic = if world.has_kinematic() {
+            (0..n).map(|i| world.is_kinematic(i)).collect()
+        } else {
+            Vec::new()
+        };
         let mut grown = 1.0;
         if let Some(law) = world.growth() {
             let window = (law.scale(now) * GROWTH_HEADROOM / law.rate).max(0.0);

@@ -8,7 +8,7 @@ use super::key::{ordered, Key};
 use super::{Cells, Mode, NO_CROSSING, SECOND_KNOWN};
 use crate::geom::Vector;
 use crate::laws::Laws;
-use crate::narrow::{toi_body_wall, toi_pair, toi_pair_shifted, Motion};
+use crate::narrow::{toi_body_wall_of, toi_pair_bodies, toi_pair_shifted, Motion};
 use crate::narrow_lanes::Side;
 use crate::periodic::toi_box_exit;
 use crate::prefetch::prefetch;
@@ -147,7 +147,7 @@ impl<const D: usize> Cells<D> {
             let law = self.laws.as_ref();
             toi_pair_shifted(&a.motion, a.radius, &b.motion, b.radius, s, law)
         } else {
-            toi_pair(&a.motion, a.radius, &b.motion, b.radius, self.laws.as_ref())
+            toi_pair_bodies(a, b, self.laws.as_ref())
         }
     }
 
@@ -180,7 +180,7 @@ impl<const D: usize> Cells<D> {
             let s = if probe_first { *shift } else { *neg };
             toi_pair_shifted(&a.motion, a.radius, &c.motion, c.radius, s, law)
         } else {
-            toi_pair(&a.motion, a.radius, &c.motion, c.radius, law)
+            toi_pair_bodies(a, c, law)
         };
         if let Some(t) = t {
             let bits = ordered(t);
@@ -390,7 +390,7 @@ impl<const D: usize> Cells<D> {
                 continue;
             }
             let wall = &world.walls()[w as usize];
-            if let Some(t) = toi_body_wall(&p.b.motion, p.b.radius, wall, self.laws.as_ref()) {
+            if let Some(t) = toi_body_wall_of(&p.b, wall, self.laws.as_ref()) {
                 best.offer(Key::wall(t, p.i, w as usize), Grid::<D>::ZERO_IMAGE);
             }
         }

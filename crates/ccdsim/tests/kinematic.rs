@@ -1,0 +1,133 @@
+//! Kinematic bodies (`bodies[].kinematic`): infinite mass, moved only by the velocity a
+//! program gives them; they push dynamic bodies and meet no wall and no other kinematic body.
+
+use ccdsim::generate::box_walls;
+use ccdsim::gravity::Gravity;
+use ccdsim::record::{RunWriter, VERSION_KINEMATIC};
+use ccdsim::verify::Verifier;
+use ccdsim::{AnyScene, BodySpec, Scene, Simulation, Vector};
+
+fn paddle(pos: [f64; 2], vel: [f64; 2]) -> BodySpec<2> {
+    BodySpec {
+        kinematic: true,
+        ..BodySpec::new(Vector(pos), Vector(vel), 0.5)
+    }
+}
+
+fn table(bodies: Vec<BodySpec<2>>) -> Scene<2> {
+    Scene {
+        bodies,
+        walls: box_walls(Vector([10.0, 4.0])),
+        ..Scene::default()
+    }
+}
+
+#[test]
+fn a_moving_paddle_sends_a_resting_puck_off_at_twice_its_speed() {
+    for finder in ["all-pairs", "bvh", "sedgewick", "cells"] {
+        let scene = table(vec![
+            paddle([2.0, 2.0], [1.0, 0.0]),
+            BodySpec::new(Vector([5.0, 2.0]), Vector([0.0, 0.0]), 0.5),
+        ]);
+        let mut sim = Simulation::new(&scene, finder).unwrap();
+        let hit = sim.step_event().unwrap();
+        assert_eq!(hit.event.time, 2.0, "[{finder}]");
+        // The paddle keeps its velocity; the puck leaves at 2 v (elastic, infinite mass).
+        assert_eq!(hit.vel[0].0, [1.0, 0.0], "[{finder}]");
+        assert_eq!(hit.vel[1].0, [2.0, 0.0], "[{finder}]");
+        // The game stops the paddle; the puck meets the far wall at 2 + 4.5/2 s.
+        sim.set_velocity(0, Vector([0.0, 0.0])).unwrap();
+        let wall = sim.step_event().unwrap();
+        assert_eq!((wall.event.a, wall.event.time), (1, 4.25), "[{finder}]");
+        // A paddle sent up through the table's side meets no wall: it leaves the table.
+        sim.set_velocity(0, Vector([0.0, 1.0])).unwrap();
+        sim.run_until(10.0);
+        assert!(
+            (sim.position(0)[1] - 7.75).abs() < 1e-12,
+            "[{finder}] {:?}",
+            sim.position(0)
+        );
+        assert!(sim.halt().is_none());
+    }
+}
+
+#[test]
+fn kinematic_bodies_pass_through_each_other_and_ignore_gravity() {
+    let mut scene = table(vec![
+        paddle([2.0, 2.0], [1.0, 0.0]),
+        paddle([8.0, 2.0], [-1.0, 0.0]),
+        // A ball dropped onto a kinematic ball hanging in mid-air bounces back up, for ever.
+        paddle([5.0, 1.0], [0.0, 0.0]),
+        BodySpec::new(Vector([5.0, 3.0]), Vector([0.0, 0.0]), 0.4),
+    ]);
+    scene.bodies[0].pos = Vector([2.0, 3.0]);
+    scene.bodies[1].pos = Vector([8.0, 3.2]);
+    scene.settings.gravity = Gravity::new(&[0.0, -10.0]);
+    let mut sim = Simulation::new(&scene, "cells").unwrap();
+    let mut bounces = 0;
+    sim.run_until_with(3.0, |c| {
+        // Only the dynamic ball (3) meets walls, and kinematic bodies meet only it.
+        match c.event.kind {
+            ccdsim::EventKind::Wall => assert_eq!(c.event.a, 3, "{c:?}"),
+            _ => assert_eq!(c.event.b, 3, "{c:?}"),
+        }
+        bounces += u32::from((c.event.a, c.event.b) == (2, 3));
+    });
+    assert!(bounces >= 2, "{bounces}");
+    // Kinematic bodies moved in straight lines: gravity did not bend them.
+    assert_eq!(sim.position(2).0, [5.0, 1.0]);
+    assert!((sim.position(0)[1] - 3.0).abs() < 1e-12);
+}
+
+#[test]
+fn runs_with_kinematic_bodies_are_version_5_and_verify_without_gravity() {
+    let scene = table(vec![
+        paddle([1.0, 1.0], [2.0, 0.5]),
+        BodySpec::new(Vector([5.0, 2.0]), Vector([-1.0, 0.3]), 0.5),
+        BodySpec::new(Vector([7.0, 1.0]), Vector([0.5, 1.0]), 0.4),
+    ]);
+    let mut sim = Simulation::new(&scene, "cells").unwrap();
+    let mut w = RunWriter::new(Vec::new(), "cells".into(), &scene).unwrap();
+    let mut v = Verifier::new(&scene);
+    let mut n = 0;
+    sim.run_until_with(30.0, |c| {
+        w.write_event(c).unwrap();
+        v.check(c).unwrap();
+        n += 1;
+    });
+    assert!(n > 10);
+    v.finish(30.0).unwrap();
+    let bytes = w.finish(30.0).unwrap();
+    assert_eq!(
+        u32::from_le_bytes(bytes[8..12].try_into().unwrap()),
+        VERSION_KINEMATIC
+    );
+    // Under gravity, verify says it cannot check such runs yet instead of passing them.
+    let mut falling = scene.clone();
+    falling.settings.gravity = Gravity::new(&[0.0, -1.0]);
+    let mut sim = Simulation::new(&falling, "cells").unwrap();
+    let c = sim.step_event().unwrap();
+    let e = Verifier::new(&falling).check(&c).unwrap_err().to_string();
+    assert!(e.contains("cannot be verified yet"), "{e}");
+}
+
+#[test]
+fn kinematic_bodies_are_validated() {
+    let scene = |body: &str, rest: &str| {
+        AnyScene::from_json(&format!(
+            r#"{{"dim": 2, "bodies": [{{"pos": [1, 1], "vel": [0, 0], "radius": 0.5{body}}}]{rest}}}"#
+        ))
+        .map(|_| ())
+        .map_err(|e| e.to_string())
+    };
+    assert_eq!(scene(r#", "kinematic": true"#, ""), Ok(()));
+    let e = scene(r#", "kinematic": true, "mass": 2"#, "").unwrap_err();
+    assert!(
+        e.contains("bodies[0].kinematic") && e.contains("mass"),
+        "{e}"
+    );
+    let e = scene(r#", "kinematic": true"#, r#", "periodic": [10, 10]"#).unwrap_err();
+    assert!(e.contains("periodic"), "{e}");
+    let e = scene(r#", "kinematic": 1"#, "").unwrap_err();
+    assert!(e.contains("kinematic"), "{e}");
+}
