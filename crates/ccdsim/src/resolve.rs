@@ -44,12 +44,15 @@ pub fn resolve_body_body_contact<const D: usize>(
     // Each body's share of the velocity change: `m_j/(m_i + m_j)` and `m_i/(m_i + m_j)`, or,
     // against a kinematic body (infinite mass), all of it for the other (∞/∞ is no number).
     let (mi, mj) = (world.mass(i), world.mass(j));
-    let (share_i, share_j) = match (mi == f64::INFINITY, mj == f64::INFINITY) {
-        (false, false) => (mj / (mi + mj), mi / (mi + mj)),
-        (false, true) => (1.0, 0.0),
-        (true, false) => (0.0, 1.0),
-        (true, true) => (0.0, 0.0),
-    };
+    let (mut share_i, mut share_j) = (mj / (mi + mj), mi / (mi + mj));
+    if world.has_kinematic() {
+        (share_i, share_j) = match (mi == f64::INFINITY, mj == f64::INFINITY) {
+            (false, false) => (share_i, share_j),
+            (false, true) => (1.0, 0.0),
+            (true, false) => (0.0, 1.0),
+            (true, true) => (0.0, 0.0),
+        };
+    }
     let d = match world.periodic() {
         Some(size) => min_image(pj - pi, &size),
         None => pj - pi,
