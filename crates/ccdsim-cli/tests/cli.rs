@@ -455,7 +455,7 @@ fn gravity_scenes_from_gen_run_and_verify_alike_with_every_finder() {
     for (args, culprit) in [
         (
             &["gen", "gas", "--n", "10", "--gravity", "0,-1,0"][..],
-            "3D",
+            "has 3 components, the scene is 2D",
         ),
         (
             &["gen", "gas", "--n", "10", "--periodic", "--gravity", "0,-1"][..],
