@@ -294,6 +294,11 @@ class Simulation:
         """Gives body ``i`` velocity ``v`` from the current time on."""
         self._sim.set_velocity(int(i), [float(x) for x in v])
 
+    def set_position(self, i: int, p: Sequence[float]) -> None:
+        """Moves body ``i`` to ``p`` at the current time, keeping its velocity (a teleport);
+        raises ValueError where it would overlap another body or a wall."""
+        self._sim.set_position(int(i), [float(x) for x in p])
+
     def rescale_velocities(self, factor: float) -> None:
         """Multiplies every velocity by ``factor`` from now on (growing packings heat up; this
         cools them). O(n): the finder is rebuilt."""

@@ -167,3 +167,12 @@ def test_gravity_bends_paths_and_keeps_the_total_energy():
     assert abs(sim.kinetic_energy() + sim.potential_energy() - total) < 1e-9 * total
     with pytest.raises(ValueError, match="settings.gravity"):
         ccdsim.Simulation({**scene, "settings": {"gravity": [0.0, -9.81, 0.0]}})
+
+
+def test_set_position_teleports_and_refuses_overlaps():
+    sim = ccdsim.Simulation(two_balls(), finder="cells")
+    sim.set_position(1, [5.0, 0.0])
+    np.testing.assert_array_equal(sim.positions[1], [5.0, 0.0])
+    assert sim.step()["t"] == 2.0  # the gap of 4 m closes at 2 m/s
+    with pytest.raises(ValueError, match="overlap body 0"):
+        sim.set_position(1, list(sim.positions[0] + [0.5, 0.0]))

@@ -308,6 +308,16 @@ impl PySimulation {
         })
     }
 
+    /// Moves body `i` to `p` at the current time, keeping its velocity; refused (ValueError)
+    /// where it would overlap a body or a wall.
+    fn set_position(&mut self, i: usize, p: Vec<f64>) -> PyResult<()> {
+        self.check_index(i)?;
+        with_sim!(self, s, {
+            let p = vector::<D>(&p)?;
+            s.set_position(i, p).map_err(value_error)
+        })
+    }
+
     /// Counters of the run: events, body and wall collisions, largest overlap, kinetic energy
     /// at the start, the collision virial.
     fn stats<'py>(&mut self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {

@@ -586,4 +586,89 @@ impl<const D: usize> Simulation<D> {
         self.halt = None;
         Ok(())
     }
+
+    /// Moves body `i` to `pos` at the current time, keeping its velocity (a game's teleport
+    /// or respawn). Each finder updates only that body (no rebuild). Refused, leaving
+    /// everything as it was, when `pos` is not finite or not resolved by `f64` (see
+    /// [`crate::resolution`]), outside a periodic box, or where the body would overlap
+    /// another body or a wall (a kinematic body may overlap walls and other kinematic
+    /// bodies), or lie outside the table a closed polygon of 2D segments forms. O(n) for the
+    /// overlap check.
+    pub fn set_position(&mut self, i: usize, pos: Vector<D>) -> Result<(), SimError> {
+        let n = self.world.len();
+        if i >= n {
+            return Err(SimError::Input(format!(
+                "body {i} does not exist ({n} bodies)"
+            )));
+        }
+        if !pos.is_finite() {
+            return Err(SimError::Input(format!(
+                "position of body {i} is not finite"
+            )));
+        }
+        let t = self.world.now();
+        let vel = self.world.velocity_at(i, t);
+        let r = self.world.radius_at(i, t);
+        if !crate::resolution::resolves(t, pos, vel, r) {
+            return Err(SimError::Input(format!(
+                "body {i} at {:?} is not resolved by f64 at t = {t} (see the numerical rules)",
+                pos.0
+            )));
+        }
+        let kinematic = self.world.is_kinematic(i);
+        if let Some(size) = self.world.periodic() {
+            if (0..D).any(|d| !(0.0..size[d]).contains(&pos[d])) {
+                return Err(SimError::Input(format!(
+                    "body {i} at {:?} would lie outside the periodic box",
+                    pos.0
+                )));
+            }
+        }
+        for j in (0..n).filter(|&j| j != i) {
+            if kinematic && self.world.is_kinematic(j) {
+                continue;
+            }
+            let d = self.world.position_at(j, t) - pos;
+            let d = match self.world.periodic() {
+                Some(size) => crate::periodic::min_image(d, &size),
+                None => d,
+            };
+            if d.norm() < r + self.world.radius_at(j, t) {
+                return Err(SimError::Input(format!(
+                    "body {i} at {:?} would overlap body {j}",
+                    pos.0
+                )));
+            }
+        }
+        if !kinematic {
+            let walls = self.world.walls();
+            if let Some(w) = walls
+                .iter()
+                .position(|w| crate::wall::wall_clearance(w, pos) < r)
+            {
+                return Err(SimError::Input(format!(
+                    "body {i} at {:?} would cross wall {w}",
+                    pos.0
+                )));
+            }
+            let loops = crate::wall::closed_segments(walls);
+            if D == 2 && !loops.is_empty() && !crate::wall::inside_even_odd(&loops, pos[0], pos[1])
+            {
+                return Err(SimError::Input(format!(
+                    "body {i} at {:?} would lie outside the table",
+                    pos.0
+                )));
+            }
+        }
+        self.world.set_state(i, pos, vel, t);
+        if !self.images.is_empty() {
+            // A teleport starts a new path: its unwrapped position is where it now is.
+            self.images[i] = [0; D];
+        }
+        self.finder.update(&self.world, &[i]);
+        self.pending = None;
+        self.halt = None;
+        self.idle = None;
+        Ok(())
+    }
 }

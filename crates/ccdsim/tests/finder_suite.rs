@@ -98,6 +98,10 @@ enum Drive {
     /// Every `every` events, bring the kinetic energy back to its start value by
     /// `rescale_velocities` (growing worlds heat up).
     Rescale { every: u64 },
+    /// Every `every` events, move one body to a random spot inside the scene's bounds with
+    /// `set_position` (refused spots, overlapping a body or a wall, are skipped alike in
+    /// every run).
+    Teleports { every: u64 },
 }
 
 /// A recorded run: the run file's bytes and the number of events.
@@ -195,6 +199,21 @@ fn record_run<const D: usize>(
                     v[k] = ((kick >> (8 * k)) & 0xff) as f64 / 64.0 - 2.0;
                 }
                 sim.set_velocity(i, v).expect("kick");
+            }
+        }
+        if let Drive::Teleports { every } = drive {
+            if events % every == 0 {
+                kick = kick
+                    .wrapping_mul(6_364_136_223_846_793_005)
+                    .wrapping_add(1_442_695_040_888_963_407);
+                let i = (kick >> 33) as usize % scene.bodies.len();
+                let (lo, hi) = teleport_bounds(scene);
+                let mut p = Vector::<D>::ZERO;
+                for k in 0..D {
+                    let u = ((kick >> (7 * k + 3)) & 0x7f) as f64 / 128.0;
+                    p[k] = lo[k] + (hi[k] - lo[k]) * u;
+                }
+                let _ = sim.set_position(i, p);
             }
         }
         if let Drive::Rescale { every } = drive {
@@ -1461,4 +1480,37 @@ fn kinematic_bodies() {
             check_run("kinematic edits", &s2, name, &o, 1500, drive, &oracle);
         }
     }
+}
+
+/// The box teleports land in: the periodic box, or the walls' bounds.
+fn teleport_bounds<const D: usize>(scene: &Scene<D>) -> (Vector<D>, Vector<D>) {
+    match scene.periodic {
+        Some(size) => (Vector::ZERO, size),
+        None => ccdsim::wall::walls_bounds(&scene.walls).expect("a walled scene"),
+    }
+}
+
+#[test]
+fn teleports() {
+    // set_position moves one body at a time: every finder updates just that body and still
+    // gives the oracle's events, in walled and periodic worlds, under gravity and with
+    // kinematic bodies, every cells mode.
+    let s2 = gas_scene::<2>(100, 0.3, (0.2, 0.6), SMALL_SEEDS[0]);
+    let s3 = gas_scene::<3>(60, 0.15, (0.3, 0.5), SMALL_SEEDS[1]);
+    let f2 = with_kinematic(falling(s2.clone(), [0.0, -9.81]), 3);
+    let p2 = periodic_gas::<2>(120, 0.35, (0.3, 0.5), SMALL_SEEDS[2]);
+    let p3 = periodic_gas::<3>(80, 0.2, (0.5, 0.5), SMALL_SEEDS[0]);
+    let drive = Drive::Teleports { every: 4 };
+    for (label, scene) in [("teleports 2D", &s2), ("teleports gravity 2D", &f2)] {
+        let oracle = reference(label, scene, 1500, drive);
+        for (name, options) in variants() {
+            check_run(label, scene, name, &options, 1500, drive, &oracle);
+        }
+    }
+    let oracle = reference("teleports 3D", &s3, 1200, drive);
+    for (name, options) in variants() {
+        check_run("teleports 3D", &s3, name, &options, 1200, drive, &oracle);
+    }
+    check_periodic("teleports periodic 2D", &p2, 1500, drive);
+    check_periodic("teleports periodic 3D", &p3, 1200, drive);
 }
