@@ -228,19 +228,25 @@ fn crossing(c: f64, b: f64, a: f64, k: f64, falling: bool) -> Option<f64> {
     if a == 0.0 {
         return ((b < 0.0) == falling && b != 0.0).then(|| -c / b);
     }
+    roots(c, b, a).map(|(falls, rises)| if falling { falls } else { rises })
+}
+
+/// The roots of `c + b·t + a·t² = 0` (`a ≠ 0`) as `(falling, rising)`, in the
+/// cancellation-free forms: the falling root is `(−b − s)/2a` and the rising one `(−b + s)/2a`
+/// with `s = √(b² − 4ac)`, whatever the sign of `a`. `None` unless the discriminant is
+/// positive (a tangent touch is no crossing).
+fn roots(c: f64, b: f64, a: f64) -> Option<(f64, f64)> {
     let disc = b * b - 4.0 * a * c;
-    if disc <= 0.0 {
+    if disc.is_nan() || disc <= 0.0 {
         return None;
     }
     let s = disc.sqrt();
-    // The falling root is (−b − s)/2a, the rising one (−b + s)/2a, whatever the sign of a.
     let q = -0.5 * (b + if b >= 0.0 { s } else { -s });
-    let (falls, rises) = if b >= 0.0 {
+    Some(if b >= 0.0 {
         (q / a, c / q)
     } else {
         (c / q, q / a)
-    };
-    Some(if falling { falls } else { rises })
+    })
 }
 
 /// The two roots of `c + b·t + a·t² = 0` (`a ≠ 0`) as `(falling, rising)`: where the
@@ -249,23 +255,13 @@ fn crossing(c: f64, b: f64, a: f64, k: f64, falling: bool) -> Option<f64> {
 /// the wrong order (`falling < rising` when `a > 0`, the reverse when `a < 0`): a graze.
 #[must_use]
 pub(crate) fn face_roots(c: f64, b: f64, a: f64) -> Option<(f64, f64)> {
-    let disc = b * b - 4.0 * a * c;
-    if disc.is_nan() || disc <= 0.0 {
-        return None;
-    }
-    let s = disc.sqrt();
-    let q = -0.5 * (b + if b >= 0.0 { s } else { -s });
-    let (falls, rises) = if b >= 0.0 {
-        (q / a, c / q)
-    } else {
-        (c / q, q / a)
-    };
-    let ordered = if a > 0.0 {
-        falls < rises
-    } else {
-        rises < falls
-    };
-    ordered.then_some((falls, rises))
+    roots(c, b, a).filter(|&(falls, rises)| {
+        if a > 0.0 {
+            falls < rises
+        } else {
+            rises < falls
+        }
+    })
 }
 
 /// Time of impact of a ball (radius `r`) falling under `g` with the segment `[a, b]` (2D
