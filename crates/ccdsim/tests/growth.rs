@@ -4,9 +4,11 @@
 use ccdsim::generate::{gas, GasConfig};
 use ccdsim::growth::Growth;
 use ccdsim::packing::{compress, dilute_start, CompressConfig, CompressStop, SizeMix};
-use ccdsim::record::{RunReader, RunRecord, RunWriter};
-use ccdsim::verify::Verifier;
-use ccdsim::{Collision, Scene, SceneError, Simulation};
+use ccdsim::record::RunWriter;
+use ccdsim::{Scene, SceneError, Simulation};
+use replay::{records, replay};
+
+mod replay;
 
 fn growing<const D: usize>(n: usize, periodic: bool, rate: f64) -> Scene<D> {
     let mut scene = gas::<D>(&GasConfig {
@@ -31,36 +33,6 @@ fn run_file<const D: usize>(scene: &Scene<D>, finder: &str, events: u64) -> Vec<
     w.finish(sim.time()).unwrap()
 }
 
-fn records<const D: usize>(bytes: &[u8]) -> (Scene<D>, Vec<Collision<D>>, f64) {
-    let mut r = RunReader::<_, D>::new(bytes, "run".into()).unwrap();
-    let mut events = Vec::new();
-    let mut end = f64::NAN;
-    while let Some(rec) = r.next_record().unwrap() {
-        match rec {
-            RunRecord::Event(c) => events.push(c),
-            RunRecord::End(t) => end = t,
-        }
-    }
-    (r.scene().clone(), events, end)
-}
-
-fn verify<const D: usize>(
-    scene: &Scene<D>,
-    events: &[Collision<D>],
-    end: f64,
-    all_pairs: bool,
-) -> Result<ccdsim::verify::VerifyReport, String> {
-    let mut v = if all_pairs {
-        Verifier::all_pairs(scene)
-    } else {
-        Verifier::new(scene)
-    };
-    for c in events {
-        v.check(c).map_err(|e| e.to_string())?;
-    }
-    v.finish(end).map_err(|e| e.to_string())
-}
-
 #[test]
 fn growing_runs_are_version_3_and_verify() {
     for (periodic, rate) in [(false, 0.05), (true, 0.2)] {
@@ -70,14 +42,14 @@ fn growing_runs_are_version_3_and_verify() {
         let (scene, events, end) = records::<2>(&bytes);
         assert_eq!(scene.settings.growth, s2.settings.growth);
         for all_pairs in [false, true] {
-            let report = verify(&scene, &events, end, all_pairs).unwrap();
+            let report = replay(&scene, &events, end, all_pairs).unwrap();
             assert_eq!(report.events, 20_000);
             // Growth collisions heat the gas.
             assert!(report.kinetic_energy_end > report.kinetic_energy_start);
         }
         let s3 = growing::<3>(150, periodic, rate);
         let (scene, events, end) = records::<3>(&run_file(&s3, "cells", 10_000));
-        verify(&scene, &events, end, false).unwrap();
+        replay(&scene, &events, end, false).unwrap();
     }
 }
 
@@ -88,7 +60,7 @@ fn verify_catches_runs_that_break_the_growth() {
     // Read as if radii were fixed: contacts come at distances that fixed radii never reach.
     let mut fixed = scene.clone();
     fixed.settings.growth = None;
-    let err = verify(&fixed, &events, end, false).unwrap_err();
+    let err = replay(&fixed, &events, end, false).unwrap_err();
     assert!(err.contains("at a distance"), "{err}");
     // A collision that reverses the centres' approach instead of the surfaces'.
     let k = events
@@ -106,12 +78,12 @@ fn verify_catches_runs_that_break_the_growth() {
     let n = n * (1e-3 / n.norm());
     tampered[k].vel[0] -= n * (1.0 / mi);
     tampered[k].vel[1] += n * (1.0 / mj);
-    let err = verify(&scene, &tampered, end, false).unwrap_err();
+    let err = replay(&scene, &tampered, end, false).unwrap_err();
     assert!(err.contains("growth rule"), "{err}");
     // Radii grown faster than the run grew them: the bodies' contacts come too late.
     let mut faster = scene.clone();
     faster.settings.growth = Some(Growth { rate: 0.25 });
-    assert!(verify(&faster, &events, end, false).is_err());
+    assert!(replay(&faster, &events, end, false).is_err());
 }
 
 #[test]

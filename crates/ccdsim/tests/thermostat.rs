@@ -2,10 +2,13 @@
 //! included), run files record the resets (format version 2) and `verify` checks them.
 
 use ccdsim::generate::{gas, GasConfig};
-use ccdsim::record::{RunReader, RunRecord, RunWriter};
+use ccdsim::record::RunWriter;
 use ccdsim::thermostat::Thermostat;
 use ccdsim::verify::Verifier;
 use ccdsim::{Collision, EventKind, Scene, SceneError, Simulation, FINDER_NAMES};
+use replay::records;
+
+mod replay;
 
 fn thermostatted<const D: usize>(n: usize, periodic: bool, kt: f64, rate: f64) -> Scene<D> {
     let mut scene = gas::<D>(&GasConfig {
@@ -30,19 +33,6 @@ fn run_file<const D: usize>(scene: &Scene<D>, finder: &str, until: f64) -> Vec<u
     let mut w = RunWriter::new(Vec::new(), finder.to_string(), scene).unwrap();
     sim.run_until_with(until, |c| w.write_event(c).unwrap());
     w.finish(sim.time()).unwrap()
-}
-
-fn records<const D: usize>(bytes: &[u8]) -> (Scene<D>, Vec<Collision<D>>, f64) {
-    let mut r = RunReader::<_, D>::new(bytes, "run".into()).unwrap();
-    let mut events = Vec::new();
-    let mut end = f64::NAN;
-    while let Some(rec) = r.next_record().unwrap() {
-        match rec {
-            RunRecord::Event(c) => events.push(c),
-            RunRecord::End(t) => end = t,
-        }
-    }
-    (r.scene().clone(), events, end)
 }
 
 #[test]

@@ -7,9 +7,12 @@
 use ccdsim::generate::{box_walls, gas, GasConfig};
 use ccdsim::gravity::Gravity;
 use ccdsim::record::{RunReader, RunWriter};
-use ccdsim::verify::{Verifier, VerifyReport};
+use ccdsim::verify::VerifyReport;
 use ccdsim::{BodySpec, Collision, EventKind, Scene, Simulation, Vector, Wall};
+use replay::replay;
 use std::io::Cursor;
+
+mod replay;
 
 const SEEDS: [u64; 3] = [5, 17, 29];
 
@@ -90,24 +93,7 @@ fn verify_bytes<const D: usize>(bytes: &[u8], all_pairs: bool) -> Result<VerifyR
     let mut r = RunReader::<_, D>::new(Cursor::new(bytes), "memory".into()).unwrap();
     let scene = r.scene().clone();
     let (events, end) = r.read_events().unwrap();
-    verdict(&scene, &events, end.expect("an end record"), all_pairs)
-}
-
-fn verdict<const D: usize>(
-    scene: &Scene<D>,
-    events: &[Collision<D>],
-    end: f64,
-    all_pairs: bool,
-) -> Result<VerifyReport, String> {
-    let mut v = if all_pairs {
-        Verifier::all_pairs(scene)
-    } else {
-        Verifier::new(scene)
-    };
-    for c in events {
-        v.check(c).map_err(|e| e.to_string())?;
-    }
-    v.finish(end).map_err(|e| e.to_string())
+    replay(&scene, &events, end.expect("an end record"), all_pairs)
 }
 
 /// A recorded gravity run passes in both modes with the same counts, its kinetic plus
@@ -359,10 +345,10 @@ fn walls_are_checked_along_the_parabola() {
         },
         [0.0, -10.0],
     );
-    let e = verdict(&scene, &[], 2.0, false).unwrap_err();
+    let e = replay(&scene, &[], 2.0, false).unwrap_err();
     assert!(e.contains("crosses wall 0"), "{e}");
     // Stopped before it comes down: fine.
-    assert!(verdict(&scene, &[], 1.0, false).is_ok());
+    assert!(replay(&scene, &[], 1.0, false).is_ok());
 
     // A floor plane in 3D: a ball thrown up comes back down through it.
     let floor = Wall::Plane {
@@ -379,8 +365,8 @@ fn walls_are_checked_along_the_parabola() {
         [0.0, 0.0, -10.0],
     );
     // Rises to 1.45 at t = 0.3, back to 0.5 (touching) at t = 0.3 + √0.19.
-    assert!(verdict(&scene, &[], 0.7, false).is_ok());
-    let e = verdict(&scene, &[], 0.8, false).unwrap_err();
+    assert!(replay(&scene, &[], 0.7, false).is_ok());
+    let e = replay(&scene, &[], 0.8, false).unwrap_err();
     assert!(e.contains("crosses wall 0"), "{e}");
 }
 
@@ -402,9 +388,9 @@ fn pairs_falling_together_are_checked_from_their_states() {
         [0.0, -2.0],
     );
     // Gap 10 − 1 closing at 8: contact at t = 1 + 9/8.
-    assert!(verdict(&later, &[], 2.0, false).is_ok());
+    assert!(replay(&later, &[], 2.0, false).is_ok());
     for all in [false, true] {
-        let e = verdict(&later, &[], 2.2, all).unwrap_err();
+        let e = replay(&later, &[], 2.2, all).unwrap_err();
         assert!(e.contains("bodies 0 and 1"), "{e}");
     }
 }
