@@ -176,3 +176,18 @@ def test_set_position_teleports_and_refuses_overlaps():
     assert sim.step()["t"] == 2.0  # the gap of 4 m closes at 2 m/s
     with pytest.raises(ValueError, match="overlap body 0"):
         sim.set_position(1, list(sim.positions[0] + [0.5, 0.0]))
+
+
+def test_collision_filters_let_bodies_pass_through():
+    scene = two_balls()
+    scene["bodies"][1]["group"] = 2
+    scene["bodies"][1]["mask"] = 2  # collides only with group 2: not with body 0
+    sim = ccdsim.Simulation(scene, finder="cells")
+    sim.run_until(10.0)
+    assert sim.stats()["body_collisions"] == 0
+    sim = ccdsim.Simulation(two_balls(), finder="cells")
+    sim.set_collision_filter(1, group=0, mask=0)  # a ghost
+    sim.run_until(1.5)
+    assert sim.stats()["body_collisions"] == 0
+    with pytest.raises(ValueError, match="overlaps body 0"):
+        sim.set_collision_filter(1, group=1)

@@ -318,6 +318,16 @@ impl PySimulation {
         })
     }
 
+    /// Gives body `i` the collision group and mask bit sets `group` and `mask` from now on
+    /// (two bodies collide only when each one's group meets the other's mask); refused
+    /// (ValueError) when it would make overlapping bodies collide.
+    #[pyo3(signature = (i, group, mask = u32::MAX))]
+    fn set_collision_filter(&mut self, i: usize, group: u32, mask: u32) -> PyResult<()> {
+        self.check_index(i)?;
+        let filter = ccdsim::CollisionFilter { group, mask };
+        with_sim!(self, s, s.set_collision_filter(i, filter).map_err(value_error))
+    }
+
     /// Counters of the run: events, body and wall collisions, largest overlap, kinetic energy
     /// at the start, the collision virial.
     fn stats<'py>(&mut self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {

@@ -19,6 +19,9 @@ pub struct Laws<const D: usize> {
     /// True when the world has kinematic bodies (infinite mass, see
     /// [`crate::BodySpec::kinematic`]): pairs of them, and their pairs with walls, never meet.
     pub kinematic: bool,
+    /// True when bodies have collision groups and masks (see [`crate::collision_filter`]):
+    /// finders then skip the pairs [`crate::World::collides`] rejects.
+    pub filtered: bool,
 }
 
 impl<const D: usize> Laws<D> {
@@ -27,12 +30,14 @@ impl<const D: usize> Laws<D> {
         growth: None,
         gravity: None,
         kinematic: false,
+        filtered: false,
     };
 
     /// `Some(self)` when any law is in force, `None` otherwise: what the dispatchers take.
     #[must_use]
     #[inline]
     pub fn in_force(&self) -> Option<&Self> {
-        (self.growth.is_some() || self.gravity.is_some() || self.kinematic).then_some(self)
+        (self.growth.is_some() || self.gravity.is_some() || self.kinematic || self.filtered)
+            .then_some(self)
     }
 }

@@ -19,6 +19,7 @@
 #![forbid(unsafe_code)]
 
 pub mod accelerated_contact;
+pub mod collision_filter;
 pub mod discrete;
 pub mod event;
 pub mod finder;
@@ -45,6 +46,7 @@ pub mod verify;
 pub mod wall;
 pub mod world;
 
+pub use collision_filter::CollisionFilter;
 pub use event::{Event, EventKind};
 pub use finder::{make_finder, AllPairs, Finder, FinderError, FinderOptions, FINDER_NAMES};
 pub use geom::{Aabb, Vector};

@@ -625,6 +625,7 @@ mod tests {
                 growth: Some(law),
                 gravity: None,
                 kinematic: false,
+                filtered: false,
             };
             let p: [PairArgs<'_, D>; LANES] = std::array::from_fn(|k| {
                 let (x, y) = pattern[k];

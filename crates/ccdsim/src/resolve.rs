@@ -152,6 +152,8 @@ mod tests {
             mass: None,
             restitution: None,
             kinematic: false,
+            group: None,
+            mask: None,
         }
     }
 

@@ -3,6 +3,7 @@
 //! A scene is what a run starts from. [`AnyScene::from_json`] parses a file of either
 //! dimension; [`Scene::validate`] checks everything the simulator relies on.
 
+use crate::collision_filter::CollisionFilter;
 use crate::geom::{ball_volume, Vector};
 use crate::gravity::Gravity;
 use crate::growth::Growth;
@@ -39,6 +40,14 @@ pub struct BodySpec<const D: usize> {
     /// bodies, not with walls or other kinematic bodies.
     #[serde(default, skip_serializing_if = "std::ops::Not::not")]
     pub kinematic: bool,
+    /// The collision groups this body belongs to, a bit set; defaults to group 1 (bit 0).
+    /// See [`crate::collision_filter`].
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub group: Option<u32>,
+    /// The collision groups this body collides with, a bit set; defaults to all. Two bodies
+    /// collide only when each one's `group` meets the other's `mask`; walls always collide.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub mask: Option<u32>,
 }
 
 impl<const D: usize> BodySpec<D> {
@@ -53,7 +62,15 @@ impl<const D: usize> BodySpec<D> {
             mass: None,
             restitution: None,
             kinematic: false,
+            group: None,
+            mask: None,
         }
+    }
+
+    /// This body's collision filter (its `group` and `mask`, defaults filled in).
+    #[must_use]
+    pub fn filter(&self) -> CollisionFilter {
+        CollisionFilter::of(self.group, self.mask)
     }
 
     /// The mass to simulate with: infinite for a kinematic body, else the given one, or unit
@@ -762,8 +779,9 @@ fn validate_wall<const D: usize>(w: usize, wall: &Wall<D>) -> Result<(), SceneEr
     Ok(())
 }
 
-/// The first overlapping pair `(i, j)`, `i < j`, in lexicographic order, with its depth;
-/// in a periodic box of sides `period`, distances are between nearest images.
+/// The first overlapping pair `(i, j)`, `i < j`, in lexicographic order, with its depth,
+/// among pairs that collide (see [`crate::collision_filter`]); in a periodic box of sides
+/// `period`, distances are between nearest images.
 fn first_overlap<const D: usize>(
     bodies: &[BodySpec<D>],
     period: Option<Vector<D>>,
@@ -824,6 +842,10 @@ fn first_overlap<const D: usize>(
                     continue;
                 }
                 let bj = &bodies[j];
+                if !bi.filter().collides(&bj.filter()) {
+                    // Bodies that pass through each other may overlap.
+                    continue;
+                }
                 let sum = bi.radius + bj.radius;
                 let dp = bi.pos - bj.pos;
                 let d = match period {

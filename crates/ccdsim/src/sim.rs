@@ -454,6 +454,7 @@ impl<const D: usize> Simulation<D> {
         self.guard = ResolutionGuard::new(&self.world);
         self.pending = None;
         self.halt = None;
+        self.idle = None;
         Ok(())
     }
 
@@ -574,17 +575,72 @@ impl<const D: usize> Simulation<D> {
                 0.5 * self.world.mass(i) * (vel.norm_sq() - self.world.velocity_at(i, t).norm_sq());
             self.guard.add_energy(added);
         }
-        let image = self.image(i);
-        let p = self.position(i);
-        self.world.set_state(i, p, vel, t);
-        if !self.images.is_empty() {
-            // The stored position is now the wrapped one: its image is the whole offset.
-            self.images[i] = image;
-        }
+        self.restate(i, vel);
         self.finder.update(&self.world, &[i]);
         self.pending = None;
         self.halt = None;
         Ok(())
+    }
+
+    /// Gives body `i` the collision group and mask `filter` from the current time on (see
+    /// [`crate::collision_filter`]): a game's ghost power-up, a door that opens. Refused,
+    /// leaving everything as it was, when body `i` would then collide with a body it overlaps.
+    /// Each finder updates only body `i`, except that the first filter of a world whose
+    /// bodies had none rebuilds the finder once (O(n)). O(n) for the overlap check.
+    pub fn set_collision_filter(
+        &mut self,
+        i: usize,
+        filter: crate::CollisionFilter,
+    ) -> Result<(), SimError> {
+        let n = self.world.len();
+        if i >= n {
+            return Err(SimError::Input(format!(
+                "body {i} does not exist ({n} bodies)"
+            )));
+        }
+        let t = self.world.now();
+        let (pos, r) = (self.world.position_at(i, t), self.world.radius_at(i, t));
+        for j in (0..n).filter(|&j| j != i) {
+            let kinematic_pair = self.world.is_kinematic(i) && self.world.is_kinematic(j);
+            if kinematic_pair || !filter.collides(&self.world.filter(j)) {
+                continue;
+            }
+            let d = self.world.position_at(j, t) - pos;
+            let d = match self.world.periodic() {
+                Some(size) => crate::periodic::min_image(d, &size),
+                None => d,
+            };
+            if d.norm() < r + self.world.radius_at(j, t) {
+                return Err(SimError::Input(format!(
+                    "body {i} overlaps body {j}: it cannot be made to collide with it"
+                )));
+            }
+        }
+        // Stored anew at the current time: a pair's contact is sought from the later of its
+        // bodies' reference times, and a pair that passed through each other before now must
+        // not be found in contact then.
+        self.restate(i, self.world.velocity_at(i, t));
+        if self.world.set_filter(i, filter) {
+            // The world's laws changed (pairs are now filtered): every finder starts afresh.
+            return self.rebuild();
+        }
+        self.finder.update(&self.world, &[i]);
+        self.pending = None;
+        self.halt = None;
+        self.idle = None;
+        Ok(())
+    }
+
+    /// Stores body `i`'s state anew at the current time, with velocity `vel`: its position
+    /// now (wrapped into a periodic box, its image kept) becomes its reference position.
+    fn restate(&mut self, i: usize, vel: Vector<D>) {
+        let image = self.image(i);
+        let p = self.position(i);
+        self.world.set_state(i, p, vel, self.world.now());
+        if !self.images.is_empty() {
+            // The stored position is now the wrapped one: its image is the whole offset.
+            self.images[i] = image;
+        }
     }
 
     /// Moves body `i` to `pos` at the current time, keeping its velocity (a game's teleport
@@ -625,7 +681,7 @@ impl<const D: usize> Simulation<D> {
             }
         }
         for j in (0..n).filter(|&j| j != i) {
-            if kinematic && self.world.is_kinematic(j) {
+            if (kinematic && self.world.is_kinematic(j)) || !self.world.collides(i, j) {
                 continue;
             }
             let d = self.world.position_at(j, t) - pos;

@@ -9,11 +9,12 @@
 //! 15 % more collisions per second than with masses and counts in arrays of their own. Ids,
 //! read only by tools, live in a separate array.
 
+use crate::collision_filter::CollisionFilter;
 use crate::geom::Vector;
 use crate::growth::GrowthLaw;
 use crate::laws::Laws;
 use crate::narrow::Motion;
-use crate::scene::{Scene, SceneError};
+use crate::scene::{BodySpec, Scene, SceneError};
 use crate::wall::Wall;
 
 /// The hot part of one body's state: its stored motion, radius, mass and change count.
@@ -54,6 +55,8 @@ pub struct World<const D: usize> {
     /// look up their restitution (see [`World::pair_restitution`]).
     restitution_rules: bool,
     thermostat: Option<crate::thermostat::Thermostat>,
+    /// Collision groups and masks, by body index; empty when no body sets them.
+    filters: Vec<CollisionFilter>,
     laws: Laws<D>,
     now: f64,
 }
@@ -100,6 +103,15 @@ impl<const D: usize> World<D> {
                 Vec::new()
             },
             thermostat: scene.settings.thermostat,
+            filters: if scene
+                .bodies
+                .iter()
+                .any(|b| b.group.is_some() || b.mask.is_some())
+            {
+                scene.bodies.iter().map(BodySpec::filter).collect()
+            } else {
+                Vec::new()
+            },
             laws: Laws {
                 growth: scene.settings.growth.map(|g| GrowthLaw {
                     rate: g.rate,
@@ -107,6 +119,10 @@ impl<const D: usize> World<D> {
                 }),
                 gravity: scene.gravity(),
                 kinematic: scene.bodies.iter().any(|b| b.kinematic),
+                filtered: scene
+                    .bodies
+                    .iter()
+                    .any(|b| b.group.is_some() || b.mask.is_some()),
             },
             now: scene.start_time,
         })
@@ -165,6 +181,44 @@ impl<const D: usize> World<D> {
     #[inline]
     pub fn is_kinematic(&self, i: usize) -> bool {
         self.bodies[i].is_kinematic()
+    }
+
+    /// True when bodies `i` and `j` collide: always, unless their collision groups and masks
+    /// say they pass through each other (see [`crate::collision_filter`]).
+    #[must_use]
+    #[inline]
+    pub fn collides(&self, i: usize, j: usize) -> bool {
+        self.filters.is_empty() || self.filters[i].collides(&self.filters[j])
+    }
+
+    /// Body `i`'s collision group and mask.
+    #[must_use]
+    #[inline]
+    pub fn filter(&self, i: usize) -> CollisionFilter {
+        self.filters.get(i).copied().unwrap_or_default()
+    }
+
+    /// Every body's collision group and mask by body index, or an empty slice when every body
+    /// has the default (all pairs collide).
+    #[must_use]
+    #[inline]
+    pub fn filters(&self) -> &[CollisionFilter] {
+        &self.filters
+    }
+
+    /// Gives body `i` the collision filter `filter`. The first filter of a world that had none
+    /// changes its laws: a finder serving it must then be re-initialised; later ones need only
+    /// [`Finder::update`](crate::Finder::update) of body `i`, once its state is stored anew
+    /// at the current time (so that its change count moves, and no contact of a pair that
+    /// passed through each other is sought before now). Returns true when the laws changed.
+    pub(crate) fn set_filter(&mut self, i: usize, filter: CollisionFilter) -> bool {
+        let first = self.filters.is_empty();
+        if first {
+            self.filters = vec![CollisionFilter::DEFAULT; self.bodies.len()];
+            self.laws.filtered = true;
+        }
+        self.filters[i] = filter;
+        first
     }
 
     /// True when the world has kinematic bodies.

@@ -17,7 +17,8 @@ use ccdsim::generate::{
 };
 use ccdsim::record::RunWriter;
 use ccdsim::{
-    BodySpec, Event, EventKind, Halt, Scene, SceneError, Settings, Simulation, Vector, Wall,
+    BodySpec, CollisionFilter, Event, EventKind, Halt, Scene, SceneError, Settings, Simulation,
+    Vector, Wall,
 };
 use proptest::prelude::*;
 
@@ -102,7 +103,21 @@ enum Drive {
     /// `set_position` (refused spots, overlapping a body or a wall, are skipped alike in
     /// every run).
     Teleports { every: u64 },
+    /// Every `every` events, give one body a random collision group and mask from
+    /// [`FILTERS`] with `set_collision_filter` (refused ones, which would make overlapping
+    /// bodies collide, are skipped alike in every run).
+    Filters { every: u64 },
 }
+
+/// The collision filters random scenes and edits draw from: the default, groups that ignore
+/// each other, a body in no group, and one that collides only with its own group.
+const FILTERS: [CollisionFilter; 5] = [
+    CollisionFilter::DEFAULT,
+    CollisionFilter { group: 2, mask: !1 },
+    CollisionFilter { group: 4, mask: !2 },
+    CollisionFilter { group: 0, mask: 0 },
+    CollisionFilter { group: 8, mask: 8 },
+];
 
 /// A recorded run: the run file's bytes and the number of events.
 struct Recorded {
@@ -214,6 +229,16 @@ fn record_run<const D: usize>(
                     p[k] = lo[k] + (hi[k] - lo[k]) * u;
                 }
                 let _ = sim.set_position(i, p);
+            }
+        }
+        if let Drive::Filters { every } = drive {
+            if events % every == 0 {
+                kick = kick
+                    .wrapping_mul(6_364_136_223_846_793_005)
+                    .wrapping_add(1_442_695_040_888_963_407);
+                let i = (kick >> 33) as usize % scene.bodies.len();
+                let f = FILTERS[(kick >> 13) as usize % FILTERS.len()];
+                let _ = sim.set_collision_filter(i, f);
             }
         }
         if let Drive::Rescale { every } = drive {
@@ -1174,6 +1199,8 @@ fn inelastic_collapse_to_huge_times() {
         mass: None,
         restitution: None,
         kinematic: false,
+        group: None,
+        mask: None,
     };
     let corner = |x: f64, y: f64| Vector([x, y]);
     let scene = Scene::<2> {
@@ -1513,4 +1540,69 @@ fn teleports() {
     }
     check_periodic("teleports periodic 2D", &p2, 1500, drive);
     check_periodic("teleports periodic 3D", &p3, 1200, drive);
+}
+
+/// `scene` with the collision filters of [`FILTERS`] dealt out at random (seed `seed`) to
+/// about half of its bodies.
+fn with_filters<const D: usize>(mut scene: Scene<D>, seed: u64) -> Scene<D> {
+    let mut x = seed ^ KICK_SEED;
+    for b in &mut scene.bodies {
+        x = x
+            .wrapping_mul(6_364_136_223_846_793_005)
+            .wrapping_add(1_442_695_040_888_963_407);
+        if x >> 63 == 1 {
+            let f = FILTERS[(x >> 20) as usize % FILTERS.len()];
+            b.group = Some(f.group);
+            b.mask = Some(f.mask);
+        }
+    }
+    scene
+}
+
+#[test]
+fn collision_filters() {
+    // Bodies in groups that ignore each other pass through each other: every finder, in
+    // every mode (the cells lanes drop their lanes, the lists skip their entries), skips
+    // exactly the pairs the oracle skips, in walled and periodic worlds, under gravity and
+    // with kinematic bodies, and as filters change during the run.
+    for &seed in &SMALL_SEEDS {
+        let s2 = with_filters(gas_scene::<2>(100, 0.3, (0.2, 0.6), seed), seed);
+        let s3 = with_filters(gas_scene::<3>(60, 0.15, (0.3, 0.5), seed), seed);
+        check_all(&format!("filters 2D seed {seed}"), &s2, 1500);
+        check_all(&format!("filters 3D seed {seed}"), &s3, 1200);
+    }
+    let seed = SMALL_SEEDS[1];
+    let f2 = with_kinematic(
+        with_filters(
+            falling(gas_scene::<2>(80, 0.3, (0.2, 0.6), seed), [0.0, -9.81]),
+            seed,
+        ),
+        3,
+    );
+    check_all("filters gravity kinematic 2D", &f2, 1500);
+    let board = with_filters(peg_board(4, 24, seed), seed);
+    check_all("filters peg board", &board, 1500);
+    let p2 = with_filters(periodic_gas::<2>(120, 0.35, (0.3, 0.5), seed), seed);
+    let p3 = with_filters(periodic_gas::<3>(80, 0.2, (0.5, 0.5), seed), seed);
+    check_periodic("filters periodic 2D", &p2, 1500, Drive::Events);
+    check_periodic("filters periodic 3D", &p3, 1200, Drive::Events);
+    // Live filter edits, starting from a world without filters (the first edit rebuilds the
+    // finder) and from one with them.
+    let drive = Drive::Filters { every: 5 };
+    let plain = gas_scene::<2>(100, 0.3, (0.2, 0.6), SMALL_SEEDS[2]);
+    for (label, scene) in [
+        ("filter edits 2D", &plain),
+        ("filter edits filtered 2D", &s2_of(seed)),
+    ] {
+        let oracle = reference(label, scene, 1500, drive);
+        for (name, options) in variants() {
+            check_run(label, scene, name, &options, 1500, drive, &oracle);
+        }
+    }
+    check_periodic("filter edits periodic 2D", &p2, 1500, drive);
+}
+
+/// A filtered 2D gas (for the edit runs).
+fn s2_of(seed: u64) -> Scene<2> {
+    with_filters(gas_scene::<2>(100, 0.3, (0.2, 0.6), seed), seed)
 }

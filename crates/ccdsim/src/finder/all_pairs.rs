@@ -24,7 +24,8 @@ impl AllPairs {
 ///
 /// In a periodic world (see [`crate::periodic`]) a pair's time is
 /// [`crate::periodic::toi_circle_circle_periodic`], and every body's box exit is an event too (a wall event
-/// naming face `f` as wall `walls.len() + f`). In a growing world (see [`crate::growth`]) the
+/// naming face `f` as wall `walls.len() + f`). Pairs whose collision filters keep them apart
+/// ([`World::collides`]) have no event. In a growing world (see [`crate::growth`]) the
 /// functions are the growing forms ([`toi_pair`], [`toi_pair_periodic`], [`toi_body_wall`]).
 #[must_use]
 pub fn all_pairs_next_event<const D: usize>(world: &World<D>) -> Option<Event> {
@@ -36,6 +37,9 @@ pub fn all_pairs_next_event<const D: usize>(world: &World<D>) -> Option<Event> {
         for i in 0..n {
             let mi = world.motion(i);
             for j in i + 1..n {
+                if !world.collides(i, j) {
+                    continue;
+                }
                 let mj = world.motion(j);
                 if let Some(t) =
                     toi_pair_periodic(&mi, world.radius(i), &mj, world.radius(j), &size, laws)
@@ -52,6 +56,9 @@ pub fn all_pairs_next_event<const D: usize>(world: &World<D>) -> Option<Event> {
     let bodies = world.bodies();
     for i in 0..n {
         for j in i + 1..n {
+            if !world.collides(i, j) {
+                continue;
+            }
             if let Some(t) = toi_pair_bodies(&bodies[i], &bodies[j], laws) {
                 best = Event::earliest(best, Some(Event::body(t, i, j)));
             }

@@ -154,7 +154,7 @@ impl Sedgewick {
         let ci = world.change_count(i);
         let period = world.periodic();
         for j in 0..world.len() {
-            if j == i || skip(j) {
+            if j == i || skip(j) || !world.collides(i, j) {
                 continue;
             }
             // The oracle's argument order: lower index first.

@@ -243,6 +243,8 @@ pub fn compress<const D: usize>(
             mass: Some(world.mass(i)),
             restitution: scene.bodies[i].restitution,
             kinematic: false,
+            group: scene.bodies[i].group,
+            mask: scene.bodies[i].mask,
         })
         .collect();
     let mut settings = scene.settings;

@@ -46,6 +46,11 @@ struct BodyOut<const D: usize> {
     /// Kinematic bodies only.
     #[serde(skip_serializing_if = "std::ops::Not::not")]
     kinematic: bool,
+    /// Collision groups and mask, for bodies that set them.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    group: Option<u32>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    mask: Option<u32>,
     pos: Vector<D>,
     vel: Vector<D>,
 }
@@ -80,6 +85,8 @@ pub fn export_jsonl<R: Read, W: Write, const D: usize>(
                 radius: b.radius,
                 mass: Some(b.effective_mass()).filter(|m| m.is_finite()),
                 kinematic: b.kinematic,
+                group: b.group,
+                mask: b.mask,
                 pos: b.pos,
                 vel: b.vel,
             })

@@ -33,12 +33,13 @@ mod closest;
 mod falling;
 mod proximity;
 
+use crate::collision_filter::CollisionFilter;
 use crate::event::EventKind;
 use crate::geom::Vector;
 use crate::growth::GrowthLaw;
 use crate::narrow::{wall_normal, Motion};
 use crate::periodic::min_image;
-use crate::scene::Scene;
+use crate::scene::{BodySpec, Scene};
 use crate::sim::Collision;
 use crate::thermostat::ResetClock;
 use crate::wall::{wall_clearance, Wall};
@@ -114,6 +115,8 @@ pub struct Verifier<const D: usize> {
     /// Which bodies are kinematic (infinite mass, straight lines, no walls, no other
     /// kinematic body); empty when none is.
     kinematic: Vec<bool>,
+    /// Collision groups and masks by body index; empty when no body sets them.
+    filters: Vec<CollisionFilter>,
     last_time: f64,
     report: VerifyReport,
     /// The thermostat's reset sequence, regenerated from the scene, if it has one.
@@ -187,6 +190,15 @@ impl<const D: usize> Verifier<D> {
             period: scene.periodic,
             restitution: scene.settings.restitution,
             kinematic,
+            filters: if scene
+                .bodies
+                .iter()
+                .any(|b| b.group.is_some() || b.mask.is_some())
+            {
+                scene.bodies.iter().map(BodySpec::filter).collect()
+            } else {
+                Vec::new()
+            },
             last_time: scene.start_time,
             resets: scene
                 .settings
@@ -215,6 +227,13 @@ impl<const D: usize> Verifier<D> {
     /// True for a kinematic body.
     fn is_kinematic(&self, i: usize) -> bool {
         self.kinematic.get(i).copied().unwrap_or(false)
+    }
+
+    /// True when bodies `i` and `j` never meet: both kinematic, or kept apart by their
+    /// collision filters (see [`crate::collision_filter`]).
+    fn never_meet(&self, i: usize, j: usize) -> bool {
+        (self.is_kinematic(i) && self.is_kinematic(j))
+            || (!self.filters.is_empty() && !self.filters[i].collides(&self.filters[j]))
     }
 
     fn fail(&self, time: f64, what: String) -> Violation {
@@ -300,6 +319,12 @@ impl<const D: usize> Verifier<D> {
 
     fn check_pair(&mut self, c: &Collision<D>, i: usize, j: usize) -> Result<(), Violation> {
         let t = c.event.time;
+        if !self.filters.is_empty() && !self.filters[i].collides(&self.filters[j]) {
+            return Err(self.fail(
+                t,
+                format!("bodies {i} and {j} collide, but their collision filters keep them apart"),
+            ));
+        }
         let sigma = self.radius_at(i, t) + self.radius_at(j, t);
         let gap = (self.image(c.pos[1] - c.pos[0]).norm() - sigma) / sigma;
         if gap > OVERLAP_TOLERANCE {
@@ -535,7 +560,7 @@ impl<const D: usize> Verifier<D> {
     fn check_no_miss(&mut self, i: usize, t: f64) -> Result<(), Violation> {
         let mi = self.motion[i];
         for j in self.candidates(i) {
-            if self.is_kinematic(i) && self.is_kinematic(j) {
+            if self.never_meet(i, j) {
                 continue;
             }
             let mj = self.motion[j];
@@ -639,7 +664,7 @@ impl<const D: usize> Verifier<D> {
         t1: f64,
         when: &str,
     ) -> Result<(), Violation> {
-        if t1 < t0 || (self.is_kinematic(i) && self.is_kinematic(j)) {
+        if t1 < t0 || self.never_meet(i, j) {
             return Ok(());
         }
         let Some((overlap, at)) = self.pair_overlap(i, j, t0, t1) else {

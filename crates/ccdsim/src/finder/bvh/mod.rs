@@ -266,6 +266,9 @@ impl<const D: usize> BvhFinder<D> {
         for i in 0..world.len() {
             let mi = world.motion(i);
             for j in i + 1..world.len() {
+                if !world.collides(i, j) {
+                    continue;
+                }
                 let (mj, ri, rj) = (world.motion(j), world.radius(i), world.radius(j));
                 let t = match world.periodic() {
                     None => toi_pair_bodies(&world.bodies()[i], &world.bodies()[j], world.laws()),

@@ -171,6 +171,9 @@ impl<const D: usize> Check<'_, D> {
     #[inline]
     fn narrow(&mut self, i: usize, j: usize) {
         let (i, j) = if i < j { (i, j) } else { (j, i) };
+        if !self.world.collides(i, j) {
+            return;
+        }
         self.out.narrow_calls += 1;
         let (mi, ri) = (self.world.motion(i), self.world.radius(i));
         let (mj, rj) = (self.world.motion(j), self.world.radius(j));

@@ -197,6 +197,12 @@ impl<const D: usize> Cells<D> {
         let sa = Side::select(mask, probe, other);
         let sb = Side::select(mask, other, probe);
         let zero = [f64x4::ZERO; D];
+        // Collision filters drop the lanes of pairs that pass through each other.
+        let valid = if GROW && law.is_some_and(|l| l.filtered) {
+            valid & p.colliding_lanes(quad)
+        } else {
+            valid
+        };
         let lanes = match (GROW, law) {
             (
                 true,
@@ -204,8 +210,19 @@ impl<const D: usize> Cells<D> {
                     growth: Some(growth),
                     gravity: None,
                     kinematic: false,
+                    ..
                 }),
             ) => toi_sides_growing::<D, PERIODIC>(&sa, &sb, &zero, growth),
+            // Collision filters alone: the straight-line kernel, on the lanes left.
+            (
+                true,
+                Some(Laws {
+                    growth: None,
+                    gravity: None,
+                    kinematic: false,
+                    ..
+                }),
+            ) => toi_sides::<D, PERIODIC>(&sa, &sb, &zero),
             // Gravity: every lane goes to the scalar falling function.
             (true, Some(_)) => Lanes::all_rare(),
             _ => toi_sides::<D, PERIODIC>(&sa, &sb, &zero),

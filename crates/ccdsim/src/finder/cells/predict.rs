@@ -6,10 +6,11 @@ use super::gather::{Gathered, GATHER_2D, GATHER_3D};
 use super::grid::Grid;
 use super::key::{ordered, Key};
 use super::{Cells, Mode, NO_CROSSING, SECOND_KNOWN};
+use crate::collision_filter::CollisionFilter;
 use crate::geom::Vector;
 use crate::laws::Laws;
 use crate::narrow::{toi_body_wall_of, toi_pair_bodies, toi_pair_shifted, Motion};
-use crate::narrow_lanes::Side;
+use crate::narrow_lanes::{Side, ALL_LANES, LANES};
 use crate::periodic::toi_box_exit;
 use crate::prefetch::prefetch;
 use crate::world::{Body, World};
@@ -111,21 +112,44 @@ impl Best {
 
 /// A body whose events are being predicted: its index and a copy of its hot record.
 #[derive(Clone, Copy, Debug)]
-pub(super) struct Probe<const D: usize> {
+pub(super) struct Probe<'w, const D: usize> {
     /// Body index.
     pub i: usize,
     /// Its stored motion and radius.
     pub b: Body<D>,
+    /// The world's collision filters by body index (empty: every pair collides).
+    pub filters: &'w [CollisionFilter],
 }
 
-impl<const D: usize> Probe<D> {
+impl<'w, const D: usize> Probe<'w, D> {
     /// Body `i` of `world`.
     #[inline]
-    pub fn of(world: &World<D>, i: usize) -> Self {
+    pub fn of(world: &'w World<D>, i: usize) -> Self {
         Probe {
             i,
             b: world.bodies()[i],
+            filters: world.filters(),
         }
+    }
+
+    /// True when the probe collides with body `j` (see [`World::collides`]).
+    #[inline(always)]
+    pub fn collides(&self, j: usize) -> bool {
+        self.filters.is_empty() || self.filters[self.i].collides(&self.filters[j])
+    }
+
+    /// The lanes of `quad` (body indices) whose bodies collide with the probe, as a lane
+    /// mask; every lane when no filter is set.
+    #[inline(always)]
+    pub fn colliding_lanes(&self, quad: [u32; LANES]) -> u32 {
+        if self.filters.is_empty() {
+            return ALL_LANES;
+        }
+        let mut lanes = 0;
+        for (l, &j) in quad.iter().enumerate() {
+            lanes |= u32::from(self.collides(j as usize)) << l;
+        }
+        lanes
     }
 }
 
@@ -140,6 +164,9 @@ impl<const D: usize> Cells<D> {
         bj: &Body<D>,
         shift: &Vector<D>,
     ) -> Option<f64> {
+        if !p.collides(j) {
+            return None;
+        }
         let (i, bi) = (p.i, &p.b);
         let (a, b) = if i < j { (bi, bj) } else { (bj, bi) };
         if self.periodic {
@@ -173,6 +200,9 @@ impl<const D: usize> Cells<D> {
         best: &mut Best,
     ) {
         let i = p.i;
+        if law.is_some_and(|l| l.filtered) && !p.collides(j) {
+            return;
+        }
         // One pointer select, not one per field: the records share a layout.
         let probe_first = i < j;
         let (a, c) = if probe_first { (&p.b, bj) } else { (bj, &p.b) };

@@ -102,6 +102,12 @@ impl<const D: usize> Cells<D> {
                 let q = std::array::from_fn(|l| entries[(k + l).min(n - 1)]);
                 (q, (1 << (n - k)) - 1)
             };
+            // Collision filters drop the lanes of pairs that pass through each other.
+            let valid = if p.filters.is_empty() {
+                valid
+            } else {
+                valid & p.colliding_lanes(quad.map(|e| entry_body(e) as u32))
+            };
             if k + LANES <= above {
                 self.scan_quad::<PERIODIC, GROW, 0>(bodies, p, &probe, quad, LANES, valid, best);
             } else if k >= above {
@@ -241,6 +247,9 @@ impl<const D: usize> Cells<D> {
         let shifts = &self.lists().shifts;
         for &e in entries {
             let j = entry_body(e);
+            if !p.collides(j) {
+                continue;
+            }
             let image = entry_image(e);
             let b = &bodies[j];
             let probe_first = i < j;
