@@ -51,6 +51,30 @@ impl CollisionFilter {
     }
 }
 
+/// True when bodies `i` and `j` collide under the filters `filters` by body index (an
+/// empty slice: every pair collides).
+#[must_use]
+#[inline(always)]
+pub fn pair_collides(filters: &[CollisionFilter], i: usize, j: usize) -> bool {
+    filters.is_empty() || filters[i].collides(&filters[j])
+}
+
+/// The lane mask of the bodies `quad` (indices into `filters`, non-empty) that collide with
+/// body `i`: bit `l` set when `quad[l]` does.
+#[must_use]
+#[inline(always)]
+pub(crate) fn colliding_lanes<const L: usize>(
+    filters: &[CollisionFilter],
+    i: usize,
+    quad: [u32; L],
+) -> u32 {
+    let mut lanes = 0;
+    for (l, &j) in quad.iter().enumerate() {
+        lanes |= u32::from(filters[i].collides(&filters[j as usize])) << l;
+    }
+    lanes
+}
+
 impl Default for CollisionFilter {
     fn default() -> Self {
         Self::DEFAULT

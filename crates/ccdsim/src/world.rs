@@ -188,7 +188,7 @@ impl<const D: usize> World<D> {
     #[must_use]
     #[inline]
     pub fn collides(&self, i: usize, j: usize) -> bool {
-        self.filters.is_empty() || self.filters[i].collides(&self.filters[j])
+        crate::collision_filter::pair_collides(&self.filters, i, j)
     }
 
     /// Body `i`'s collision group and mask.

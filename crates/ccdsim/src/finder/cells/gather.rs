@@ -34,6 +34,7 @@ use super::grid::{CellBodies, Grid, CELL_SLOTS};
 use super::key::{ordered, Key};
 use super::predict::{Best, Probe};
 use super::Cells;
+use crate::collision_filter::{colliding_lanes, CollisionFilter};
 use crate::geom::Vector;
 use crate::laws::Laws;
 use crate::narrow_lanes::{toi_sides, toi_sides_growing, Lanes, Side, ALL_LANES, LANES};
@@ -139,6 +140,7 @@ impl<const D: usize> Cells<D> {
     #[allow(clippy::too_many_arguments)]
     pub(super) fn scan_gathered<const PERIODIC: bool, const GROW: bool>(
         law: Option<&Laws<D>>,
+        filters: &[CollisionFilter],
         bodies: &[Body<D>],
         p: &Probe<D>,
         probe: &Side<D>,
@@ -150,7 +152,9 @@ impl<const D: usize> Cells<D> {
         let mut k = from;
         while k < to {
             let (quad, valid, other) = quad_at(bodies, ids, k, to);
-            Self::offer_quad::<PERIODIC, GROW>(law, bodies, p, probe, &other, quad, valid, best);
+            Self::offer_quad::<PERIODIC, GROW>(
+                law, filters, bodies, p, probe, &other, quad, valid, best,
+            );
             k += LANES;
         }
     }
@@ -162,6 +166,7 @@ impl<const D: usize> Cells<D> {
     #[allow(clippy::too_many_arguments)]
     pub(super) fn scan_gathered_both<const PERIODIC: bool, const GROW: bool>(
         law: Option<&Laws<D>>,
+        filters: &[CollisionFilter],
         bodies: &[Body<D>],
         (pi, si, bi): (&Probe<D>, &Side<D>, &mut Best),
         (pj, sj, bj): (&Probe<D>, &Side<D>, &mut Best),
@@ -172,8 +177,12 @@ impl<const D: usize> Cells<D> {
         let mut k = from;
         while k < to {
             let (quad, valid, other) = quad_at(bodies, ids, k, to);
-            Self::offer_quad::<PERIODIC, GROW>(law, bodies, pi, si, &other, quad, valid, bi);
-            Self::offer_quad::<PERIODIC, GROW>(law, bodies, pj, sj, &other, quad, valid, bj);
+            Self::offer_quad::<PERIODIC, GROW>(
+                law, filters, bodies, pi, si, &other, quad, valid, bi,
+            );
+            Self::offer_quad::<PERIODIC, GROW>(
+                law, filters, bodies, pj, sj, &other, quad, valid, bj,
+            );
             k += LANES;
         }
     }
@@ -185,6 +194,7 @@ impl<const D: usize> Cells<D> {
     #[allow(clippy::too_many_arguments)]
     fn offer_quad<const PERIODIC: bool, const GROW: bool>(
         law: Option<&Laws<D>>,
+        filters: &[CollisionFilter],
         bodies: &[Body<D>],
         p: &Probe<D>,
         probe: &Side<D>,
@@ -199,7 +209,7 @@ impl<const D: usize> Cells<D> {
         let zero = [f64x4::ZERO; D];
         // Collision filters drop the lanes of pairs that pass through each other.
         let valid = if GROW && law.is_some_and(|l| l.filtered) {
-            valid & p.colliding_lanes(quad)
+            valid & colliding_lanes(filters, p.i, quad)
         } else {
             valid
         };
@@ -231,6 +241,7 @@ impl<const D: usize> Cells<D> {
         if lanes.rare != 0 {
             Self::offer_rare_lanes::<PERIODIC>(
                 if GROW { law } else { None },
+                filters,
                 bodies,
                 p,
                 quad,
@@ -259,6 +270,7 @@ impl<const D: usize> Cells<D> {
     #[inline(never)]
     fn offer_rare_lanes<const PERIODIC: bool>(
         law: Option<&Laws<D>>,
+        filters: &[CollisionFilter],
         bodies: &[Body<D>],
         p: &Probe<D>,
         quad: [u32; LANES],
@@ -270,7 +282,9 @@ impl<const D: usize> Cells<D> {
             let j = j as usize;
             if lanes.rare >> l & 1 != 0 {
                 let image = Grid::<D>::ZERO_IMAGE;
-                Self::offer_body::<PERIODIC>(law, p, j, &bodies[j], &zero, &zero, image, best);
+                Self::offer_body::<PERIODIC>(
+                    law, filters, p, j, &bodies[j], &zero, &zero, image, best,
+                );
             } else if lanes.hits >> l & 1 != 0 {
                 offer_time(best, p.i, j, lanes.times[l], Grid::<D>::ZERO_IMAGE);
             }

@@ -370,6 +370,9 @@ pub struct Cells<const D: usize> {
     gravity: Option<Vector<D>>,
     /// Which bodies are kinematic (they do not fall), by index; empty when none is.
     kinematic: Vec<bool>,
+    /// The world's collision filters by body index (see [`crate::collision_filter`]);
+    /// empty when every pair collides.
+    filters: Vec<crate::CollisionFilter>,
 }
 
 impl<const D: usize> Default for Cells<D> {
@@ -403,6 +406,7 @@ impl<const D: usize> Cells<D> {
             laws: None,
             gravity: None,
             kinematic: Vec::new(),
+            filters: Vec::new(),
         }
     }
 
@@ -607,6 +611,7 @@ impl<const D: usize> Finder<D> for Cells<D> {
         self.growth = world.growth().copied();
         self.laws = world.laws().copied();
         self.gravity = world.gravity();
+        self.filters = world.filters().to_vec();
         self.kinematic = if world.has_kinematic() {
             (0..n).map(|i| world.is_kinematic(i)).collect()
         } else {
@@ -724,6 +729,12 @@ impl<const D: usize> Finder<D> for Cells<D> {
         else {
             return;
         };
+        if !self.filters.is_empty() {
+            // A changed body may have changed its filter (`set_collision_filter`).
+            for &i in changed {
+                self.filters[i] = world.filters()[i];
+            }
+        }
         match self.mode {
             Mode::Crossings | Mode::FallingCrossings => {
                 self.update_crossing_mode(world, t, changed)

@@ -46,6 +46,7 @@ use super::grid::Grid;
 use super::key::Key;
 use super::predict::{Best, Probe};
 use super::{Cells, Mode};
+use crate::collision_filter::CollisionFilter;
 use crate::geom::Vector;
 use crate::laws::Laws;
 use crate::narrow_lanes::Side;
@@ -156,11 +157,20 @@ impl<const D: usize> Cells<D> {
         let (i, j) = ((pi, &si, bi), (pj, &sj, bj));
         // The world's kind, once per scan: the loops are compiled for each.
         let law = self.laws.as_ref();
+        let filters = &self.filters[..];
         match (self.periodic, law.is_some()) {
-            (true, false) => Self::scan_pair_parts::<true, false>(law, bodies, i, j, ids, parts),
-            (false, false) => Self::scan_pair_parts::<false, false>(law, bodies, i, j, ids, parts),
-            (true, true) => Self::scan_pair_parts::<true, true>(law, bodies, i, j, ids, parts),
-            (false, true) => Self::scan_pair_parts::<false, true>(law, bodies, i, j, ids, parts),
+            (true, false) => {
+                Self::scan_pair_parts::<true, false>(law, filters, bodies, i, j, ids, parts)
+            }
+            (false, false) => {
+                Self::scan_pair_parts::<false, false>(law, filters, bodies, i, j, ids, parts)
+            }
+            (true, true) => {
+                Self::scan_pair_parts::<true, true>(law, filters, bodies, i, j, ids, parts)
+            }
+            (false, true) => {
+                Self::scan_pair_parts::<false, true>(law, filters, bodies, i, j, ids, parts)
+            }
         }
         true
     }
@@ -171,6 +181,7 @@ impl<const D: usize> Cells<D> {
     #[inline(always)]
     fn scan_pair_parts<const PERIODIC: bool, const GROW: bool>(
         law: Option<&Laws<D>>,
+        filters: &[CollisionFilter],
         bodies: &[Body<D>],
         (pi, si, bi): (&Probe<D>, &Side<D>, &mut Best),
         (pj, sj, bj): (&Probe<D>, &Side<D>, &mut Best),
@@ -179,6 +190,7 @@ impl<const D: usize> Cells<D> {
     ) {
         Self::scan_gathered_both::<PERIODIC, GROW>(
             law,
+            filters,
             bodies,
             (pi, si, &mut *bi),
             (pj, sj, &mut *bj),
@@ -186,7 +198,7 @@ impl<const D: usize> Cells<D> {
             0,
             e0,
         );
-        Self::scan_gathered::<PERIODIC, GROW>(law, bodies, pi, si, ids, e0, e1, bi);
-        Self::scan_gathered::<PERIODIC, GROW>(law, bodies, pj, sj, ids, e1, n, bj);
+        Self::scan_gathered::<PERIODIC, GROW>(law, filters, bodies, pi, si, ids, e0, e1, bi);
+        Self::scan_gathered::<PERIODIC, GROW>(law, filters, bodies, pj, sj, ids, e1, n, bj);
     }
 }

@@ -6,11 +6,11 @@ use super::gather::{Gathered, GATHER_2D, GATHER_3D};
 use super::grid::Grid;
 use super::key::{ordered, Key};
 use super::{Cells, Mode, NO_CROSSING, SECOND_KNOWN};
-use crate::collision_filter::CollisionFilter;
+use crate::collision_filter::{pair_collides, CollisionFilter};
 use crate::geom::Vector;
 use crate::laws::Laws;
 use crate::narrow::{toi_body_wall_of, toi_pair_bodies, toi_pair_shifted, Motion};
-use crate::narrow_lanes::{Side, ALL_LANES, LANES};
+use crate::narrow_lanes::Side;
 use crate::periodic::toi_box_exit;
 use crate::prefetch::prefetch;
 use crate::world::{Body, World};
@@ -112,44 +112,21 @@ impl Best {
 
 /// A body whose events are being predicted: its index and a copy of its hot record.
 #[derive(Clone, Copy, Debug)]
-pub(super) struct Probe<'w, const D: usize> {
+pub(super) struct Probe<const D: usize> {
     /// Body index.
     pub i: usize,
     /// Its stored motion and radius.
     pub b: Body<D>,
-    /// The world's collision filters by body index (empty: every pair collides).
-    pub filters: &'w [CollisionFilter],
 }
 
-impl<'w, const D: usize> Probe<'w, D> {
+impl<const D: usize> Probe<D> {
     /// Body `i` of `world`.
     #[inline]
-    pub fn of(world: &'w World<D>, i: usize) -> Self {
+    pub fn of(world: &World<D>, i: usize) -> Self {
         Probe {
             i,
             b: world.bodies()[i],
-            filters: world.filters(),
         }
-    }
-
-    /// True when the probe collides with body `j` (see [`World::collides`]).
-    #[inline(always)]
-    pub fn collides(&self, j: usize) -> bool {
-        self.filters.is_empty() || self.filters[self.i].collides(&self.filters[j])
-    }
-
-    /// The lanes of `quad` (body indices) whose bodies collide with the probe, as a lane
-    /// mask; every lane when no filter is set.
-    #[inline(always)]
-    pub fn colliding_lanes(&self, quad: [u32; LANES]) -> u32 {
-        if self.filters.is_empty() {
-            return ALL_LANES;
-        }
-        let mut lanes = 0;
-        for (l, &j) in quad.iter().enumerate() {
-            lanes |= u32::from(self.collides(j as usize)) << l;
-        }
-        lanes
     }
 }
 
@@ -164,7 +141,7 @@ impl<const D: usize> Cells<D> {
         bj: &Body<D>,
         shift: &Vector<D>,
     ) -> Option<f64> {
-        if !p.collides(j) {
+        if self.laws.is_some_and(|l| l.filtered) && !pair_collides(&self.filters, p.i, j) {
             return None;
         }
         let (i, bi) = (p.i, &p.b);
@@ -191,6 +168,7 @@ impl<const D: usize> Cells<D> {
     #[allow(clippy::too_many_arguments)]
     pub(super) fn offer_body<const PERIODIC: bool>(
         law: Option<&Laws<D>>,
+        filters: &[CollisionFilter],
         p: &Probe<D>,
         j: usize,
         bj: &Body<D>,
@@ -200,7 +178,7 @@ impl<const D: usize> Cells<D> {
         best: &mut Best,
     ) {
         let i = p.i;
-        if law.is_some_and(|l| l.filtered) && !p.collides(j) {
+        if law.is_some_and(|l| l.filtered) && !pair_collides(filters, i, j) {
             return;
         }
         // One pointer select, not one per field: the records share a layout.
@@ -294,7 +272,10 @@ impl<const D: usize> Cells<D> {
                 let j = j as usize;
                 if j != p.i {
                     let law = self.laws.as_ref();
-                    Self::offer_body::<PERIODIC>(law, p, j, &bodies[j], shift, &neg, image, best);
+                    let filters = &self.filters[..];
+                    Self::offer_body::<PERIODIC>(
+                        law, filters, p, j, &bodies[j], shift, &neg, image, best,
+                    );
                 }
             }
         }
@@ -356,19 +337,20 @@ impl<const D: usize> Cells<D> {
         let probe = Side::splat(&p.b.motion, p.b.radius);
         let ids = &g.ids;
         let law = self.laws.as_ref();
+        let filters = &self.filters[..];
         match (self.periodic, law.is_some()) {
-            (true, false) => {
-                Self::scan_gathered::<true, false>(law, bodies, p, &probe, ids, 0, g.n, best)
-            }
-            (false, false) => {
-                Self::scan_gathered::<false, false>(law, bodies, p, &probe, ids, 0, g.n, best)
-            }
-            (true, true) => {
-                Self::scan_gathered::<true, true>(law, bodies, p, &probe, ids, 0, g.n, best)
-            }
-            (false, true) => {
-                Self::scan_gathered::<false, true>(law, bodies, p, &probe, ids, 0, g.n, best)
-            }
+            (true, false) => Self::scan_gathered::<true, false>(
+                law, filters, bodies, p, &probe, ids, 0, g.n, best,
+            ),
+            (false, false) => Self::scan_gathered::<false, false>(
+                law, filters, bodies, p, &probe, ids, 0, g.n, best,
+            ),
+            (true, true) => Self::scan_gathered::<true, true>(
+                law, filters, bodies, p, &probe, ids, 0, g.n, best,
+            ),
+            (false, true) => Self::scan_gathered::<false, true>(
+                law, filters, bodies, p, &probe, ids, 0, g.n, best,
+            ),
         }
     }
 

@@ -8,6 +8,7 @@ use super::super::predict::{Best, Probe};
 use super::super::slots::SLOTS;
 use super::super::{Cells, Mode, KEY_IS_CROSSING};
 use super::*;
+use crate::collision_filter::{colliding_lanes, pair_collides};
 use crate::geom::Vector;
 use crate::narrow::{toi_pair, toi_pair_shifted};
 use crate::narrow_lanes::{
@@ -103,10 +104,10 @@ impl<const D: usize> Cells<D> {
                 (q, (1 << (n - k)) - 1)
             };
             // Collision filters drop the lanes of pairs that pass through each other.
-            let valid = if p.filters.is_empty() {
-                valid
+            let valid = if GROW && !self.filters.is_empty() {
+                valid & colliding_lanes(&self.filters, p.i, quad.map(|e| entry_body(e) as u32))
             } else {
-                valid & p.colliding_lanes(quad.map(|e| entry_body(e) as u32))
+                valid
             };
             if k + LANES <= above {
                 self.scan_quad::<PERIODIC, GROW, 0>(bodies, p, &probe, quad, LANES, valid, best);
@@ -247,7 +248,7 @@ impl<const D: usize> Cells<D> {
         let shifts = &self.lists().shifts;
         for &e in entries {
             let j = entry_body(e);
-            if !p.collides(j) {
+            if !pair_collides(&self.filters, i, j) {
                 continue;
             }
             let image = entry_image(e);
