@@ -35,6 +35,7 @@ __all__ = [
     "read_run",
     "events_array",
     "EVENT_DTYPE",
+    "SENSOR_EVENT_DTYPE",
     "FINDER_NAMES",
     "generate",
     "observables",
@@ -74,6 +75,13 @@ def events_array(arrays: Mapping[str, np.ndarray], dim: int) -> np.ndarray:
     for name in ("t", "kind", "a", "b", "pos", "vel"):
         out[name] = arrays[name]
     return out
+
+
+SENSOR_EVENT_DTYPE = np.dtype(
+    [("t", "f8"), ("body", "u4"), ("sensor", "u4"), ("enter", "?")]
+)
+"""Fields of a sensor event: its time ``t`` (s), the ``body`` and ``sensor`` indices, and
+``enter`` (True when the body started to overlap the sensor, False when it stopped)."""
 
 
 SceneLike = Union[str, Mapping[str, Any]]
@@ -298,6 +306,23 @@ class Simulation:
         """Moves body ``i`` to ``p`` at the current time, keeping its velocity (a teleport);
         raises ValueError where it would overlap another body or a wall."""
         self._sim.set_position(int(i), [float(x) for x in p])
+
+    def set_collision_filter(self, i: int, group: int, mask: int = 0xFFFFFFFF) -> None:
+        """Gives body ``i`` the collision ``group`` and ``mask`` bit sets from now on: two
+        bodies collide only when each one's group shares a bit with the other's mask (group 0:
+        a ghost that collides with no body). Raises ValueError when it would make overlapping
+        bodies collide."""
+        self._sim.set_collision_filter(int(i), int(group), int(mask))
+
+    def take_sensor_events(self) -> np.ndarray:
+        """The scene's sensor events since the last call, in time order, as a structured
+        array (see :data:`SENSOR_EVENT_DTYPE`): bodies entering and leaving the ``sensors``
+        regions as the clock passed them. Empty for a scene without sensors."""
+        arrays = self._sim.take_sensor_events()
+        out = np.zeros(len(arrays["t"]), dtype=SENSOR_EVENT_DTYPE)
+        for name in ("t", "body", "sensor", "enter"):
+            out[name] = arrays[name]
+        return out
 
     def rescale_velocities(self, factor: float) -> None:
         """Multiplies every velocity by ``factor`` from now on (growing packings heat up; this

@@ -191,3 +191,19 @@ def test_collision_filters_let_bodies_pass_through():
     assert sim.stats()["body_collisions"] == 0
     with pytest.raises(ValueError, match="overlaps body 0"):
         sim.set_collision_filter(1, group=1)
+
+
+def test_sensors_report_enters_and_leaves():
+    scene = {
+        "dim": 2,
+        "bodies": [{"pos": [0.0, 0.0], "vel": [2.0, 0.0], "radius": 0.5}],
+        "sensors": [{"center": [4.0, 0.0], "radius": 1.0}],
+    }
+    sim = ccdsim.Simulation(scene, finder="cells")
+    sim.run_until(10.0)
+    ev = sim.take_sensor_events()
+    # Overlap while the centre is within 1.5 m of x = 4: from t = 1.25 to 2.75.
+    assert ev["t"].tolist() == [1.25, 2.75]
+    assert ev["enter"].tolist() == [True, False]
+    assert ev["body"].tolist() == [0, 0] and ev["sensor"].tolist() == [0, 0]
+    assert len(sim.take_sensor_events()) == 0

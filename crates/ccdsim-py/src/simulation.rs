@@ -325,7 +325,30 @@ impl PySimulation {
     fn set_collision_filter(&mut self, i: usize, group: u32, mask: u32) -> PyResult<()> {
         self.check_index(i)?;
         let filter = ccdsim::CollisionFilter { group, mask };
-        with_sim!(self, s, s.set_collision_filter(i, filter).map_err(value_error))
+        with_sim!(
+            self,
+            s,
+            s.set_collision_filter(i, filter).map_err(value_error)
+        )
+    }
+
+    /// The sensor events since the last call, in time order, as arrays `t`, `body`, `sensor`
+    /// and `enter` (true for an enter, false for a leave).
+    fn take_sensor_events<'py>(&mut self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let events = with_sim!(self, s, s.take_sensor_events());
+        let out = PyDict::new(py);
+        let t: Vec<f64> = events.iter().map(|e| e.time).collect();
+        let body: Vec<u32> = events.iter().map(|e| e.body as u32).collect();
+        let sensor: Vec<u32> = events.iter().map(|e| e.sensor as u32).collect();
+        let enter: Vec<bool> = events
+            .iter()
+            .map(|e| e.change == ccdsim::SensorChange::Enter)
+            .collect();
+        out.set_item("t", PyArray1::from_vec(py, t))?;
+        out.set_item("body", PyArray1::from_vec(py, body))?;
+        out.set_item("sensor", PyArray1::from_vec(py, sensor))?;
+        out.set_item("enter", PyArray1::from_vec(py, enter))?;
+        Ok(out)
     }
 
     /// Counters of the run: events, body and wall collisions, largest overlap, kinetic energy

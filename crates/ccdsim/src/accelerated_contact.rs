@@ -57,20 +57,86 @@ pub fn first_contact_accelerating<const D: usize>(
     if acc.0.iter().all(|&a| a == 0.0) {
         return first_contact(dp, dv, sigma);
     }
+    first_turn(dp, dv, acc, sigma, 1.0, first_contact)
+}
+
+/// Time offset `t ≥ 0`, seconds, at which a point at offset `dp` (metres) from the origin,
+/// moving at relative velocity `dv` (m/s) with constant relative acceleration `acc` (m/s²),
+/// is first at least `sigma` (metres) from the origin while moving away from it: the time it
+/// leaves the ball of radius `sigma`. [`first_contact_accelerating`]'s contract for
+/// `g(t) = σ² − |x(t)|²` (where that one's is for `−g`): `0` for a point outside the ball and
+/// moving away; otherwise the first root where `g` turns negative; `None` when that never
+/// happens (a point at rest inside, without acceleration). With `acc` exactly zero it is
+/// [`first_exit`].
+#[must_use]
+pub fn first_exit_accelerating<const D: usize>(
+    dp: Vector<D>,
+    dv: Vector<D>,
+    acc: Vector<D>,
+    sigma: f64,
+) -> Option<f64> {
+    if acc.0.iter().all(|&a| a == 0.0) {
+        return first_exit(dp, dv, sigma);
+    }
+    first_turn(dp, dv, acc, sigma, -1.0, first_exit)
+}
+
+/// Time offset `t ≥ 0` at which a point at offset `dp` moving in a straight line at `dv` is
+/// first at least `sigma` from the origin while moving away: `0` when it already is, else
+/// the later root of `|dp + dv·t| = σ` (solved without cancellation), `0` when its path
+/// misses the ball (it is outside and will only pass by) or it rests outside or on the
+/// sphere, `None` for a point at rest inside.
+#[must_use]
+pub fn first_exit<const D: usize>(dp: Vector<D>, dv: Vector<D>, sigma: f64) -> Option<f64> {
+    let b = dp.dot(dv);
+    let c = dp.norm_sq() - sigma * sigma;
+    if c >= 0.0 && b > 0.0 {
+        return Some(0.0);
+    }
+    let a = dv.norm_sq();
+    if a == 0.0 {
+        // At rest: out already (on the sphere or beyond), or never.
+        return (c >= 0.0).then_some(0.0);
+    }
+    let disc = b * b - a * c;
+    if disc.is_nan() || disc < 0.0 {
+        return Some(0.0);
+    }
+    let root = disc.sqrt();
+    let t = if b <= 0.0 {
+        (root - b) / a
+    } else {
+        -c / (b + root)
+    };
+    Some(t.max(0.0)).filter(|t| t.is_finite())
+}
+
+/// The common body of [`first_contact_accelerating`] (`sign` 1) and
+/// [`first_exit_accelerating`] (`sign` −1, the sign of `f` flipped); `straight` is the
+/// straight-line answer for flights too fast for the quartic.
+fn first_turn<const D: usize>(
+    dp: Vector<D>,
+    dv: Vector<D>,
+    acc: Vector<D>,
+    sigma: f64,
+    sign: f64,
+    straight: fn(Vector<D>, Vector<D>, f64) -> Option<f64>,
+) -> Option<f64> {
     if !(dp.is_finite() && dv.is_finite() && acc.is_finite() && sigma.is_finite()) {
         return None;
     }
     let reach = max_abs(dp).max(sigma.abs());
     if reach == 0.0 {
-        // f = |x|² ≥ 0 only touches zero: never a contact that approaches.
-        return None;
+        // f = |x|² ≥ 0 only touches zero: never a contact that approaches; the point
+        // leaves at once.
+        return (sign < 0.0).then_some(0.0);
     }
     // Lengths in units of 2^e > reach, times in units of 2^m with |acc|∞ in [1, 4) after.
     let e = exponent(reach) + 1;
     let m = (e - exponent(max_abs(acc)) + 1).div_euclid(2);
     let v = scaled(dv, m - e);
     if max_abs(v) > MAX_SCALED_SPEED {
-        return first_contact(dp, dv, sigma);
+        return straight(dp, dv, sigma);
     }
     let r = ldexp(sigma, -e);
     let parabola = Parabola {
@@ -78,6 +144,7 @@ pub fn first_contact_accelerating<const D: usize>(
         v,
         h: scaled(acc, 2 * m - e - 1),
         r_sq: r * r,
+        sign,
     };
     parabola
         .first_contact()
@@ -95,6 +162,8 @@ struct Parabola<const D: usize> {
     v: Vector<D>,
     h: Vector<D>,
     r_sq: f64,
+    /// 1 for contacts; −1 for exits, whose `f` is flipped (`σ² − |x|²`).
+    sign: f64,
 }
 
 impl<const D: usize> Parabola<D> {
@@ -106,9 +175,9 @@ impl<const D: usize> Parabola<D> {
         let x = self.p + (self.v + self.h * t) * t;
         let xd = self.v + self.h * (2.0 * t);
         [
-            x.norm_sq() - self.r_sq,
-            2.0 * x.dot(xd),
-            2.0 * (xd.norm_sq() + 2.0 * x.dot(self.h)),
+            self.sign * (x.norm_sq() - self.r_sq),
+            self.sign * (2.0 * x.dot(xd)),
+            self.sign * (2.0 * (xd.norm_sq() + 2.0 * x.dot(self.h))),
         ]
     }
 
@@ -580,6 +649,61 @@ mod tests {
         (q * (1.2 * sigma) - dp - acc * (0.5 * tau * tau)) * (1.0 / tau)
     }
 
+    /// [`first_exit_accelerating`]'s answer for a point strictly inside the ball, checked
+    /// against the exact quartic: no root of `f` before it, one within `1e-9·(1 + t)`.
+    fn checked_exit<const D: usize>(dp: Vector<D>, dv: Vector<D>, acc: Vector<D>, sigma: f64) {
+        let got = first_exit_accelerating(dp, dv, acc, sigma);
+        let dot = |a: Vector<D>, b: Vector<D>| -> BigRational {
+            (0..D).map(|k| rat(a[k]) * rat(b[k])).sum()
+        };
+        let f = vec![
+            dot(dp, dp) - rat(sigma) * rat(sigma),
+            rat(2.0) * dot(dp, dv),
+            dot(dv, dv) + dot(dp, acc),
+            dot(dv, acc),
+            dot(acc, acc) / rat(4.0),
+        ];
+        let zero = BigRational::zero();
+        if f[0] >= zero || acc.0.iter().all(|&a| a == 0.0) {
+            return;
+        }
+        let sf = sturm(f);
+        if sf[sf.len() - 1].len() > 1 {
+            return; // a tangency: outside what rounding decides
+        }
+        // Inside under a non-zero acceleration, the point always leaves.
+        let t = got.expect("an accelerated point leaves every ball");
+        let tol = rat(1e-9) * (rat(1.0) + rat(t));
+        let (a, b) = ((rat(t) - &tol).max(zero.clone()), rat(t) + &tol);
+        assert_eq!(roots(&sf, &zero, &a), 0, "left before {t}");
+        assert!(roots(&sf, &a, &b) >= 1, "no exit at {t}");
+    }
+
+    #[test]
+    fn exits_of_straight_and_falling_points() {
+        // From the centre at 1 m/s: out at 1 s. Outside and receding: at once. At rest
+        // inside: never. Passing by outside: at once.
+        assert_eq!(first_exit(v2(0.0, 0.0), v2(1.0, 0.0), 1.0), Some(1.0));
+        assert_eq!(first_exit(v2(2.0, 0.0), v2(1.0, 0.0), 1.0), Some(0.0));
+        assert_eq!(first_exit(v2(0.5, 0.0), v2(0.0, 0.0), 1.0), None);
+        assert_eq!(first_exit(v2(-3.0, 2.0), v2(1.0, 0.0), 1.0), Some(0.0));
+        // Entering from the left: out on the far side, 3 s on.
+        assert_eq!(first_exit(v2(-2.0, 0.0), v2(1.0, 0.0), 1.0), Some(3.0));
+        // Dropped from rest 0.5 m above the centre, falling at 2 m/s²: out when
+        // 0.5 − t² = −1.
+        let t = first_exit_accelerating(v2(0.0, 0.5), Vector::ZERO, v2(0.0, -2.0), 1.0);
+        assert!(close(t, 1.5f64.sqrt()), "{t:?}");
+        // Thrown up through the top, turned back inside, out through the bottom.
+        let t = first_exit_accelerating(v2(0.0, 0.0), v2(0.0, 1.0), v2(0.0, -1.0), 1.0);
+        // x = t − t²/2 reaches 0.5 at most: out at −1, t = 1 + √3.
+        assert!(close(t, 1.0 + 3f64.sqrt()), "{t:?}");
+        // Zero acceleration is the straight line, bit for bit.
+        assert_eq!(
+            first_exit_accelerating(v2(0.3, -0.2), v2(1.0, 0.5), Vector::ZERO, 1.0),
+            first_exit(v2(0.3, -0.2), v2(1.0, 0.5), 1.0)
+        );
+    }
+
     proptest! {
         #![proptest_config(ProptestConfig::with_cases(512))]
 
@@ -631,6 +755,20 @@ mod tests {
             if dp.norm() + dv.norm() * t + 0.5 * acc.norm() * t * t <= 1_048_576.0 * sigma {
                 checked(dp, dv, acc, sigma, 0.0);
             }
+        }
+
+        #[test]
+        fn exits_match_exact_reference(
+            dp in vec3(1.5), dv in vec3(3.0), acc in vec3(10.0), sigma in 0.5..2.0f64,
+        ) {
+            checked_exit(dp, dv, acc, sigma);
+        }
+
+        #[test]
+        fn exits_match_exact_reference_2d(
+            dp in vec2(1.5), dv in vec2(3.0), acc in vec2(10.0), sigma in 0.5..2.0f64,
+        ) {
+            checked_exit(dp, dv, acc, sigma);
         }
     }
 }

@@ -8,6 +8,7 @@ use crate::geom::{ball_volume, Vector};
 use crate::gravity::Gravity;
 use crate::growth::Growth;
 use crate::resolution::{resolution_error, resolves, ulp, RESOLUTION_LIMIT};
+use crate::sensor::Sensor;
 use crate::thermostat::Thermostat;
 use crate::wall::{closed_segments, inside_even_odd};
 pub use crate::wall::{wall_clearance, Wall};
@@ -147,6 +148,10 @@ pub struct Scene<const D: usize> {
     /// distance (`4 · r_max`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub periodic: Option<Vector<D>>,
+    /// Sensor regions: balls fixed in space that report bodies entering and leaving them,
+    /// and never touch them (see [`crate::sensor`]).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub sensors: Vec<Sensor<D>>,
 }
 
 impl<const D: usize> Default for Scene<D> {
@@ -157,6 +162,7 @@ impl<const D: usize> Default for Scene<D> {
             bodies: Vec::new(),
             walls: Vec::new(),
             periodic: None,
+            sensors: Vec::new(),
         }
     }
 }
@@ -453,6 +459,7 @@ impl<const D: usize> Scene<D> {
         if let Some(size) = self.periodic {
             self.validate_periodic(size)?;
         }
+        self.validate_sensors()?;
         if let Some((a, b, depth)) = first_overlap(&self.bodies, self.periodic) {
             return Err(SceneError::Overlap {
                 a: self.name(a),
@@ -532,6 +539,35 @@ impl<const D: usize> Scene<D> {
     }
 
     /// Every body resolved at the start time (see [`crate::resolution`]).
+    /// Sensors: finite centres, finite positive radii; not in periodic or growing scenes.
+    fn validate_sensors(&self) -> Result<(), SceneError> {
+        for (k, s) in self.sensors.iter().enumerate() {
+            let f = |field: &str| format!("sensors[{k}].{field}");
+            if !s.center.is_finite() {
+                return Err(SceneError::NonFinite(f("center")));
+            }
+            if !s.radius.is_finite() {
+                return Err(SceneError::NonFinite(f("radius")));
+            }
+            if s.radius <= 0.0 {
+                return Err(SceneError::NonPositive(f("radius")));
+            }
+            let refuse = |why: &str| {
+                Err(SceneError::Unsupported {
+                    field: format!("sensors[{k}]"),
+                    why: why.into(),
+                })
+            };
+            if self.periodic.is_some() {
+                return refuse("sensors are not supported in a periodic box yet");
+            }
+            if self.settings.growth.is_some() {
+                return refuse("sensors cannot be combined with settings.growth yet");
+            }
+        }
+        Ok(())
+    }
+
     fn validate_resolution(&self) -> Result<(), SceneError> {
         let t = self.start_time;
         for (i, b) in self.bodies.iter().enumerate() {
@@ -726,6 +762,8 @@ struct SceneFile<const D: usize> {
     walls: Vec<Wall<D>>,
     #[serde(default)]
     periodic: Option<Vector<D>>,
+    #[serde(default)]
+    sensors: Vec<Sensor<D>>,
 }
 
 fn parse_typed<const D: usize>(text: &str) -> Result<Scene<D>, SceneError> {
@@ -741,6 +779,7 @@ fn parse_typed<const D: usize>(text: &str) -> Result<Scene<D>, SceneError> {
         bodies: f.bodies,
         walls: f.walls,
         periodic: f.periodic,
+        sensors: f.sensors,
     })
 }
 

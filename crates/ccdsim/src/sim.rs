@@ -8,6 +8,7 @@ use crate::observables::{observables, Observables};
 use crate::periodic::wrap_point;
 use crate::resolve::{resolve_body_body_contact, resolve_body_wall, resolve_exit};
 use crate::scene::{Scene, SceneError};
+use crate::sensor::{SensorEvent, SensorTracker};
 use crate::thermostat::ResetClock;
 use crate::world::World;
 
@@ -106,6 +107,8 @@ pub struct Simulation<const D: usize> {
     /// A wall event whose collision changed nothing (a body resting on a wall under
     /// gravity): if the finder names it again, the run halts ([`Halt::Resting`]).
     idle: Option<Event>,
+    /// The scene's sensors, if it has any (see [`crate::sensor`]).
+    sensors: Option<SensorTracker<D>>,
 }
 
 impl<const D: usize> Simulation<D> {
@@ -116,7 +119,11 @@ impl<const D: usize> Simulation<D> {
 
     /// A simulation of `scene` with the given finder.
     pub fn with_finder(scene: &Scene<D>, finder: Box<dyn Finder<D>>) -> Result<Self, SimError> {
-        Self::from_world(World::from_scene(scene)?, finder)
+        let mut sim = Self::from_world(World::from_scene(scene)?, finder)?;
+        if !scene.sensors.is_empty() {
+            sim.sensors = Some(SensorTracker::new(&sim.world, scene.sensors.clone()));
+        }
+        Ok(sim)
     }
 
     /// A simulation of an already built world (see [`World::from_scene`]) with the given
@@ -146,6 +153,7 @@ impl<const D: usize> Simulation<D> {
             halt: None,
             stats,
             idle: None,
+            sensors: None,
         })
     }
 
@@ -350,6 +358,10 @@ impl<const D: usize> Simulation<D> {
 
     fn resolve(&mut self, e: Event) -> Collision<D> {
         let (a, b) = (e.a as usize, e.b as usize);
+        if let Some(s) = &mut self.sensors {
+            // Every sensor event up to the collision, on the motions before it.
+            s.advance_to(&self.world, e.time);
+        }
         if self.idle.is_some() {
             self.idle = None;
         }
@@ -407,6 +419,12 @@ impl<const D: usize> Simulation<D> {
         if let Some(before) = energy_before {
             self.guard.add_energy(self.involved_energy(&e) - before);
         }
+        if let Some(s) = &mut self.sensors {
+            s.body_changed(&self.world, a);
+            if e.kind == EventKind::Body {
+                s.body_changed(&self.world, b);
+            }
+        }
         self.stats.events += 1;
         self.stats.max_overlap = self.stats.max_overlap.max(overlap);
         out
@@ -448,9 +466,38 @@ impl<const D: usize> Simulation<D> {
         self.rebuild()
     }
 
+    /// Body `i`'s stored motion was replaced by an edit at the current time: its sensor
+    /// events are computed anew.
+    fn sensors_changed(&mut self, i: usize) {
+        if let Some(s) = &mut self.sensors {
+            s.body_changed(&self.world, i);
+        }
+    }
+
+    /// The sensor events reported since the last call, in time order (see
+    /// [`crate::sensor`]): bodies entering and leaving the scene's sensors as the clock
+    /// passed them. Empty for a scene without sensors.
+    pub fn take_sensor_events(&mut self) -> Vec<SensorEvent> {
+        self.sensors
+            .as_mut()
+            .map(SensorTracker::take_events)
+            .unwrap_or_default()
+    }
+
+    /// The scene's sensors and what they hold, if it has any.
+    #[must_use]
+    pub fn sensors(&self) -> Option<&SensorTracker<D>> {
+        self.sensors.as_ref()
+    }
+
     /// After a change of every body: the finder and the resolution guard start afresh.
     fn rebuild(&mut self) -> Result<(), SimError> {
         self.finder.init(&self.world)?;
+        if let Some(s) = &mut self.sensors {
+            for i in 0..self.world.len() {
+                s.body_changed(&self.world, i);
+            }
+        }
         self.guard = ResolutionGuard::new(&self.world);
         self.pending = None;
         self.halt = None;
@@ -474,6 +521,7 @@ impl<const D: usize> Simulation<D> {
         let p = self.world.position_at(i, time);
         self.world.set_state(i, p, reset.velocity, time);
         self.finder.update(&self.world, &[i]);
+        self.sensors_changed(i);
         // The world changed: an earlier halt may no longer hold.
         self.halt = None;
         self.stats.resets += 1;
@@ -517,6 +565,9 @@ impl<const D: usize> Simulation<D> {
             Some(Halt::Resolution { time, .. } | Halt::Resting { time, .. }) if time <= t
         );
         if t > self.world.now() && !blocked {
+            if let Some(s) = &mut self.sensors {
+                s.advance_to(&self.world, t);
+            }
             self.world.set_now(t);
         }
         count
@@ -577,6 +628,7 @@ impl<const D: usize> Simulation<D> {
         }
         self.restate(i, vel);
         self.finder.update(&self.world, &[i]);
+        self.sensors_changed(i);
         self.pending = None;
         self.halt = None;
         Ok(())
@@ -620,6 +672,7 @@ impl<const D: usize> Simulation<D> {
         // bodies' reference times, and a pair that passed through each other before now must
         // not be found in contact then.
         self.restate(i, self.world.velocity_at(i, t));
+        self.sensors_changed(i);
         if self.world.set_filter(i, filter) {
             // The world's laws changed (pairs are now filtered): every finder starts afresh.
             return self.rebuild();
@@ -722,6 +775,7 @@ impl<const D: usize> Simulation<D> {
             self.images[i] = [0; D];
         }
         self.finder.update(&self.world, &[i]);
+        self.sensors_changed(i);
         self.pending = None;
         self.halt = None;
         self.idle = None;

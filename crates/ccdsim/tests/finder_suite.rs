@@ -1012,6 +1012,7 @@ fn grid_scene_in<const D: usize>(
             Boundary::Periodic => Some(Vector::splat(3.0 * base as f64 + 2.0)),
             Boundary::Open | Boundary::Walls => None,
         },
+        sensors: Vec::new(),
     }
 }
 

@@ -50,6 +50,10 @@ struct PegsArgs {
     /// Coefficient of restitution, in [0, 1].
     #[arg(long, default_value_t = PegsConfig::default().restitution)]
     restitution: f64,
+    /// Bins along the floor, each a sensor that counts the balls landing in it (a Galton
+    /// board's histogram; `ccdsim run` reports what each holds at the end). 0: none.
+    #[arg(long, default_value_t = PegsConfig::default().bins)]
+    bins: usize,
     /// Random seed.
     #[arg(long, default_value_t = 1)]
     seed: u64,
@@ -183,6 +187,7 @@ pub fn run(args: Args) -> Result<ExitCode> {
             balls: p.balls,
             radius: p.radius,
             restitution: p.restitution,
+            bins: p.bins,
             seed: p.seed,
             ..PegsConfig::default()
         })?

@@ -40,6 +40,10 @@ pub struct Args {
     /// Write the sampled frames here: extended XYZ (.xyz, .extxyz) or GSD (.gsd).
     #[arg(long, requires = "frames")]
     trajectory: Option<PathBuf>,
+    /// Write the scene's sensor events here as JSON lines (`t`, `body` id, `sensor` index,
+    /// `change`: "enter" or "leave"), in time order.
+    #[arg(long)]
+    sensor_log: Option<PathBuf>,
     /// Print one JSON object instead of the readable summary.
     #[arg(long)]
     json: bool,
@@ -97,6 +101,45 @@ struct Summary {
     /// Relative drift of the total energy (kinetic + potential), against the larger of the
     /// start and end kinetic energies: what elastic collisions conserve under gravity.
     energy_drift: f64,
+    /// Per sensor of the scene (empty without sensors): bodies that entered and left it, and
+    /// those inside at the end.
+    sensors: Vec<SensorSummary>,
+    /// The sensor log written with --sensor-log, or null.
+    sensor_log: Option<String>,
+}
+
+/// One sensor's counts in the `--json` summary.
+#[derive(Serialize)]
+struct SensorSummary {
+    enters: u64,
+    leaves: u64,
+    inside: usize,
+}
+
+/// Writes sensor events as JSON lines.
+struct SensorLog {
+    out: std::io::BufWriter<std::fs::File>,
+    ids: Vec<u64>,
+}
+
+impl SensorLog {
+    /// Appends the events `sim` reported since the last call (and forgets them either way).
+    fn drain<const D: usize>(log: &mut Option<Self>, sim: &mut Simulation<D>) -> Result<()> {
+        use std::io::Write;
+        let events = sim.take_sensor_events();
+        let Some(log) = log else { return Ok(()) };
+        for e in events {
+            let change = match e.change {
+                ccdsim::SensorChange::Enter => "enter",
+                ccdsim::SensorChange::Leave => "leave",
+            };
+            let line = serde_json::json!({
+                "t": e.time, "body": log.ids[e.body], "sensor": e.sensor, "change": change,
+            });
+            writeln!(log.out, "{line}")?;
+        }
+        Ok(())
+    }
 }
 
 /// Runs the command.
@@ -128,6 +171,10 @@ fn simulate<const D: usize>(scene: &Scene<D>, args: &Args) -> Result<Summary> {
             scene.start_time
         );
     }
+    anyhow::ensure!(
+        args.sensor_log.is_none() || !scene.sensors.is_empty(),
+        "--sensor-log: the scene has no sensors"
+    );
     let finder = make_finder::<D>(&args.finder, &args.finder_options.options()?)?;
     let mut sim = Simulation::with_finder(scene, finder)?;
     let mut frames = match (args.frames, &args.trajectory) {
@@ -162,6 +209,26 @@ fn simulate<const D: usize>(scene: &Scene<D>, args: &Args) -> Result<Summary> {
         },
         None => None,
     };
+    let mut sensor_log = match &args.sensor_log {
+        Some(path) => {
+            let file = match std::fs::File::create(path) {
+                Ok(f) => f,
+                Err(e) => {
+                    // No partial output: the files just created go too.
+                    for p in [&args.record, &args.trajectory].into_iter().flatten() {
+                        let _ = std::fs::remove_file(p);
+                    }
+                    return Err(anyhow::Error::new(e)
+                        .context(format!("creating the sensor log {}", path.display())));
+                }
+            };
+            Some(SensorLog {
+                out: std::io::BufWriter::new(file),
+                ids: sim.world().ids().to_vec(),
+            })
+        }
+        None => None,
+    };
     let start = Instant::now();
     let t0 = sim.time();
     let mut count: u64 = 0;
@@ -174,6 +241,7 @@ fn simulate<const D: usize>(scene: &Scene<D>, args: &Args) -> Result<Summary> {
                 let done = sim.run_events_with(batch, |c| sink.take(c));
                 count += done;
                 progress.set(count);
+                SensorLog::drain(&mut sensor_log, &mut sim)?;
                 if done < batch || sink.error.is_some() {
                     break;
                 }
@@ -198,14 +266,18 @@ fn simulate<const D: usize>(scene: &Scene<D>, args: &Args) -> Result<Summary> {
                     };
                     sink.take(&c);
                     count += 1;
-                    if count % 4096 == 0 && span > 0.0 {
-                        progress.set(((sim.time() - t0) / span * 1000.0) as u64);
+                    if count % 4096 == 0 {
+                        SensorLog::drain(&mut sensor_log, &mut sim)?;
+                        if span > 0.0 {
+                            progress.set(((sim.time() - t0) / span * 1000.0) as u64);
+                        }
                     }
                 }
                 if sink.error.is_some() {
                     break;
                 }
                 sim.run_until(stop);
+                SensorLog::drain(&mut sensor_log, &mut sim)?;
                 // A halted run stands still before `stop`: no frame claims a time it missed.
                 if !is_frame || sim.time() < stop {
                     break;
@@ -222,6 +294,11 @@ fn simulate<const D: usize>(scene: &Scene<D>, args: &Args) -> Result<Summary> {
     }
     if let Some(e) = sink.error {
         return Err(e.into());
+    }
+    SensorLog::drain(&mut sensor_log, &mut sim)?;
+    if let Some(log) = sensor_log.as_mut() {
+        use std::io::Write;
+        log.out.flush()?;
     }
     let wall_seconds = start.elapsed().as_secs_f64();
     if let Some(w) = sink.writer {
@@ -287,6 +364,19 @@ fn simulate<const D: usize>(scene: &Scene<D>, args: &Args) -> Result<Summary> {
         potential_energy_start: potential_start,
         potential_energy_end: potential_end,
         energy_drift,
+        sensors: sim.sensors().map_or_else(Vec::new, |s| {
+            (0..s.sensors().len())
+                .map(|k| {
+                    let (enters, leaves) = s.counts(k);
+                    SensorSummary {
+                        enters,
+                        leaves,
+                        inside: s.bodies_in(k).len(),
+                    }
+                })
+                .collect()
+        }),
+        sensor_log: args.sensor_log.as_ref().map(|p| p.display().to_string()),
     })
 }
 
@@ -345,5 +435,14 @@ fn print_summary(s: &Summary, builtin: bool) {
     }
     if let Some(t) = &s.trajectory {
         println!("{} frames written to {t}", s.frames);
+    }
+    for (k, c) in s.sensors.iter().enumerate() {
+        println!(
+            "sensor {k}: {} entered, {} left, {} inside at the end",
+            c.enters, c.leaves, c.inside
+        );
+    }
+    if let Some(l) = &s.sensor_log {
+        println!("sensor events written to {l}");
     }
 }

@@ -6,6 +6,7 @@ use super::{box_walls, GenerateError};
 use crate::geom::Vector;
 use crate::gravity::Gravity;
 use crate::scene::{BodySpec, Scene};
+use crate::sensor::Sensor;
 use crate::wall::Wall;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
@@ -23,6 +24,12 @@ pub struct PegsConfig {
     pub gravity: f64,
     /// Coefficient of restitution of every collision.
     pub restitution: f64,
+    /// Bins along the floor: sensors (see [`crate::sensor`]) that count the balls landing in
+    /// them, a Galton board's histogram. Bin `k` is a disc centred on the floor under the
+    /// `k`-th of `bins` equal stretches of it, its radius half the stretch less a ball's: a
+    /// ball touches it when its centre is within half a stretch of the disc's, so a ball on
+    /// the floor lies in exactly one bin. 0: no sensors.
+    pub bins: usize,
     /// Random seed of the balls' small sideways speeds.
     pub seed: u64,
 }
@@ -35,6 +42,7 @@ impl Default for PegsConfig {
             radius: 0.25,
             gravity: 9.81,
             restitution: 1.0,
+            bins: 0,
             seed: 1,
         }
     }
@@ -59,6 +67,9 @@ pub fn pegs(cfg: &PegsConfig) -> Result<Scene<2>, GenerateError> {
     }
     if cfg.rows > 1000 || cfg.balls > 100_000 {
         return bad("rows", "at most 1000 rows and 100000 balls");
+    }
+    if cfg.bins > 100 || 12.0 / cfg.bins.max(1) as f64 <= 2.0 * cfg.radius {
+        return bad("bins", "at most 100 bins, each wider than a ball");
     }
     let width = 12.0;
     let top = 3.0 + 1.5 * cfg.rows as f64;
@@ -85,9 +96,17 @@ pub fn pegs(cfg: &PegsConfig) -> Result<Scene<2>, GenerateError> {
             BodySpec::new(Vector([x, y]), Vector([vx, 0.0]), cfg.radius)
         })
         .collect();
+    let bin = width / cfg.bins.max(1) as f64;
+    let sensors = (0..cfg.bins)
+        .map(|k| Sensor {
+            center: Vector([(k as f64 + 0.5) * bin, 0.0]),
+            radius: 0.5 * bin - cfg.radius,
+        })
+        .collect();
     let mut scene = Scene {
         bodies,
         walls,
+        sensors,
         ..Scene::default()
     };
     scene.settings.restitution = cfg.restitution;
@@ -139,6 +158,32 @@ mod tests {
         assert_eq!(sim.halt(), None);
         assert_eq!(sim.time(), 4.0);
         assert!(sim.stats().max_overlap <= 1e-9);
+    }
+
+    #[test]
+    fn bins_count_the_balls_that_land_in_them() {
+        let scene = pegs(&PegsConfig {
+            rows: 3,
+            balls: 32,
+            bins: 4,
+            restitution: 0.5,
+            ..PegsConfig::default()
+        })
+        .unwrap();
+        assert_eq!(scene.sensors.len(), 4);
+        let mut sim = Simulation::new(&scene, "cells").unwrap();
+        sim.run_until(8.0);
+        // Inelastic balls come to bounce low on the floor, each in exactly one bin.
+        let tracker = sim.sensors().unwrap();
+        for i in 0..32 {
+            let bins: Vec<usize> = (0..4).filter(|&k| tracker.is_inside(i, k)).collect();
+            assert_eq!(
+                bins.len(),
+                1,
+                "ball {i} at {:?} in bins {bins:?}",
+                sim.position(i)
+            );
+        }
     }
 
     #[test]

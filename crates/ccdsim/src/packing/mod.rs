@@ -256,6 +256,7 @@ pub fn compress<const D: usize>(
             bodies,
             walls: scene.walls.clone(),
             periodic: scene.periodic,
+            sensors: scene.sensors.clone(),
         },
         packing_fraction: packing_fraction(world, sim.time()).unwrap_or(0.0),
         reduced_pressure,

@@ -35,6 +35,9 @@ struct Header<'a, const D: usize> {
     /// Uniform gravity, for scenes with gravity only.
     #[serde(skip_serializing_if = "Option::is_none")]
     gravity: Option<crate::gravity::Gravity>,
+    /// Sensor regions, for scenes with sensors only.
+    #[serde(skip_serializing_if = "<[_]>::is_empty")]
+    sensors: &'a [crate::sensor::Sensor<D>],
 }
 
 #[derive(Serialize)]
@@ -97,6 +100,7 @@ pub fn export_jsonl<R: Read, W: Write, const D: usize>(
         periodic: scene.periodic,
         thermostat: scene.settings.thermostat,
         gravity: scene.settings.gravity,
+        sensors: &scene.sensors,
     };
     serde_json::to_writer(&mut *out, &header).map_err(std::io::Error::from)?;
     out.write_all(b"\n")?;

@@ -31,6 +31,10 @@
 //! `bodies[].mask`, see [`crate::collision_filter`]): some pairs of bodies pass through each
 //! other, which a reader of version 5 would take for missed collisions.
 //!
+//! Version 7 is version 6 for scenes with sensors (`sensors` in the header, see
+//! [`crate::sensor`]), which a reader of version 6 would refuse as an unknown field. Sensor
+//! events are not recorded: they follow from the recorded motions.
+//!
 //! A record is: tag `u8` (1 body event, 2 wall event, 3 end of run, 4 reset), `a: u32`, `b: u32`,
 //! `t: f64`, then for two body slots the position at `t` and the velocity after the event
 //! (`D` `f64`s each; the second slot is zero for wall events and the end record), then an
@@ -59,13 +63,17 @@ pub const VERSION_GRAVITY: u32 = 4;
 pub const VERSION_KINEMATIC: u32 = 5;
 /// Format version of run files of scenes with collision groups and masks.
 pub const VERSION_FILTERS: u32 = 6;
+/// Format version of run files of scenes with sensors.
+pub const VERSION_SENSORS: u32 = 7;
 /// The newest format version this build reads.
-pub const VERSION_NEWEST: u32 = VERSION_FILTERS;
+pub const VERSION_NEWEST: u32 = VERSION_SENSORS;
 
 /// The format version a run of `scene` is written in.
 #[must_use]
 pub fn version_for<const D: usize>(scene: &crate::scene::Scene<D>) -> u32 {
-    if scene
+    if !scene.sensors.is_empty() {
+        VERSION_SENSORS
+    } else if scene
         .bodies
         .iter()
         .any(|b| b.group.is_some() || b.mask.is_some())

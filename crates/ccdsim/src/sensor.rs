@@ -1,0 +1,278 @@
+//! Sensors: regions that report exactly when bodies start and stop overlapping them, and
+//! never touch them.
+//!
+//! A sensor is a ball (a disc in 2D) fixed in space. Body `i` of radius `r` overlaps sensor
+//! `k` (centre `c`, radius `R`) while its centre is within `R + r` of `c`. Between events a
+//! body's path is a line or, under gravity, a parabola, so the overlap starts and ends at
+//! roots of a quadratic or a quartic: [`first_contact_accelerating`] and
+//! [`first_exit_accelerating`] give them with the same guarantees as the collisions' (no
+//! root skipped; each narrowed to adjacent floats). A body that starts inside a sensor, or is
+//! put there by an edit, enters it at that instant.
+//!
+//! Sensors change no motion, so they are not seen by the finders: the simulation keeps, per
+//! body, its next sensor event in a priority queue, computed when the body's motion changes
+//! (O(sensors) per change) or when it crosses a sensor, and reports the events in time order
+//! as its clock passes them. They are the same whatever the finder, since the motions are.
+
+use crate::accelerated_contact::{first_contact_accelerating, first_exit_accelerating};
+use crate::geom::Vector;
+use crate::world::World;
+use serde::{Deserialize, Serialize};
+use std::cmp::Reverse;
+use std::collections::BinaryHeap;
+
+/// A sensor region as written in a scene (`sensors[]`): a ball fixed in space.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Sensor<const D: usize> {
+    /// Centre, metres.
+    pub center: Vector<D>,
+    /// Radius, metres; strictly positive.
+    pub radius: f64,
+}
+
+/// Whether a body started or stopped overlapping a sensor.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum SensorChange {
+    /// The body started to overlap the sensor.
+    Enter,
+    /// The body stopped overlapping the sensor.
+    Leave,
+}
+
+/// A body entering or leaving a sensor.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SensorEvent {
+    /// When, seconds.
+    pub time: f64,
+    /// The body's index.
+    pub body: usize,
+    /// The sensor's index in the scene's `sensors`.
+    pub sensor: usize,
+    /// Entered or left.
+    pub change: SensorChange,
+}
+
+/// One body's next sensor event, queued: ordered by time, then body, then sensor.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
+struct Pending {
+    /// The time's bits (times are non-negative or ordered as such, see `ordered`).
+    time: u64,
+    body: u32,
+    sensor: u32,
+    /// The body's epoch when it was queued: stale once the body is recomputed.
+    epoch: u32,
+}
+
+/// The sensors of a running simulation: which bodies are inside which, and each body's next
+/// sensor event.
+#[derive(Clone, Debug)]
+pub struct SensorTracker<const D: usize> {
+    sensors: Vec<Sensor<D>>,
+    /// `inside[i · s + k]`: body `i` overlaps sensor `k` (`s` sensors).
+    inside: Vec<bool>,
+    /// Per body, how many times its next event was recomputed.
+    epoch: Vec<u32>,
+    queue: BinaryHeap<Reverse<Pending>>,
+    /// Events reported and not yet taken.
+    out: Vec<SensorEvent>,
+    /// Enter and leave counts per sensor since the start.
+    counts: Vec<[u64; 2]>,
+}
+
+/// `t`'s bits, ordered like the values for the finite non-negative and negative floats alike.
+fn ordered(t: f64) -> u64 {
+    let b = t.to_bits();
+    if b >> 63 == 0 {
+        b | 1 << 63
+    } else {
+        !b
+    }
+}
+
+fn unordered(b: u64) -> f64 {
+    f64::from_bits(if b >> 63 == 1 { b & !(1 << 63) } else { !b })
+}
+
+impl<const D: usize> SensorTracker<D> {
+    /// Tracks `sensors` in `world`: bodies overlapping one now enter it now (reported by the
+    /// first [`SensorTracker::advance_to`]).
+    #[must_use]
+    pub fn new(world: &World<D>, sensors: Vec<Sensor<D>>) -> Self {
+        let (n, s) = (world.len(), sensors.len());
+        let mut tracker = SensorTracker {
+            inside: vec![false; n * s],
+            epoch: vec![0; n],
+            queue: BinaryHeap::with_capacity(n),
+            out: Vec::new(),
+            counts: vec![[0; 2]; s],
+            sensors,
+        };
+        for i in 0..n {
+            tracker.body_changed(world, i);
+        }
+        tracker
+    }
+
+    /// The sensors.
+    #[must_use]
+    pub fn sensors(&self) -> &[Sensor<D>] {
+        &self.sensors
+    }
+
+    /// True when body `i` overlaps sensor `k` as of the last event reported.
+    #[must_use]
+    pub fn is_inside(&self, i: usize, k: usize) -> bool {
+        self.inside[i * self.sensors.len() + k]
+    }
+
+    /// Bodies overlapping sensor `k` as of the last event reported, by index.
+    #[must_use]
+    pub fn bodies_in(&self, k: usize) -> Vec<usize> {
+        (0..self.epoch.len())
+            .filter(|&i| self.is_inside(i, k))
+            .collect()
+    }
+
+    /// Enters and leaves of sensor `k` reported so far.
+    #[must_use]
+    pub fn counts(&self, k: usize) -> (u64, u64) {
+        let [e, l] = self.counts[k];
+        (e, l)
+    }
+
+    /// Takes the events reported since the last call, in time order.
+    pub fn take_events(&mut self) -> Vec<SensorEvent> {
+        std::mem::take(&mut self.out)
+    }
+
+    /// Body `i`'s stored motion was replaced (a collision, an edit): its next sensor event
+    /// is computed anew from its reference time, where a body found strictly inside a sensor
+    /// it is not known to overlap enters it at once, and one found strictly outside a sensor
+    /// it is known to overlap leaves it at once. (On the sphere, the contact and exit
+    /// functions decide, as they do at every crossing: the two rules never disagree, so
+    /// events at one instant cannot repeat.)
+    pub fn body_changed(&mut self, world: &World<D>, i: usize) {
+        let m = world.motion(i);
+        let r = world.radius(i);
+        let s = self.sensors.len();
+        let mut best: Option<(f64, usize)> = None;
+        for (k, sensor) in self.sensors.iter().enumerate() {
+            let dp = m.pos - sensor.center;
+            let sigma = sensor.radius + r;
+            let c = dp.norm_sq() - sigma * sigma;
+            let inside = self.inside[i * s + k];
+            let t = if (c < 0.0 && !inside) || (c > 0.0 && inside) {
+                Some(m.time)
+            } else {
+                self.crossing(world, i, k, m.pos, m.vel, m.time)
+            };
+            if let Some(t) = t {
+                if best.is_none_or(|(b, _)| t < b) {
+                    best = Some((t, k));
+                }
+            }
+        }
+        self.queue_next(i, best);
+    }
+
+    /// The time body `i`, at `pos` with velocity `vel` at time `t0`, next enters (if it is
+    /// outside) or leaves (if inside) sensor `k`.
+    fn crossing(
+        &self,
+        world: &World<D>,
+        i: usize,
+        k: usize,
+        pos: Vector<D>,
+        vel: Vector<D>,
+        t0: f64,
+    ) -> Option<f64> {
+        let sensor = &self.sensors[k];
+        let dp = pos - sensor.center;
+        let sigma = sensor.radius + world.radius(i);
+        let acc = world.gravity_of(i).unwrap_or(Vector::ZERO);
+        let dt = if self.inside[i * self.sensors.len() + k] {
+            first_exit_accelerating(dp, vel, acc, sigma)
+        } else {
+            first_contact_accelerating(dp, vel, acc, sigma)
+        }?;
+        Some(t0 + dt).filter(|t| t.is_finite())
+    }
+
+    /// Queues body `i`'s next event `(time, sensor)`, dropping the one queued before.
+    fn queue_next(&mut self, i: usize, next: Option<(f64, usize)>) {
+        self.epoch[i] = self.epoch[i].wrapping_add(1);
+        if let Some((t, k)) = next {
+            self.queue.push(Reverse(Pending {
+                time: ordered(t),
+                body: i as u32,
+                sensor: k as u32,
+                epoch: self.epoch[i],
+            }));
+        }
+    }
+
+    /// Reports, in time order, every sensor event at or before `t` on the bodies' current
+    /// motions. Call it before a body's motion changes at `t`, and before the clock moves to
+    /// `t`.
+    pub fn advance_to(&mut self, world: &World<D>, t: f64) {
+        while let Some(&Reverse(p)) = self.queue.peek() {
+            let time = unordered(p.time);
+            if time > t {
+                break;
+            }
+            self.queue.pop();
+            let i = p.body as usize;
+            if p.epoch != self.epoch[i] {
+                continue;
+            }
+            let (k, s) = (p.sensor as usize, self.sensors.len());
+            let was_inside = self.inside[i * s + k];
+            self.inside[i * s + k] = !was_inside;
+            self.counts[k][usize::from(was_inside)] += 1;
+            self.out.push(SensorEvent {
+                time,
+                body: i,
+                sensor: k,
+                change: if was_inside {
+                    SensorChange::Leave
+                } else {
+                    SensorChange::Enter
+                },
+            });
+            if time == world.time(i) {
+                // Still at the instant the motion began: other sensors may disagree with the
+                // geometry there too.
+                self.body_changed(world, i);
+                continue;
+            }
+            // The next event from here on, on the same motion.
+            let (pos, vel) = (world.position_at(i, time), world.velocity_at(i, time));
+            let mut best: Option<(f64, usize)> = None;
+            for k in 0..s {
+                if let Some(t) = self.crossing(world, i, k, pos, vel, time) {
+                    if best.is_none_or(|(b, _)| t < b) {
+                        best = Some((t, k));
+                    }
+                }
+            }
+            self.queue_next(i, best);
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn ordered_times_round_trip_and_sort() {
+        let ts = [-2.0, -0.5, 0.0, 1e-300, 0.5, 3.0, 1e300];
+        for w in ts.windows(2) {
+            assert!(ordered(w[0]) < ordered(w[1]), "{w:?}");
+        }
+        for t in ts {
+            assert_eq!(unordered(ordered(t)), t);
+        }
+    }
+}
