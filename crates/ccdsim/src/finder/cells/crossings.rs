@@ -77,8 +77,11 @@ impl<const D: usize> Cells<D> {
     /// changed bodies filed in the cells holding them, and recomputed (the two of a collision
     /// in one scan when it applies, see `pair`).
     pub(super) fn update_crossing_mode(&mut self, world: &World<D>, t: f64, changed: &[usize]) {
-        self.undo_crossings_after(world, t);
+        // The clock goes back first: a body stepped back by an undone crossing schedules its
+        // next one from `t`, and under gravity a face's roots count only from the clock on
+        // (the undone crossing itself, between `t` and the old clock, must come again).
         self.clock = t;
+        self.undo_crossings_after(world, t);
         for &i in changed {
             // A body still in its cell (the two of a collision: every crossing before it has
             // been processed) stays filed there, even on a face shared with the next cell: it
