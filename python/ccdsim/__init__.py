@@ -53,7 +53,7 @@ BODY, WALL, RESET = 0, 1, 2
 def EVENT_DTYPE(dim: int) -> np.dtype:
     """The NumPy structured dtype of events in ``dim`` dimensions.
 
-    Fields: ``t`` (time, s), ``kind`` (0 body-body, 1 body-wall, 2 thermostat reset), ``a``, ``b``
+    Fields: ``t`` (time, s), ``kind`` (0 body-body, 1 body-wall, 2 thermostat reset, 3 edit), ``a``, ``b``
     (body indices, or body and wall index; for a reset the body and 0), ``pos`` (2 x dim: the bodies' positions at ``t``; the second zero for a
     wall event) and ``vel`` (2 x dim: their velocities after the event).
     """

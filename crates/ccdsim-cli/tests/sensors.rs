@@ -48,7 +48,12 @@ fn a_galton_board_counts_its_bins_and_logs_every_sensor_event() {
     let times: Vec<f64> = lines.iter().map(|e| e["t"].as_f64().unwrap()).collect();
     assert!(times.windows(2).all(|w| w[0] <= w[1]));
     // The readable summary names the bins.
-    let out = run_ok(ccdsim().arg("run").arg(&scene).args(["--until", "2", "--quiet"]));
+    let out = run_ok(
+        ccdsim()
+            .arg("run")
+            .arg(&scene)
+            .args(["--until", "2", "--quiet"]),
+    );
     let text = String::from_utf8(out.stdout).unwrap();
     assert!(text.contains("sensor 3: "), "{text}");
 }

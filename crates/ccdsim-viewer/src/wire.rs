@@ -29,6 +29,7 @@ fn kind_code(kind: EventKind) -> f64 {
         EventKind::Body => 0.0,
         EventKind::Wall => 1.0,
         EventKind::Reset => 2.0,
+        EventKind::Edit => 3.0,
     }
 }
 

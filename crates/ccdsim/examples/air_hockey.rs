@@ -5,12 +5,16 @@
 //!
 //! ```sh
 //! cargo run --release -p ccdsim --example air_hockey
+//! cargo run --release -p ccdsim --example air_hockey -- hockey.ccd   # records the game
+//! ccdsim verify hockey.ccd && ccdsim view hockey.ccd
 //! ```
 //!
-//! (Run files record collisions, not the velocities a program sets between them, so this
-//! game is not recorded: a replay could not know where the paddles went.)
+//! With a file name the game is recorded as a steered run file: the collisions and, between
+//! them, every velocity the game gave its paddles (edit records), so that `verify` and the
+//! viewer replay it exactly.
 
 use ccdsim::generate::box_walls;
+use ccdsim::record::RunWriter;
 use ccdsim::{BodySpec, Scene, Simulation, Vector};
 
 /// Table length and width, metres.
@@ -40,6 +44,14 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     // their own velocity, so the game stays lively without running away.
     scene.settings.restitution = 0.9;
     let mut sim = Simulation::new(&scene, "cells")?;
+    let out = std::env::args().nth(1);
+    let mut run = match &out {
+        Some(path) => {
+            sim.record_edits(true);
+            Some(RunWriter::create_steered(path.as_ref(), &scene)?)
+        }
+        None => None,
+    };
     let (mut hits, mut cushions) = (0, 0);
     for _ in 0..(SECONDS * FPS) as usize {
         // Each paddle tracks the puck's height on its own goal line, at a capped speed, and
@@ -56,12 +68,23 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             };
             sim.set_velocity(i, Vector([0.0, vy]))?;
         }
-        for c in sim.advance(1.0 / FPS) {
+        let edits = sim.take_edits();
+        let frame = sim.advance(1.0 / FPS);
+        for c in &frame {
             match c.event.kind {
                 ccdsim::EventKind::Body => hits += 1,
                 _ => cushions += 1,
             }
         }
+        if let Some(run) = &mut run {
+            for record in edits.iter().chain(&frame) {
+                run.write_event(record)?;
+            }
+        }
+    }
+    if let (Some(run), Some(path)) = (run, &out) {
+        run.finish(sim.time())?;
+        println!("recorded to {path}");
     }
     let v = sim.world().velocity_at(2, sim.time());
     println!(

@@ -7,9 +7,15 @@
 //!
 //! ```sh
 //! cargo run --release -p ccdsim --example galton
+//! cargo run --release -p ccdsim --example galton -- galton.ccd   # records it
+//! ccdsim verify galton.ccd && ccdsim view galton.ccd
 //! ```
+//!
+//! With a file name the run is recorded as a steered run file, the respawns as edit records,
+//! so that `verify` and the viewer replay it exactly.
 
 use ccdsim::generate::{pegs, PegsConfig};
+use ccdsim::record::RunWriter;
 use ccdsim::{SensorChange, Simulation, Vector};
 
 /// Bins along the floor.
@@ -42,6 +48,14 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         .map(|b| b.pos[1])
         .fold(f64::NEG_INFINITY, f64::max);
     let mut sim = Simulation::new(&scene, "cells")?;
+    let out = std::env::args().nth(1);
+    let mut run = match &out {
+        Some(path) => {
+            sim.record_edits(true);
+            Some(RunWriter::create_steered(path.as_ref(), &scene)?)
+        }
+        None => None,
+    };
     let mut counts = [0u64; BINS];
     // A small deterministic generator for the respawn spots.
     let mut seed = 0x2545_f491_4f6c_dd1du64;
@@ -53,7 +67,12 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     };
     let frames = (SECONDS * FPS) as usize;
     for _ in 0..frames {
-        sim.advance(1.0 / FPS);
+        let frame = sim.advance(1.0 / FPS);
+        if let Some(run) = &mut run {
+            for record in &frame {
+                run.write_event(record)?;
+            }
+        }
         for e in sim.take_sensor_events() {
             if e.change != SensorChange::Enter
                 || sim
@@ -73,6 +92,15 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                 }
             }
         }
+        if let Some(run) = &mut run {
+            for record in sim.take_edits() {
+                run.write_event(&record)?;
+            }
+        }
+    }
+    if let (Some(run), Some(path)) = (run, &out) {
+        run.finish(sim.time())?;
+        println!("recorded to {path}");
     }
     let total: u64 = counts.iter().sum();
     println!(

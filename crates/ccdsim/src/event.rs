@@ -12,6 +12,13 @@ pub enum EventKind {
     /// The Andersen thermostat gives body `a` a new velocity (`b` is 0); never predicted by a
     /// finder, see [`crate::thermostat`]. Orders after collisions at the same time.
     Reset = 2,
+    /// A program moved body `a` or gave it a new velocity (`b` is 0):
+    /// [`Simulation::set_velocity`](crate::Simulation::set_velocity) or
+    /// [`Simulation::set_position`](crate::Simulation::set_position), recorded in run files
+    /// so that a steered run can be replayed (see
+    /// [`Simulation::record_edits`](crate::Simulation::record_edits)). Never predicted by a
+    /// finder.
+    Edit = 3,
 }
 
 /// A collision at absolute simulated time `time` (seconds).
@@ -64,6 +71,17 @@ impl Event {
         Event {
             time,
             kind: EventKind::Reset,
+            a: i as u32,
+            b: 0,
+        }
+    }
+
+    /// A program's edit of body `i`'s state at `time` (see [`EventKind::Edit`]).
+    #[must_use]
+    pub fn edit(time: f64, i: usize) -> Self {
+        Event {
+            time,
+            kind: EventKind::Edit,
             a: i as u32,
             b: 0,
         }

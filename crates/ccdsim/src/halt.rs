@@ -214,7 +214,7 @@ pub fn event_resolved<const D: usize>(world: &World<D>, e: &Event) -> bool {
 pub fn unresolved<const D: usize>(world: &World<D>, e: &Event) -> Option<Halt> {
     let involved = match e.kind {
         EventKind::Body => &[e.a, e.b][..],
-        EventKind::Wall | EventKind::Reset => &[e.a][..],
+        EventKind::Wall | EventKind::Reset | EventKind::Edit => &[e.a][..],
     };
     involved.iter().find_map(|&i| {
         let (pos, vel) = (

@@ -29,7 +29,7 @@ impl<const D: usize> Collision<D> {
     pub fn body_count(&self) -> usize {
         match self.event.kind {
             EventKind::Body => 2,
-            EventKind::Wall | EventKind::Reset => 1,
+            EventKind::Wall | EventKind::Reset | EventKind::Edit => 1,
         }
     }
 }
@@ -109,6 +109,9 @@ pub struct Simulation<const D: usize> {
     idle: Option<Event>,
     /// The scene's sensors, if it has any (see [`crate::sensor`]).
     sensors: Option<SensorTracker<D>>,
+    /// Edits made since the last [`Simulation::take_edits`], as records, when
+    /// [`Simulation::record_edits`] is on.
+    edits: Option<Vec<Collision<D>>>,
 }
 
 impl<const D: usize> Simulation<D> {
@@ -154,6 +157,7 @@ impl<const D: usize> Simulation<D> {
             stats,
             idle: None,
             sensors: None,
+            edits: None,
         })
     }
 
@@ -415,6 +419,7 @@ impl<const D: usize> Simulation<D> {
                 overlap = 0.0;
                 self.apply_reset(e.time)
             }
+            EventKind::Edit => unreachable!("edits are made by a program, never found"),
         };
         if let Some(before) = energy_before {
             self.guard.add_energy(self.involved_energy(&e) - before);
@@ -436,7 +441,7 @@ impl<const D: usize> Simulation<D> {
             |i: u32| 0.5 * self.world.mass(i as usize) * self.world.velocity(i as usize).norm_sq();
         match e.kind {
             EventKind::Body => k(e.a) + k(e.b),
-            EventKind::Wall | EventKind::Reset => k(e.a),
+            EventKind::Wall | EventKind::Reset | EventKind::Edit => k(e.a),
         }
     }
 
@@ -482,6 +487,56 @@ impl<const D: usize> Simulation<D> {
             .as_mut()
             .map(SensorTracker::take_events)
             .unwrap_or_default()
+    }
+
+    /// Turns the journal of edits on or off: while on, every `set_velocity` and
+    /// `set_position` is kept as a record ([`EventKind::Edit`]: the body's position at the
+    /// current time and its velocity from then on) for [`Simulation::take_edits`], so that a
+    /// steered run can be written to a run file ([`crate::record::RunWriter::new_steered`])
+    /// and replayed by `verify` and the viewer. Off by default.
+    ///
+    /// ```
+    /// use ccdsim::record::RunWriter;
+    /// use ccdsim::{BodySpec, Scene, Simulation, Vector};
+    /// let scene = Scene::<2> {
+    ///     bodies: vec![BodySpec::new(Vector([0.0, 0.0]), Vector([1.0, 0.0]), 0.5)],
+    ///     ..Scene::default()
+    /// };
+    /// let mut sim = Simulation::new(&scene, "cells").unwrap();
+    /// let mut run = RunWriter::new_steered(Vec::new(), "game".into(), &scene).unwrap();
+    /// sim.record_edits(true);
+    /// for frame in 0..60 {
+    ///     sim.set_velocity(0, Vector([1.0, (frame % 2) as f64])).unwrap(); // steering
+    ///     for record in sim.take_edits().iter().chain(&sim.advance(1.0 / 60.0)) {
+    ///         run.write_event(record).unwrap();
+    ///     }
+    /// }
+    /// let bytes = run.finish(sim.time()).unwrap();
+    /// ```
+    pub fn record_edits(&mut self, on: bool) {
+        self.edits = if on {
+            Some(self.edits.take().unwrap_or_default())
+        } else {
+            None
+        };
+    }
+
+    /// The edits recorded since the last call, in order (see [`Simulation::record_edits`]);
+    /// empty while the journal is off.
+    pub fn take_edits(&mut self) -> Vec<Collision<D>> {
+        self.edits.as_mut().map(std::mem::take).unwrap_or_default()
+    }
+
+    /// Journals an edit of body `i` just made at the current time.
+    fn journal_edit(&mut self, i: usize) {
+        if let Some(log) = &mut self.edits {
+            let t = self.world.now();
+            log.push(Collision {
+                event: Event::edit(t, i),
+                pos: [self.world.position(i), Vector::ZERO],
+                vel: [self.world.velocity(i), Vector::ZERO],
+            });
+        }
     }
 
     /// The scene's sensors and what they hold, if it has any.
@@ -629,6 +684,7 @@ impl<const D: usize> Simulation<D> {
         self.restate(i, vel);
         self.finder.update(&self.world, &[i]);
         self.sensors_changed(i);
+        self.journal_edit(i);
         self.pending = None;
         self.halt = None;
         Ok(())
@@ -776,6 +832,7 @@ impl<const D: usize> Simulation<D> {
         }
         self.finder.update(&self.world, &[i]);
         self.sensors_changed(i);
+        self.journal_edit(i);
         self.pending = None;
         self.halt = None;
         self.idle = None;

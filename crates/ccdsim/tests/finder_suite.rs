@@ -107,6 +107,10 @@ enum Drive {
     /// [`FILTERS`] with `set_collision_filter` (refused ones, which would make overlapping
     /// bodies collide, are skipped alike in every run).
     Filters { every: u64 },
+    /// Frames of `dt` seconds as [`Drive::Frames`], and at the end of each frame one body
+    /// moved to a random spot (as [`Drive::Teleports`]): the finders have looked past the
+    /// frame's end by then (to the next event), and must take back what they did there.
+    FrameTeleports { dt: f64 },
 }
 
 /// The collision filters random scenes and edits draw from: the default, groups that ignore
@@ -139,7 +143,18 @@ fn record_run<const D: usize>(
 ) -> Recorded {
     let finder = make_finder::<D>(name, options).expect("finder");
     let mut sim = Simulation::with_finder(scene, finder).expect("valid scene");
-    let mut rec = RunWriter::new(Vec::new(), name.into(), scene).expect("header");
+    // Runs steered by velocity kicks and teleports record their edits too: the run files
+    // then compare the edits as well, and the oracle's can be verified.
+    let steered = matches!(
+        drive,
+        Drive::Kicks { .. } | Drive::Teleports { .. } | Drive::FrameTeleports { .. }
+    );
+    let mut rec = if steered {
+        sim.record_edits(true);
+        RunWriter::new_steered(Vec::new(), name.into(), scene).expect("header")
+    } else {
+        RunWriter::new(Vec::new(), name.into(), scene).expect("header")
+    };
     let mut events = 0u64;
     let mut kick = KICK_SEED;
     let mut frame_end = scene.start_time;
@@ -185,7 +200,7 @@ fn record_run<const D: usize>(
                 }),
             }
         }
-        if let Drive::Frames { dt } = drive {
+        if let Drive::Frames { dt } | Drive::FrameTeleports { dt } = drive {
             match got {
                 None => break,
                 Some(e) if e.time > frame_end => {
@@ -193,6 +208,12 @@ fn record_run<const D: usize>(
                     // resolved unchecked) and start the next frame.
                     assert_eq!(sim.run_until(frame_end), 0);
                     frame_end += dt;
+                    if let Drive::FrameTeleports { .. } = drive {
+                        teleport_one(&mut sim, scene, &mut kick);
+                        for edit in sim.take_edits() {
+                            rec.write_event(&edit).expect("write");
+                        }
+                    }
                     continue;
                 }
                 Some(_) => {}
@@ -218,17 +239,7 @@ fn record_run<const D: usize>(
         }
         if let Drive::Teleports { every } = drive {
             if events % every == 0 {
-                kick = kick
-                    .wrapping_mul(6_364_136_223_846_793_005)
-                    .wrapping_add(1_442_695_040_888_963_407);
-                let i = (kick >> 33) as usize % scene.bodies.len();
-                let (lo, hi) = teleport_bounds(scene);
-                let mut p = Vector::<D>::ZERO;
-                for k in 0..D {
-                    let u = ((kick >> (7 * k + 3)) & 0x7f) as f64 / 128.0;
-                    p[k] = lo[k] + (hi[k] - lo[k]) * u;
-                }
-                let _ = sim.set_position(i, p);
+                teleport_one(&mut sim, scene, &mut kick);
             }
         }
         if let Drive::Filters { every } = drive {
@@ -240,6 +251,9 @@ fn record_run<const D: usize>(
                 let f = FILTERS[(kick >> 13) as usize % FILTERS.len()];
                 let _ = sim.set_collision_filter(i, f);
             }
+        }
+        for edit in sim.take_edits() {
+            rec.write_event(&edit).expect("write");
         }
         if let Drive::Rescale { every } = drive {
             if events % every == 0 {
@@ -255,6 +269,22 @@ fn record_run<const D: usize>(
     }
 }
 
+/// Moves one body, drawn by the generator state `kick`, to a random spot inside the scene's
+/// bounds (a refused spot, overlapping a body or a wall, changes nothing, alike in every run).
+fn teleport_one<const D: usize>(sim: &mut Simulation<D>, scene: &Scene<D>, kick: &mut u64) {
+    *kick = kick
+        .wrapping_mul(6_364_136_223_846_793_005)
+        .wrapping_add(1_442_695_040_888_963_407);
+    let i = (*kick >> 33) as usize % scene.bodies.len();
+    let (lo, hi) = teleport_bounds(scene);
+    let mut p = Vector::<D>::ZERO;
+    for k in 0..D {
+        let u = ((*kick >> (7 * k + 3)) & 0x7f) as f64 / 128.0;
+        p[k] = lo[k] + (hi[k] - lo[k]) * u;
+    }
+    let _ = sim.set_position(i, p);
+}
+
 /// The all-pairs run of `scene` that every finder's run file must equal byte for byte.
 fn reference<const D: usize>(
     label: &str,
@@ -263,7 +293,7 @@ fn reference<const D: usize>(
     drive: Drive,
 ) -> Recorded {
     let options = FinderOptions::default();
-    record_run(
+    let run = record_run(
         label,
         scene,
         "all-pairs",
@@ -271,7 +301,28 @@ fn reference<const D: usize>(
         max_events,
         drive,
         false,
-    )
+    );
+    // A steered run replays: its edit records say what the program did.
+    let verifiable =
+        !(scene.settings.gravity.is_some() && scene.bodies.iter().any(|b| b.kinematic));
+    let steered = matches!(
+        drive,
+        Drive::Kicks { .. } | Drive::Teleports { .. } | Drive::FrameTeleports { .. }
+    );
+    if steered && verifiable {
+        let mut r =
+            ccdsim::record::RunReader::<_, D>::new(&run.bytes[..], label.into()).expect("header");
+        let (events, end) = r.read_events().expect("records");
+        let mut v = ccdsim::verify::Verifier::new(scene);
+        for c in &events {
+            v.check(c).unwrap_or_else(|e| {
+                panic!("{label} [{drive:?}]: the oracle's run fails verify: {e}")
+            });
+        }
+        v.finish(end.expect("an end record"))
+            .unwrap_or_else(|e| panic!("{label} [{drive:?}]: the oracle's run fails verify: {e}"));
+    }
+    run
 }
 
 /// Runs `scene` with finder `name`, checking every event against the oracle, and asserts
@@ -1529,7 +1580,12 @@ fn teleports() {
     let p2 = periodic_gas::<2>(120, 0.35, (0.3, 0.5), SMALL_SEEDS[2]);
     let p3 = periodic_gas::<3>(80, 0.2, (0.5, 0.5), SMALL_SEEDS[0]);
     let drive = Drive::Teleports { every: 4 };
-    for (label, scene) in [("teleports 2D", &s2), ("teleports gravity 2D", &f2)] {
+    let board = peg_board(5, 32, SMALL_SEEDS[1]);
+    for (label, scene) in [
+        ("teleports 2D", &s2),
+        ("teleports gravity 2D", &f2),
+        ("teleports peg board", &board),
+    ] {
         let oracle = reference(label, scene, 1500, drive);
         for (name, options) in variants() {
             check_run(label, scene, name, &options, 1500, drive, &oracle);
@@ -1541,6 +1597,20 @@ fn teleports() {
     }
     check_periodic("teleports periodic 2D", &p2, 1500, drive);
     check_periodic("teleports periodic 3D", &p3, 1200, drive);
+    // Teleports at the ends of frames, after the finders looked past them: under gravity
+    // `cells` must schedule the crossings it takes back from the edit's time (a crossing
+    // from a later clock would be skipped, and the body's events with it).
+    let drive = Drive::FrameTeleports { dt: 1.0 / 30.0 };
+    for (label, scene) in [
+        ("frame teleports peg board", &board),
+        ("frame teleports gravity 2D", &f2),
+        ("frame teleports 2D", &s2),
+    ] {
+        let oracle = reference(label, scene, 2000, drive);
+        for (name, options) in variants() {
+            check_run(label, scene, name, &options, 2000, drive, &oracle);
+        }
+    }
 }
 
 /// `scene` with the collision filters of [`FILTERS`] dealt out at random (seed `seed`) to

@@ -76,16 +76,23 @@ fn check<R: Read, const D: usize>(
                     report.kinetic_energy_start,
                 )
             };
+            // A steered run's edits add energy of their own: the drift is the collisions'.
             let drift = if scale > 0.0 {
-                (end_energy - start) / scale
+                (end_energy - start - report.edit_energy) / scale
             } else {
                 0.0
             };
-            let resets = if report.resets > 0 {
+            let mut resets = if report.resets > 0 {
                 format!(", {} thermostat resets", report.resets)
             } else {
                 String::new()
             };
+            if report.edits > 0 {
+                resets += &format!(
+                    ", {} edits adding {:.6e} J",
+                    report.edits, report.edit_energy
+                );
+            }
             println!(
                 "OK {}: {} events ({} body-body, {} body-wall{resets}) up to t = {end}; largest overlap {:.2e}; {label} {:.2e}",
                 reader.path(),

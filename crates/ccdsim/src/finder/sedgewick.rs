@@ -355,7 +355,9 @@ mod tests {
                     crate::resolve::resolve_body_wall(&mut world, a, b, e.time);
                     f.update(&world, &[a]);
                 }
-                EventKind::Reset => panic!("finders never predict thermostat resets"),
+                EventKind::Reset | EventKind::Edit => {
+                    panic!("finders never predict resets or edits")
+                }
             }
         }
         let s = f.stats();

@@ -112,6 +112,7 @@ pub fn export_jsonl<R: Read, W: Write, const D: usize>(
             EventKind::Body => ("body", scene.id_of(c.event.b as usize)),
             EventKind::Wall => ("wall", u64::from(c.event.b)),
             EventKind::Reset => ("reset", 0),
+            EventKind::Edit => ("edit", 0),
         };
         let line = EventOut {
             t: c.event.time,

@@ -35,7 +35,13 @@
 //! [`crate::sensor`]), which a reader of version 6 would refuse as an unknown field. Sensor
 //! events are not recorded: they follow from the recorded motions.
 //!
-//! A record is: tag `u8` (1 body event, 2 wall event, 3 end of run, 4 reset), `a: u32`, `b: u32`,
+//! Version 8 is any of the above with records of tag 5, **edits**: a program moved body `a`
+//! or gave it a new velocity (`b` 0; the first slot its position at `t` after the edit and
+//! its velocity from then on; see [`crate::Simulation::record_edits`]). It is written by
+//! [`RunWriter::new_steered`], for runs a program steers, so that `verify` and the viewer
+//! can replay them.
+//!
+//! A record is: tag `u8` (1 body event, 2 wall event, 3 end of run, 4 reset, 5 edit), `a: u32`, `b: u32`,
 //! `t: f64`, then for two body slots the position at `t` and the velocity after the event
 //! (`D` `f64`s each; the second slot is zero for wall events and the end record), then an
 //! FNV-1a checksum (`u32`) of the record's preceding bytes. The end record's `t` is the time
@@ -65,8 +71,10 @@ pub const VERSION_KINEMATIC: u32 = 5;
 pub const VERSION_FILTERS: u32 = 6;
 /// Format version of run files of scenes with sensors.
 pub const VERSION_SENSORS: u32 = 7;
+/// Format version of steered run files, which may hold edit records.
+pub const VERSION_EDITS: u32 = 8;
 /// The newest format version this build reads.
-pub const VERSION_NEWEST: u32 = VERSION_SENSORS;
+pub const VERSION_NEWEST: u32 = VERSION_EDITS;
 
 /// The format version a run of `scene` is written in.
 #[must_use]
@@ -98,6 +106,7 @@ pub(crate) const TAG_BODY: u8 = 1;
 pub(crate) const TAG_WALL: u8 = 2;
 pub(crate) const TAG_END: u8 = 3;
 pub(crate) const TAG_RESET: u8 = 4;
+pub(crate) const TAG_EDIT: u8 = 5;
 
 /// Size in bytes of one record in a `D`-dimensional run file.
 #[must_use]
@@ -153,6 +162,15 @@ pub enum RecordError {
         path: String,
         /// Offset of the first byte after the end record.
         offset: u64,
+    },
+    /// An edit record for a run file not opened as steered.
+    #[error(
+        "{path}: edits (set_velocity, set_position) need a steered run file \
+         (RunWriter::new_steered or create_steered)"
+    )]
+    NotSteered {
+        /// The file.
+        path: String,
     },
     /// A record in the middle of the file is damaged.
     #[error("{path}: record {index} is corrupt ({why})")]

@@ -1,8 +1,8 @@
 //! Reading run files, tolerating a truncated tail.
 
 use super::{
-    fnv1a, record_len, RecordError, RunRecord, MAGIC, PREAMBLE_LEN, TAG_BODY, TAG_END, TAG_RESET,
-    TAG_WALL, VERSION, VERSION_NEWEST,
+    fnv1a, record_len, RecordError, RunRecord, MAGIC, PREAMBLE_LEN, TAG_BODY, TAG_EDIT, TAG_END,
+    TAG_RESET, TAG_WALL, VERSION, VERSION_EDITS, VERSION_NEWEST,
 };
 use crate::event::Event;
 use crate::geom::Vector;
@@ -53,6 +53,8 @@ pub struct RunReader<R: Read, const D: usize> {
     index: u64,
     tail: Tail,
     buf: Vec<u8>,
+    /// The file's format version.
+    version: u32,
 }
 
 /// A run reader of either dimension.
@@ -73,11 +75,15 @@ pub fn open_run(path: &Path) -> Result<AnyRunReader, RecordError> {
     let file = File::open(path).map_err(io)?;
     let size = file.metadata().map_err(io)?.len();
     let mut file = BufReader::with_capacity(1 << 16, file);
-    let (dim, json) = read_header(&mut file, &name, Some(size))?;
+    let (version, dim, json) = read_header(&mut file, &name, Some(size))?;
     let data_start = (PREAMBLE_LEN + json.len()) as u64;
     Ok(match dim {
-        2 => AnyRunReader::D2(RunReader::from_parts(file, name, &json, data_start)?),
-        3 => AnyRunReader::D3(RunReader::from_parts(file, name, &json, data_start)?),
+        2 => AnyRunReader::D2(RunReader::from_parts(
+            file, name, &json, data_start, version,
+        )?),
+        3 => AnyRunReader::D3(RunReader::from_parts(
+            file, name, &json, data_start, version,
+        )?),
         d => {
             return Err(RecordError::Header {
                 path: name,
@@ -94,7 +100,7 @@ fn read_header<R: Read>(
     input: &mut R,
     name: &str,
     size: Option<u64>,
-) -> Result<(u32, String), RecordError> {
+) -> Result<(u32, u32, String), RecordError> {
     let mut pre = [0u8; PREAMBLE_LEN];
     let got = read_full(input, &mut pre).map_err(|source| RecordError::Io {
         path: name.into(),
@@ -152,7 +158,7 @@ fn read_header<R: Read>(
         path: name.into(),
         why: "scene header is not UTF-8".into(),
     })?;
-    Ok((dim, json))
+    Ok((version, dim, json))
 }
 
 fn read_full<R: Read>(input: &mut R, buf: &mut [u8]) -> std::io::Result<usize> {
@@ -171,7 +177,7 @@ fn read_full<R: Read>(input: &mut R, buf: &mut [u8]) -> std::io::Result<usize> {
 impl<R: Read, const D: usize> RunReader<R, D> {
     /// Reads the header of a `D`-dimensional run from `input`; `name` is used in errors.
     pub fn new(mut input: R, name: String) -> Result<Self, RecordError> {
-        let (dim, json) = read_header(&mut input, &name, None)?;
+        let (version, dim, json) = read_header(&mut input, &name, None)?;
         if dim as usize != D {
             return Err(RecordError::Header {
                 path: name,
@@ -179,7 +185,7 @@ impl<R: Read, const D: usize> RunReader<R, D> {
             });
         }
         let start = (PREAMBLE_LEN + json.len()) as u64;
-        Self::from_parts(input, name, &json, start)
+        Self::from_parts(input, name, &json, start, version)
     }
 
     fn from_parts(
@@ -187,6 +193,7 @@ impl<R: Read, const D: usize> RunReader<R, D> {
         path: String,
         json: &str,
         data_start: u64,
+        version: u32,
     ) -> Result<Self, RecordError> {
         let scene = Scene::<D>::from_json(json).map_err(|e| RecordError::Header {
             path: path.clone(),
@@ -200,7 +207,14 @@ impl<R: Read, const D: usize> RunReader<R, D> {
             index: 0,
             tail: Tail::Unread,
             buf: vec![0; record_len(D)],
+            version,
         })
+    }
+
+    /// The file's format version (see [`crate::record`]).
+    #[must_use]
+    pub fn version(&self) -> u32 {
+        self.version
     }
 
     /// The scene the run started from.
@@ -312,6 +326,15 @@ impl<R: Read, const D: usize> RunReader<R, D> {
                     }
                     1
                 }
+                crate::event::EventKind::Edit => {
+                    if self.version < VERSION_EDITS {
+                        return Err(format!(
+                            "an edit record in a run file of version {} (edits need 8)",
+                            self.version
+                        ));
+                    }
+                    1
+                }
             };
             if c.event.a >= n || c.event.b >= limit_b {
                 return Err(format!(
@@ -381,6 +404,7 @@ fn decode<const D: usize>(buf: &[u8]) -> Result<RunRecord<D>, String> {
         TAG_WALL => Ok(RunRecord::Event(c(Event::wall(t, a as usize, b as usize)))),
         TAG_END => Ok(RunRecord::End(t)),
         TAG_RESET => Ok(RunRecord::Event(c(Event::reset(t, a as usize)))),
+        TAG_EDIT => Ok(RunRecord::Event(c(Event::edit(t, a as usize)))),
         tag => Err(format!("bad tag {tag} or body order {a} ≥ {b}")),
     }
 }

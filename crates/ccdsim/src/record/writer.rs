@@ -1,7 +1,8 @@
 //! Writing run files with buffering, as the run goes.
 
 use super::{
-    fnv1a, record_len, version_for, RecordError, MAGIC, TAG_BODY, TAG_END, TAG_RESET, TAG_WALL,
+    fnv1a, record_len, version_for, RecordError, MAGIC, TAG_BODY, TAG_EDIT, TAG_END, TAG_RESET,
+    TAG_WALL, VERSION_EDITS,
 };
 use crate::event::EventKind;
 use crate::scene::Scene;
@@ -17,6 +18,8 @@ pub struct RunWriter<W: Write, const D: usize> {
     path: String,
     buf: Vec<u8>,
     records: u64,
+    /// Whether edit records may be written (format version 8).
+    steered: bool,
 }
 
 impl<const D: usize> RunWriter<File, D> {
@@ -29,11 +32,37 @@ impl<const D: usize> RunWriter<File, D> {
         })?;
         Self::new(file, name, scene)
     }
+
+    /// Creates the run file `path` of a run a program steers: [`RunWriter::new_steered`].
+    pub fn create_steered(path: &Path, scene: &Scene<D>) -> Result<Self, RecordError> {
+        let name = path.display().to_string();
+        let file = File::create(path).map_err(|source| RecordError::Io {
+            path: name.clone(),
+            source,
+        })?;
+        Self::new_steered(file, name, scene)
+    }
 }
 
 impl<W: Write, const D: usize> RunWriter<W, D> {
     /// Writes the header holding `scene` to `out`; `name` is used in error messages.
     pub fn new(out: W, name: String, scene: &Scene<D>) -> Result<Self, RecordError> {
+        Self::open(out, name, scene, false)
+    }
+
+    /// A writer for a run a program steers: like [`RunWriter::new`], but the file is format
+    /// version 8 and takes edit records ([`crate::EventKind::Edit`], from
+    /// [`crate::Simulation::take_edits`]) between the collisions.
+    pub fn new_steered(out: W, name: String, scene: &Scene<D>) -> Result<Self, RecordError> {
+        Self::open(out, name, scene, true)
+    }
+
+    fn open(out: W, name: String, scene: &Scene<D>, steered: bool) -> Result<Self, RecordError> {
+        let version = if steered {
+            VERSION_EDITS
+        } else {
+            version_for(scene)
+        };
         let mut out = BufWriter::with_capacity(1 << 16, out);
         let json = scene.to_json();
         let io = |source| RecordError::Io {
@@ -42,7 +71,7 @@ impl<W: Write, const D: usize> RunWriter<W, D> {
         };
         let mut head = Vec::with_capacity(24 + json.len());
         head.extend_from_slice(&MAGIC);
-        head.extend_from_slice(&version_for(scene).to_le_bytes());
+        head.extend_from_slice(&version.to_le_bytes());
         head.extend_from_slice(&(D as u32).to_le_bytes());
         head.extend_from_slice(&(json.len() as u64).to_le_bytes());
         head.extend_from_slice(json.as_bytes());
@@ -53,6 +82,7 @@ impl<W: Write, const D: usize> RunWriter<W, D> {
             path: name,
             buf: Vec::with_capacity(record_len(D)),
             records: 0,
+            steered,
         })
     }
 
@@ -98,6 +128,12 @@ impl<W: Write, const D: usize> RunWriter<W, D> {
             EventKind::Body => TAG_BODY,
             EventKind::Wall => TAG_WALL,
             EventKind::Reset => TAG_RESET,
+            EventKind::Edit if self.steered => TAG_EDIT,
+            EventKind::Edit => {
+                return Err(RecordError::NotSteered {
+                    path: self.path.clone(),
+                })
+            }
         };
         self.put(
             tag,

@@ -75,6 +75,12 @@ pub struct VerifyReport {
     pub wall_collisions: u64,
     /// Thermostat resets, each checked against the sequence the scene's seed gives.
     pub resets: u64,
+    /// Edits by the program that steered the run (format version 8: `set_velocity`,
+    /// `set_position`), each checked to put its body where it overlaps nothing.
+    pub edits: u64,
+    /// Energy the edits added (kinetic plus, under gravity, potential), joules: the run's
+    /// energy drift, less this, is what its collisions changed.
+    pub edit_energy: f64,
     /// Largest overlap seen (relative to the contact distance), at events or in between.
     pub max_overlap: f64,
     /// Kinetic energy at the start, joules.
@@ -274,7 +280,10 @@ impl<const D: usize> Verifier<D> {
         }
         let k = c.body_count();
         let ids = [c.event.a as usize, c.event.b as usize];
-        for (s, &i) in ids[..k].iter().enumerate() {
+        // An edit may move its body anywhere (a teleport): its new position is checked by
+        // `check_edit` instead.
+        let moved = usize::from(c.event.kind != EventKind::Edit) * k;
+        for (s, &i) in ids[..moved].iter().enumerate() {
             let expect = self.pos_at(&self.motion[i], t);
             let dt = (t - self.motion[i].time).abs();
             let fall = self.gravity.map_or(0.0, |g| 0.5 * g.norm() * dt * dt);
@@ -300,6 +309,7 @@ impl<const D: usize> Verifier<D> {
             EventKind::Body => self.check_pair(c, ids[0], ids[1])?,
             EventKind::Wall => self.check_wall(c, ids[0], ids[1])?,
             EventKind::Reset => self.check_reset(c, ids[0])?,
+            EventKind::Edit => self.check_edit(c, ids[0])?,
         }
         for (s, &i) in ids[..k].iter().enumerate() {
             self.motion[i] = Motion {
@@ -410,6 +420,50 @@ impl<const D: usize> Verifier<D> {
         let e1 = 0.5 * mass * c.vel[0].norm_sq();
         self.report.resets += 1;
         self.report.kinetic_energy_end += e1 - e0;
+        Ok(())
+    }
+
+    /// A program's edit of body `i` (see [`EventKind::Edit`]): its new state must overlap no
+    /// body it collides with and no wall, and stay inside a closed table. The energy it adds
+    /// (kinetic and, under gravity, potential) is counted in the report.
+    fn check_edit(&mut self, c: &Collision<D>, i: usize) -> Result<(), Violation> {
+        let t = c.event.time;
+        let (pos, vel) = (c.pos[0], c.vel[0]);
+        if !pos.is_finite() {
+            return Err(self.fail(t, format!("an edit puts body {i} at a non-finite position")));
+        }
+        let r = self.radius_at(i, t);
+        for j in (0..self.motion.len()).filter(|&j| j != i) {
+            if self.never_meet(i, j) {
+                continue;
+            }
+            let sigma = r + self.radius_at(j, t);
+            let d = self.image(self.pos_at(&self.motion[j], t) - pos).norm();
+            if (sigma - d) / sigma > OVERLAP_TOLERANCE {
+                return Err(self.fail(
+                    t,
+                    format!("an edit puts body {i} into body {j} (distance {d}, contact {sigma})"),
+                ));
+            }
+        }
+        if !self.is_kinematic(i) {
+            for (w, wall) in self.walls.iter().enumerate() {
+                if (r - wall_clearance(wall, pos)) / r > OVERLAP_TOLERANCE {
+                    return Err(self.fail(t, format!("an edit puts body {i} across wall {w}")));
+                }
+            }
+            let loops = crate::wall::closed_segments(&self.walls);
+            if D == 2 && !loops.is_empty() && !crate::wall::inside_even_odd(&loops, pos[0], pos[1])
+            {
+                return Err(self.fail(t, format!("an edit puts body {i} outside the table")));
+            }
+        }
+        let before = self.motion[i];
+        let (m, g) = (self.mass[i], self.gravity.filter(|_| !self.is_kinematic(i)));
+        let kinetic = 0.5 * m * (vel.norm_sq() - self.vel_at(&before, t).norm_sq());
+        let potential = g.map_or(0.0, |g| -m * g.dot(pos - self.pos_at(&before, t)));
+        self.report.edits += 1;
+        self.report.edit_energy += kinetic + potential;
         Ok(())
     }
 

@@ -53,7 +53,7 @@ fn resolve<const D: usize>(world: &mut World<D>, e: Event) {
         EventKind::Wall => {
             resolve_body_wall(world, e.a as usize, e.b as usize, e.time);
         }
-        EventKind::Reset => panic!("finders never predict thermostat resets"),
+        EventKind::Reset | EventKind::Edit => panic!("finders never predict resets or edits"),
     }
 }
 
@@ -296,7 +296,7 @@ fn run_validated<const D: usize>(
         resolve(&mut world, e);
         let changed: &[usize] = match e.kind {
             EventKind::Body => &[e.a as usize, e.b as usize],
-            EventKind::Wall | EventKind::Reset => &[e.a as usize],
+            EventKind::Wall | EventKind::Reset | EventKind::Edit => &[e.a as usize],
         };
         f.update(&world, changed);
     }

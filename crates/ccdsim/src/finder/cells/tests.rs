@@ -28,7 +28,7 @@ fn resolve_and_update<const D: usize>(world: &mut World<D>, finder: &mut Cells<D
             resolve_body_wall(world, a, b, e.time);
             finder.update(world, &[a]);
         }
-        EventKind::Reset => panic!("finders never predict thermostat resets"),
+        EventKind::Reset | EventKind::Edit => panic!("finders never predict resets or edits"),
     }
 }
 
