@@ -42,6 +42,14 @@ fn polygon(points: &[[f64; 2]]) -> Vec<Wall<2>> {
         .collect()
 }
 
+/// A sensor of radius `r` around `c`.
+fn sensor(c: [f64; 2], r: f64) -> Sensor<2> {
+    Sensor {
+        center: Vector(c),
+        radius: r,
+    }
+}
+
 /// A round bumper: a regular polygon of `sides` segments around `c`.
 fn bumper(c: [f64; 2], r: f64, sides: usize) -> Vec<Wall<2>> {
     let points: Vec<[f64; 2]> = (0..sides)
@@ -91,34 +99,16 @@ fn table() -> Scene<2> {
         walls,
         sensors: vec![
             // Targets: the three lanes at the top, and the centre spinner.
-            Sensor {
-                center: Vector([0.15, 1.05]),
-                radius: 0.02,
-            },
-            Sensor {
-                center: Vector([0.27, 1.05]),
-                radius: 0.02,
-            },
-            Sensor {
-                center: Vector([0.39, 1.05]),
-                radius: 0.02,
-            },
-            Sensor {
-                center: Vector([0.27, 0.5]),
-                radius: 0.03,
-            },
+            sensor([0.15, 1.05], 0.02),
+            sensor([0.27, 1.05], 0.02),
+            sensor([0.39, 1.05], 0.02),
+            sensor([0.27, 0.5], 0.03),
             // The drain: a wide region below the gap between the slopes, which a ball falling
             // out of the table meets whichever way it goes.
-            Sensor {
-                center: Vector([0.29, -1.0]),
-                radius: 1.0,
-            },
+            sensor([0.29, -1.0], 1.0),
             // The bottom of the plunger lane: a ball that rolls back into the lane is
             // launched again.
-            Sensor {
-                center: Vector([PLUNGER[0], 0.03]),
-                radius: 0.01,
-            },
+            sensor([PLUNGER[0], 0.03], 0.01),
         ],
         ..Scene::default()
     };

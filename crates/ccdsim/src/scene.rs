@@ -74,6 +74,12 @@ impl<const D: usize> BodySpec<D> {
         CollisionFilter::of(self.group, self.mask)
     }
 
+    /// True when the body sets a collision group or mask.
+    #[must_use]
+    pub fn is_filtered(&self) -> bool {
+        self.group.is_some() || self.mask.is_some()
+    }
+
     /// The mass to simulate with: infinite for a kinematic body, else the given one, or unit
     /// density.
     #[must_use]
@@ -492,6 +498,17 @@ impl<const D: usize> Scene<D> {
 }
 
 impl<const D: usize> Scene<D> {
+    /// Every body's collision filter by index (see [`crate::collision_filter`]), or an empty
+    /// list when no body sets one (every pair collides).
+    #[must_use]
+    pub fn filters(&self) -> Vec<CollisionFilter> {
+        if self.bodies.iter().any(BodySpec::is_filtered) {
+            self.bodies.iter().map(BodySpec::filter).collect()
+        } else {
+            Vec::new()
+        }
+    }
+
     /// The acceleration of `settings.gravity` as a vector of this dimension, if the scene has
     /// gravity with the right number of components (see [`Scene::validate`]).
     #[must_use]

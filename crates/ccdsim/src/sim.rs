@@ -707,22 +707,11 @@ impl<const D: usize> Simulation<D> {
             )));
         }
         let t = self.world.now();
-        let (pos, r) = (self.world.position_at(i, t), self.world.radius_at(i, t));
-        for j in (0..n).filter(|&j| j != i) {
-            let kinematic_pair = self.world.is_kinematic(i) && self.world.is_kinematic(j);
-            if kinematic_pair || !filter.collides(&self.world.filter(j)) {
-                continue;
-            }
-            let d = self.world.position_at(j, t) - pos;
-            let d = match self.world.periodic() {
-                Some(size) => crate::periodic::min_image(d, &size),
-                None => d,
-            };
-            if d.norm() < r + self.world.radius_at(j, t) {
-                return Err(SimError::Input(format!(
-                    "body {i} overlaps body {j}: it cannot be made to collide with it"
-                )));
-            }
+        let pos = self.world.position_at(i, t);
+        if let Some(j) = self.overlapped_by(i, pos, |j| filter.collides(&self.world.filter(j))) {
+            return Err(SimError::Input(format!(
+                "body {i} overlaps body {j}: it cannot be made to collide with it"
+            )));
         }
         // Stored anew at the current time: a pair's contact is sought from the later of its
         // bodies' reference times, and a pair that passed through each other before now must
@@ -738,6 +727,30 @@ impl<const D: usize> Simulation<D> {
         self.halt = None;
         self.idle = None;
         Ok(())
+    }
+
+    /// The first body `j ≠ i` that body `i`, put at `pos` now, would overlap, among those it
+    /// `collides` with (kinematic pairs never meet): O(n).
+    fn overlapped_by(
+        &self,
+        i: usize,
+        pos: Vector<D>,
+        collides: impl Fn(usize) -> bool,
+    ) -> Option<usize> {
+        let t = self.world.now();
+        let r = self.world.radius_at(i, t);
+        let kinematic = self.world.is_kinematic(i);
+        (0..self.world.len()).find(|&j| {
+            if j == i || (kinematic && self.world.is_kinematic(j)) || !collides(j) {
+                return false;
+            }
+            let d = self.world.position_at(j, t) - pos;
+            let d = match self.world.periodic() {
+                Some(size) => crate::periodic::min_image(d, &size),
+                None => d,
+            };
+            d.norm() < r + self.world.radius_at(j, t)
+        })
     }
 
     /// Stores body `i`'s state anew at the current time, with velocity `vel`: its position
@@ -789,21 +802,11 @@ impl<const D: usize> Simulation<D> {
                 )));
             }
         }
-        for j in (0..n).filter(|&j| j != i) {
-            if (kinematic && self.world.is_kinematic(j)) || !self.world.collides(i, j) {
-                continue;
-            }
-            let d = self.world.position_at(j, t) - pos;
-            let d = match self.world.periodic() {
-                Some(size) => crate::periodic::min_image(d, &size),
-                None => d,
-            };
-            if d.norm() < r + self.world.radius_at(j, t) {
-                return Err(SimError::Input(format!(
-                    "body {i} at {:?} would overlap body {j}",
-                    pos.0
-                )));
-            }
+        if let Some(j) = self.overlapped_by(i, pos, |j| self.world.collides(i, j)) {
+            return Err(SimError::Input(format!(
+                "body {i} at {:?} would overlap body {j}",
+                pos.0
+            )));
         }
         if !kinematic {
             let walls = self.world.walls();

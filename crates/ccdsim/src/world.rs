@@ -103,15 +103,7 @@ impl<const D: usize> World<D> {
                 Vec::new()
             },
             thermostat: scene.settings.thermostat,
-            filters: if scene
-                .bodies
-                .iter()
-                .any(|b| b.group.is_some() || b.mask.is_some())
-            {
-                scene.bodies.iter().map(BodySpec::filter).collect()
-            } else {
-                Vec::new()
-            },
+            filters: scene.filters(),
             laws: Laws {
                 growth: scene.settings.growth.map(|g| GrowthLaw {
                     rate: g.rate,
@@ -119,10 +111,7 @@ impl<const D: usize> World<D> {
                 }),
                 gravity: scene.gravity(),
                 kinematic: scene.bodies.iter().any(|b| b.kinematic),
-                filtered: scene
-                    .bodies
-                    .iter()
-                    .any(|b| b.group.is_some() || b.mask.is_some()),
+                filtered: scene.bodies.iter().any(BodySpec::is_filtered),
             },
             now: scene.start_time,
         })

@@ -81,11 +81,7 @@ pub const VERSION_NEWEST: u32 = VERSION_EDITS;
 pub fn version_for<const D: usize>(scene: &crate::scene::Scene<D>) -> u32 {
     if !scene.sensors.is_empty() {
         VERSION_SENSORS
-    } else if scene
-        .bodies
-        .iter()
-        .any(|b| b.group.is_some() || b.mask.is_some())
-    {
+    } else if scene.bodies.iter().any(crate::scene::BodySpec::is_filtered) {
         VERSION_FILTERS
     } else if scene.bodies.iter().any(|b| b.kinematic) {
         VERSION_KINEMATIC

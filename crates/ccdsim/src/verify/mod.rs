@@ -39,7 +39,7 @@ use crate::geom::Vector;
 use crate::growth::GrowthLaw;
 use crate::narrow::{wall_normal, Motion};
 use crate::periodic::min_image;
-use crate::scene::{BodySpec, Scene};
+use crate::scene::Scene;
 use crate::sim::Collision;
 use crate::thermostat::ResetClock;
 use crate::wall::{wall_clearance, Wall};
@@ -196,15 +196,7 @@ impl<const D: usize> Verifier<D> {
             period: scene.periodic,
             restitution: scene.settings.restitution,
             kinematic,
-            filters: if scene
-                .bodies
-                .iter()
-                .any(|b| b.group.is_some() || b.mask.is_some())
-            {
-                scene.bodies.iter().map(BodySpec::filter).collect()
-            } else {
-                Vec::new()
-            },
+            filters: scene.filters(),
             last_time: scene.start_time,
             resets: scene
                 .settings
