@@ -45,13 +45,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     scene.settings.restitution = 0.9;
     let mut sim = Simulation::new(&scene, "cells")?;
     let out = std::env::args().nth(1);
-    let mut run = match &out {
-        Some(path) => {
-            sim.record_edits(true);
-            Some(RunWriter::create_steered(path.as_ref(), &scene)?)
-        }
-        None => None,
-    };
+    let mut run = out
+        .as_ref()
+        .map(|path| RunWriter::record_steered(&mut sim, path.as_ref(), &scene))
+        .transpose()?;
     let (mut hits, mut cushions) = (0, 0);
     for _ in 0..(SECONDS * FPS) as usize {
         // Each paddle tracks the puck's height on its own goal line, at a capped speed, and

@@ -49,13 +49,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         .fold(f64::NEG_INFINITY, f64::max);
     let mut sim = Simulation::new(&scene, "cells")?;
     let out = std::env::args().nth(1);
-    let mut run = match &out {
-        Some(path) => {
-            sim.record_edits(true);
-            Some(RunWriter::create_steered(path.as_ref(), &scene)?)
-        }
-        None => None,
-    };
+    let mut run = out
+        .as_ref()
+        .map(|path| RunWriter::record_steered(&mut sim, path.as_ref(), &scene))
+        .transpose()?;
     let mut counts = [0u64; BINS];
     // A small deterministic generator for the respawn spots.
     let mut seed = 0x2545_f491_4f6c_dd1du64;

@@ -131,13 +131,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let scene = table();
     let mut sim = Simulation::new(&scene, "cells")?;
     let out = std::env::args().nth(1);
-    let mut run = match &out {
-        Some(path) => {
-            sim.record_edits(true);
-            Some(RunWriter::create_steered(path.as_ref(), &scene)?)
-        }
-        None => None,
-    };
+    let mut run = out
+        .as_ref()
+        .map(|path| RunWriter::record_steered(&mut sim, path.as_ref(), &scene))
+        .transpose()?;
     let (mut score, mut played, mut kicks) = (0u64, 1usize, 0usize);
     let mut ball_started = sim.time();
     while played <= BALLS && sim.time() < MAX_SECONDS * BALLS as f64 {

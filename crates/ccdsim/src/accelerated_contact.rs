@@ -54,9 +54,6 @@ pub fn first_contact_accelerating<const D: usize>(
     acc: Vector<D>,
     sigma: f64,
 ) -> Option<f64> {
-    if acc.0.iter().all(|&a| a == 0.0) {
-        return first_contact(dp, dv, sigma);
-    }
     first_turn(dp, dv, acc, sigma, 1.0, first_contact)
 }
 
@@ -75,9 +72,6 @@ pub fn first_exit_accelerating<const D: usize>(
     acc: Vector<D>,
     sigma: f64,
 ) -> Option<f64> {
-    if acc.0.iter().all(|&a| a == 0.0) {
-        return first_exit(dp, dv, sigma);
-    }
     first_turn(dp, dv, acc, sigma, -1.0, first_exit)
 }
 
@@ -113,7 +107,8 @@ pub fn first_exit<const D: usize>(dp: Vector<D>, dv: Vector<D>, sigma: f64) -> O
 
 /// The common body of [`first_contact_accelerating`] (`sign` 1) and
 /// [`first_exit_accelerating`] (`sign` −1, the sign of `f` flipped); `straight` is the
-/// straight-line answer for flights too fast for the quartic.
+/// straight-line answer, for a zero acceleration and for flights too fast for the quartic.
+#[inline]
 fn first_turn<const D: usize>(
     dp: Vector<D>,
     dv: Vector<D>,
@@ -122,6 +117,9 @@ fn first_turn<const D: usize>(
     sign: f64,
     straight: fn(Vector<D>, Vector<D>, f64) -> Option<f64>,
 ) -> Option<f64> {
+    if acc.0.iter().all(|&a| a == 0.0) {
+        return straight(dp, dv, sigma);
+    }
     if !(dp.is_finite() && dv.is_finite() && acc.is_finite() && sigma.is_finite()) {
         return None;
     }

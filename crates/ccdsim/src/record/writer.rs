@@ -42,6 +42,20 @@ impl<const D: usize> RunWriter<File, D> {
         })?;
         Self::new_steered(file, name, scene)
     }
+
+    /// Starts recording `sim`, a run of `scene` a program steers, to the file `path`: turns
+    /// on its edit journal ([`crate::Simulation::record_edits`]) and creates the steered run
+    /// file ([`RunWriter::create_steered`]). Write each frame's
+    /// [`take_edits`](crate::Simulation::take_edits) and collisions to it, in order.
+    pub fn record_steered(
+        sim: &mut crate::Simulation<D>,
+        path: &Path,
+        scene: &Scene<D>,
+    ) -> Result<Self, RecordError> {
+        let run = Self::create_steered(path, scene)?;
+        sim.record_edits(true);
+        Ok(run)
+    }
 }
 
 impl<W: Write, const D: usize> RunWriter<W, D> {
