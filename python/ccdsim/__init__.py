@@ -179,6 +179,7 @@ class Simulation:
         return self._sim.dim
 
     def __len__(self) -> int:
+        """Number of body slots: bodies, and vacant slots after :meth:`remove_body`."""
         return len(self._sim)
 
     @property
@@ -313,6 +314,58 @@ class Simulation:
         a ghost that collides with no body). Raises ValueError when it would make overlapping
         bodies collide."""
         self._sim.set_collision_filter(int(i), int(group), int(mask))
+
+    def add_body(
+        self,
+        pos: Sequence[float],
+        vel: Sequence[float],
+        radius: float,
+        *,
+        mass: Optional[float] = None,
+        restitution: Optional[float] = None,
+        kinematic: bool = False,
+        group: Optional[int] = None,
+        mask: Optional[int] = None,
+        id: Optional[int] = None,
+    ) -> int:
+        """Adds a body at the current time and returns its index, which names it until it is
+        removed (a removed body's slot may be filled again). Fields as in a scene's
+        ``bodies``; ``id`` defaults to one above every id so far. Raises ValueError when a
+        field is invalid, the id is taken, or the body would overlap a body or a wall.
+
+        >>> sim = Simulation({"dim": 2, "bodies": []}, finder="cells")
+        >>> a = sim.add_body([0, 0], [1, 0], 0.5)
+        >>> b = sim.add_body([3, 0], [-1, 0], 0.5)
+        >>> float(sim.step()["t"])
+        1.0
+        """
+        return self._sim.add_body(
+            [float(x) for x in pos],
+            [float(x) for x in vel],
+            float(radius),
+            None if mass is None else float(mass),
+            None if restitution is None else float(restitution),
+            bool(kinematic),
+            None if group is None else int(group),
+            None if mask is None else int(mask),
+            None if id is None else int(id),
+        )
+
+    def remove_body(self, i: int) -> None:
+        """Removes body ``i`` now: its slot becomes vacant (see :attr:`present`) and every other
+        body keeps its index. A body inside a sensor leaves it."""
+        self._sim.remove_body(int(i))
+
+    @property
+    def present(self) -> np.ndarray:
+        """Which slots hold a body, N booleans: arrays such as :attr:`positions` have a row
+        per slot, and a vacant slot's row is a body at rest that takes part in nothing."""
+        return self._sim.present
+
+    @property
+    def ids(self) -> np.ndarray:
+        """Each slot's user id, N unsigned integers (2**64 - 1 for a vacant slot)."""
+        return self._sim.ids
 
     def take_sensor_events(self) -> np.ndarray:
         """The scene's sensor events since the last call, in time order, as a structured

@@ -193,6 +193,29 @@ def test_collision_filters_let_bodies_pass_through():
         sim.set_collision_filter(1, group=1)
 
 
+def test_bodies_are_added_and_removed_in_stable_slots():
+    sim = ccdsim.Simulation({"dim": 2, "bodies": []}, finder="cells")
+    a = sim.add_body([0.0, 0.0], [1.0, 0.0], 0.5)
+    b = sim.add_body([3.0, 0.0], [-1.0, 0.0], 0.5, id=77)
+    assert (a, b) == (0, 1)
+    assert sim.ids[b] == 77
+    assert sim.step()["t"] == 1.0  # the gap of 2 m closes at 2 m/s
+    sim.remove_body(a)
+    assert not sim.present[a] and sim.present[b]
+    assert sim.step() is None  # b flies off alone
+    with pytest.raises(ValueError, match="vacant"):
+        sim.set_velocity(a, [1.0, 0.0])
+    with pytest.raises(ValueError, match="id 77 is taken"):
+        sim.add_body([10.0, 10.0], [0.0, 0.0], 0.5, id=77)
+    with pytest.raises(ValueError, match="overlap body 1"):
+        sim.add_body(list(sim.positions[b]), [0.0, 0.0], 0.5)
+    with pytest.raises(ValueError, match="radius"):
+        sim.add_body([10.0, 10.0], [0.0, 0.0], -1.0)
+    c = sim.add_body([-5.0, 0.0], [0.0, 0.0], 0.25)
+    assert c == a  # the vacant slot is filled again
+    assert sim.present.all()
+
+
 def test_sensors_report_enters_and_leaves():
     scene = {
         "dim": 2,

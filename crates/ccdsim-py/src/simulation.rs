@@ -99,7 +99,7 @@ impl PySimulation {
         with_sim!(self, _s, D)
     }
 
-    /// Number of bodies.
+    /// Number of body slots (bodies and vacant slots, see `present`).
     fn __len__(&mut self) -> usize {
         with_sim!(self, s, s.world().len())
     }
@@ -330,6 +330,57 @@ impl PySimulation {
             s,
             s.set_collision_filter(i, filter).map_err(value_error)
         )
+    }
+
+    /// Adds a body at the current time and returns its slot index (see
+    /// `ccdsim::Simulation::add_body`); ValueError when it is refused.
+    #[allow(clippy::too_many_arguments)]
+    #[pyo3(signature = (pos, vel, radius, mass=None, restitution=None, kinematic=false, group=None, mask=None, id=None))]
+    fn add_body(
+        &mut self,
+        pos: Vec<f64>,
+        vel: Vec<f64>,
+        radius: f64,
+        mass: Option<f64>,
+        restitution: Option<f64>,
+        kinematic: bool,
+        group: Option<u32>,
+        mask: Option<u32>,
+        id: Option<u64>,
+    ) -> PyResult<usize> {
+        with_sim!(self, s, {
+            let spec = ccdsim::BodySpec {
+                id,
+                mass,
+                restitution,
+                kinematic,
+                group,
+                mask,
+                ..ccdsim::BodySpec::new(vector::<D>(&pos)?, vector::<D>(&vel)?, radius)
+            };
+            s.add_body(spec).map_err(value_error)
+        })
+    }
+
+    /// Removes body `i` now; its slot becomes vacant (ValueError for a vacant slot).
+    fn remove_body(&mut self, i: usize) -> PyResult<()> {
+        self.check_index(i)?;
+        with_sim!(self, s, s.remove_body(i).map_err(value_error))
+    }
+
+    /// Which slots hold a body (false: vacant, see `remove_body`), N booleans.
+    #[getter]
+    fn present<'py>(&mut self, py: Python<'py>) -> Bound<'py, PyArray1<bool>> {
+        with_sim!(self, s, {
+            let w = s.world();
+            PyArray1::from_vec(py, (0..w.len()).map(|i| !w.is_vacant(i)).collect())
+        })
+    }
+
+    /// The user id of each slot (2**64 − 1 for a vacant slot), N integers.
+    #[getter]
+    fn ids<'py>(&mut self, py: Python<'py>) -> Bound<'py, PyArray1<u64>> {
+        with_sim!(self, s, PyArray1::from_vec(py, s.world().ids().to_vec()))
     }
 
     /// The sensor events since the last call, in time order, as arrays `t`, `body`, `sensor`

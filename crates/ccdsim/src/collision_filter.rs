@@ -32,6 +32,10 @@ impl CollisionFilter {
         mask: u32::MAX,
     };
 
+    /// The filter of a vacant slot (see [`crate::World::is_vacant`]): it belongs to no group
+    /// and collides with none.
+    pub const NONE: CollisionFilter = CollisionFilter { group: 0, mask: 0 };
+
     /// The filter of a body with the given optional `group` and `mask` (each defaulting to
     /// [`CollisionFilter::DEFAULT`]'s).
     #[must_use]

@@ -21,6 +21,7 @@
 pub mod accelerated_contact;
 pub mod collision_filter;
 pub mod discrete;
+pub mod edit;
 pub mod event;
 pub mod finder;
 pub mod generate;

@@ -74,6 +74,76 @@ impl<const D: usize> BodySpec<D> {
         CollisionFilter::of(self.group, self.mask)
     }
 
+    /// Checks this body's own fields as body `i` of a scene with `settings`, periodic or not:
+    /// finite position and velocity, a positive radius and mass, a restitution in `[0, 1]`, and
+    /// nothing the scene's settings cannot be combined with. Errors name `bodies[i]`.
+    pub fn check_fields(
+        &self,
+        i: usize,
+        settings: &Settings,
+        periodic: bool,
+    ) -> Result<(), SceneError> {
+        let f = |name: &str| format!("bodies[{i}].{name}");
+        if !self.pos.is_finite() {
+            return Err(SceneError::NonFinite(f("pos")));
+        }
+        if !self.vel.is_finite() {
+            return Err(SceneError::NonFinite(f("vel")));
+        }
+        if !self.radius.is_finite() {
+            return Err(SceneError::NonFinite(f("radius")));
+        }
+        if self.radius <= 0.0 {
+            return Err(SceneError::NonPositive(f("radius")));
+        }
+        if let Some(e) = self.restitution {
+            if !e.is_finite() {
+                return Err(SceneError::NonFinite(f("restitution")));
+            }
+            if !(0.0..=1.0).contains(&e) {
+                return Err(SceneError::Field {
+                    path: f("restitution"),
+                    message: format!("{e} is outside [0, 1]"),
+                });
+            }
+            if settings.growth.is_some() {
+                return Err(SceneError::Unsupported {
+                    field: f("restitution"),
+                    why: "per-body restitution cannot be combined with settings.growth yet".into(),
+                });
+            }
+        }
+        if self.kinematic {
+            let refuse = |why: &str| {
+                Err(SceneError::Unsupported {
+                    field: f("kinematic"),
+                    why: why.into(),
+                })
+            };
+            if self.mass.is_some() {
+                return refuse("a kinematic body has infinite mass: drop its `mass`");
+            }
+            if periodic {
+                return refuse("kinematic bodies are not supported in a periodic box yet");
+            }
+            if settings.growth.is_some() || settings.thermostat.is_some() {
+                return refuse(
+                    "kinematic bodies cannot be combined with settings.growth or \
+                     settings.thermostat",
+                );
+            }
+            return Ok(());
+        }
+        let m = self.effective_mass();
+        if !m.is_finite() {
+            return Err(SceneError::NonFinite(f("mass")));
+        }
+        if m <= 0.0 {
+            return Err(SceneError::NonPositive(f("mass")));
+        }
+        Ok(())
+    }
+
     /// True when the body sets a collision group or mask.
     #[must_use]
     pub fn is_filtered(&self) -> bool {
@@ -394,65 +464,7 @@ impl<const D: usize> Scene<D> {
             validate_wall(w, wall)?;
         }
         for (i, b) in self.bodies.iter().enumerate() {
-            let f = |name: &str| format!("bodies[{i}].{name}");
-            if !b.pos.is_finite() {
-                return Err(SceneError::NonFinite(f("pos")));
-            }
-            if !b.vel.is_finite() {
-                return Err(SceneError::NonFinite(f("vel")));
-            }
-            if !b.radius.is_finite() {
-                return Err(SceneError::NonFinite(f("radius")));
-            }
-            if b.radius <= 0.0 {
-                return Err(SceneError::NonPositive(f("radius")));
-            }
-            if let Some(e) = b.restitution {
-                if !e.is_finite() {
-                    return Err(SceneError::NonFinite(f("restitution")));
-                }
-                if !(0.0..=1.0).contains(&e) {
-                    return Err(SceneError::Field {
-                        path: f("restitution"),
-                        message: format!("{e} is outside [0, 1]"),
-                    });
-                }
-                if self.settings.growth.is_some() {
-                    return Err(SceneError::Unsupported {
-                        field: f("restitution"),
-                        why: "per-body restitution cannot be combined with settings.growth yet"
-                            .into(),
-                    });
-                }
-            }
-            if b.kinematic {
-                let refuse = |why: &str| {
-                    Err(SceneError::Unsupported {
-                        field: f("kinematic"),
-                        why: why.into(),
-                    })
-                };
-                if b.mass.is_some() {
-                    return refuse("a kinematic body has infinite mass: drop its `mass`");
-                }
-                if self.periodic.is_some() {
-                    return refuse("kinematic bodies are not supported in a periodic box yet");
-                }
-                if self.settings.growth.is_some() || self.settings.thermostat.is_some() {
-                    return refuse(
-                        "kinematic bodies cannot be combined with settings.growth or \
-                         settings.thermostat",
-                    );
-                }
-                continue;
-            }
-            let m = b.effective_mass();
-            if !m.is_finite() {
-                return Err(SceneError::NonFinite(f("mass")));
-            }
-            if m <= 0.0 {
-                return Err(SceneError::NonPositive(f("mass")));
-            }
+            b.check_fields(i, &self.settings, self.periodic.is_some())?;
         }
         self.validate_resolution()?;
         if let Some((first, second)) = self.first_duplicate_id() {

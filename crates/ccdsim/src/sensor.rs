@@ -149,11 +149,15 @@ impl<const D: usize> SensorTracker<D> {
     /// Body `i`'s stored motion was replaced (a collision, an edit): its next sensor event
     /// is computed anew from its reference time, where a body found strictly inside a sensor
     /// it is not known to overlap enters it at once, and one found strictly outside a sensor
-    /// it is known to overlap leaves it at once. (On the sphere, the contact and exit
+    /// it is known to overlap leaves it at once. A removed body (a vacant slot) leaves every
+    /// sensor at once. (On the sphere, the contact and exit
     /// functions decide, as they do at every crossing: the two rules never disagree, so
     /// events at one instant cannot repeat.)
     pub fn body_changed(&mut self, world: &World<D>, i: usize) {
         let m = world.motion(i);
+        if world.is_vacant(i) {
+            return self.body_removed(i, m.time);
+        }
         let r = world.radius(i);
         let s = self.sensors.len();
         let mut best: Option<(f64, usize)> = None;
@@ -197,6 +201,32 @@ impl<const D: usize> SensorTracker<D> {
             first_contact_accelerating(dp, vel, acc, sigma)
         }?;
         Some(t0 + dt).filter(|t| t.is_finite())
+    }
+
+    /// Makes room for `n` body slots (bodies added to a running simulation); new slots are
+    /// inside no sensor and have no event until [`SensorTracker::body_changed`].
+    pub fn resize(&mut self, n: usize) {
+        self.inside.resize(n * self.sensors.len(), false);
+        self.epoch.resize(n, 0);
+    }
+
+    /// Body `i` was removed (its slot is vacant): it leaves every sensor it overlaps now, at
+    /// its reference time, and has no more events.
+    fn body_removed(&mut self, i: usize, t: f64) {
+        let s = self.sensors.len();
+        for k in 0..s {
+            if self.inside[i * s + k] {
+                self.inside[i * s + k] = false;
+                self.counts[k][1] += 1;
+                self.out.push(SensorEvent {
+                    time: t,
+                    body: i,
+                    sensor: k,
+                    change: SensorChange::Leave,
+                });
+            }
+        }
+        self.queue_next(i, None);
     }
 
     /// Queues body `i`'s next event `(time, sensor)`, dropping the one queued before.

@@ -12,6 +12,8 @@ use crate::sensor::{SensorEvent, SensorTracker};
 use crate::thermostat::ResetClock;
 use crate::world::World;
 
+mod body_slots;
+
 /// A resolved collision: the event and the involved bodies' states right after it.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Collision<const D: usize> {
@@ -112,6 +114,9 @@ pub struct Simulation<const D: usize> {
     /// Edits made since the last [`Simulation::take_edits`], as records, when
     /// [`Simulation::record_edits`] is on.
     edits: Option<Vec<Collision<D>>>,
+    /// The largest radius a body added to a vacant slot may have without the finder being
+    /// re-initialised (see [`body_slots::sized_radius`]).
+    sized_radius: f64,
 }
 
 impl<const D: usize> Simulation<D> {
@@ -150,6 +155,7 @@ impl<const D: usize> Simulation<D> {
             images,
             start_time: world.now(),
             guard: ResolutionGuard::new(&world),
+            sized_radius: body_slots::sized_radius(&world),
             world,
             finder,
             pending: None,
@@ -527,15 +533,19 @@ impl<const D: usize> Simulation<D> {
         self.edits.as_mut().map(std::mem::take).unwrap_or_default()
     }
 
-    /// Journals an edit of body `i` just made at the current time.
+    /// Journals a new position or velocity of body `i` just given at the current time.
     fn journal_edit(&mut self, i: usize) {
+        self.journal(crate::edit::Edit::Motion {
+            body: i,
+            pos: self.world.position(i),
+            vel: self.world.velocity(i),
+        });
+    }
+
+    /// Journals `edit`, just made at the current time.
+    fn journal(&mut self, edit: crate::edit::Edit<D>) {
         if let Some(log) = &mut self.edits {
-            let t = self.world.now();
-            log.push(Collision {
-                event: Event::edit(t, i),
-                pos: [self.world.position(i), Vector::ZERO],
-                vel: [self.world.velocity(i), Vector::ZERO],
-            });
+            log.extend(edit.records(self.world.now()));
         }
     }
 
@@ -548,6 +558,7 @@ impl<const D: usize> Simulation<D> {
     /// After a change of every body: the finder and the resolution guard start afresh.
     fn rebuild(&mut self) -> Result<(), SimError> {
         self.finder.init(&self.world)?;
+        self.sized_radius = body_slots::sized_radius(&self.world);
         if let Some(s) = &mut self.sensors {
             for i in 0..self.world.len() {
                 s.body_changed(&self.world, i);
@@ -659,14 +670,25 @@ impl<const D: usize> Simulation<D> {
         out
     }
 
-    /// Gives body `i` a new velocity from the current time on (a game's kick or steering).
-    pub fn set_velocity(&mut self, i: usize, vel: Vector<D>) -> Result<(), SimError> {
-        if i >= self.world.len() {
+    /// Refuses an index that names no body: out of range, or a vacant slot.
+    fn check_body(&self, i: usize) -> Result<(), SimError> {
+        let n = self.world.len();
+        if i >= n {
             return Err(SimError::Input(format!(
-                "body {i} does not exist ({} bodies)",
-                self.world.len()
+                "body {i} does not exist ({n} slots)"
             )));
         }
+        if self.world.is_vacant(i) {
+            return Err(SimError::Input(format!(
+                "body {i} does not exist (its slot is vacant: removed, or reserved)"
+            )));
+        }
+        Ok(())
+    }
+
+    /// Gives body `i` a new velocity from the current time on (a game's kick or steering).
+    pub fn set_velocity(&mut self, i: usize, vel: Vector<D>) -> Result<(), SimError> {
+        self.check_body(i)?;
         if !vel.is_finite() {
             return Err(SimError::Input(format!(
                 "velocity of body {i} is not finite"
@@ -700,15 +722,13 @@ impl<const D: usize> Simulation<D> {
         i: usize,
         filter: crate::CollisionFilter,
     ) -> Result<(), SimError> {
-        let n = self.world.len();
-        if i >= n {
-            return Err(SimError::Input(format!(
-                "body {i} does not exist ({n} bodies)"
-            )));
-        }
+        self.check_body(i)?;
         let t = self.world.now();
         let pos = self.world.position_at(i, t);
-        if let Some(j) = self.overlapped_by(i, pos, |j| filter.collides(&self.world.filter(j))) {
+        let (r, kinematic) = (self.world.radius_at(i, t), self.world.is_kinematic(i));
+        if let Some(j) = self.overlapped_by(i, pos, r, kinematic, |j| {
+            filter.collides(&self.world.filter(j))
+        }) {
             return Err(SimError::Input(format!(
                 "body {i} overlaps body {j}: it cannot be made to collide with it"
             )));
@@ -718,6 +738,12 @@ impl<const D: usize> Simulation<D> {
         // not be found in contact then.
         self.restate(i, self.world.velocity_at(i, t));
         self.sensors_changed(i);
+        self.journal(crate::edit::Edit::Filter {
+            body: i,
+            pos: self.world.position(i),
+            vel: self.world.velocity(i),
+            filter,
+        });
         if self.world.set_filter(i, filter) {
             // The world's laws changed (pairs are now filtered): every finder starts afresh.
             return self.rebuild();
@@ -729,19 +755,24 @@ impl<const D: usize> Simulation<D> {
         Ok(())
     }
 
-    /// The first body `j ≠ i` that body `i`, put at `pos` now, would overlap, among those it
-    /// `collides` with (kinematic pairs never meet): O(n).
+    /// The first body `j ≠ skip` that a ball of radius `r` put at `pos` now would overlap,
+    /// among those it `collides` with (kinematic pairs never meet; vacant slots collide with
+    /// nothing): O(n).
     fn overlapped_by(
         &self,
-        i: usize,
+        skip: usize,
         pos: Vector<D>,
+        r: f64,
+        kinematic: bool,
         collides: impl Fn(usize) -> bool,
     ) -> Option<usize> {
         let t = self.world.now();
-        let r = self.world.radius_at(i, t);
-        let kinematic = self.world.is_kinematic(i);
         (0..self.world.len()).find(|&j| {
-            if j == i || (kinematic && self.world.is_kinematic(j)) || !collides(j) {
+            if j == skip
+                || (kinematic && self.world.is_kinematic(j))
+                || self.world.is_vacant(j)
+                || !collides(j)
+            {
                 return false;
             }
             let d = self.world.position_at(j, t) - pos;
@@ -751,6 +782,53 @@ impl<const D: usize> Simulation<D> {
             };
             d.norm() < r + self.world.radius_at(j, t)
         })
+    }
+
+    /// Why a ball named `what`, of radius `r` and moving at `vel`, cannot be put at `pos`
+    /// now, ignoring bodies: `pos` is not finite or not resolved by `f64` (see
+    /// [`crate::resolution`]), outside a periodic box, or (unless kinematic) across a wall
+    /// or outside the table a closed polygon of 2D segments forms.
+    fn placement_error(
+        &self,
+        what: &str,
+        pos: Vector<D>,
+        vel: Vector<D>,
+        r: f64,
+        kinematic: bool,
+    ) -> Option<String> {
+        let t = self.world.now();
+        if !pos.is_finite() {
+            return Some(format!("position of {what} is not finite"));
+        }
+        if !crate::resolution::resolves(t, pos, vel, r) {
+            return Some(format!(
+                "{what} at {:?} is not resolved by f64 at t = {t} (see the numerical rules)",
+                pos.0
+            ));
+        }
+        if let Some(size) = self.world.periodic() {
+            if (0..D).any(|d| !(0.0..size[d]).contains(&pos[d])) {
+                return Some(format!(
+                    "{what} at {:?} would lie outside the periodic box",
+                    pos.0
+                ));
+            }
+        }
+        if kinematic {
+            return None;
+        }
+        let walls = self.world.walls();
+        if let Some(w) = walls
+            .iter()
+            .position(|w| crate::wall::wall_clearance(w, pos) < r)
+        {
+            return Some(format!("{what} at {:?} would cross wall {w}", pos.0));
+        }
+        let loops = crate::wall::closed_segments(walls);
+        if D == 2 && !loops.is_empty() && !crate::wall::inside_even_odd(&loops, pos[0], pos[1]) {
+            return Some(format!("{what} at {:?} would lie outside the table", pos.0));
+        }
+        None
     }
 
     /// Stores body `i`'s state anew at the current time, with velocity `vel`: its position
@@ -773,60 +851,19 @@ impl<const D: usize> Simulation<D> {
     /// bodies), or lie outside the table a closed polygon of 2D segments forms. O(n) for the
     /// overlap check.
     pub fn set_position(&mut self, i: usize, pos: Vector<D>) -> Result<(), SimError> {
-        let n = self.world.len();
-        if i >= n {
-            return Err(SimError::Input(format!(
-                "body {i} does not exist ({n} bodies)"
-            )));
-        }
-        if !pos.is_finite() {
-            return Err(SimError::Input(format!(
-                "position of body {i} is not finite"
-            )));
-        }
+        self.check_body(i)?;
         let t = self.world.now();
         let vel = self.world.velocity_at(i, t);
         let r = self.world.radius_at(i, t);
-        if !crate::resolution::resolves(t, pos, vel, r) {
-            return Err(SimError::Input(format!(
-                "body {i} at {:?} is not resolved by f64 at t = {t} (see the numerical rules)",
-                pos.0
-            )));
-        }
         let kinematic = self.world.is_kinematic(i);
-        if let Some(size) = self.world.periodic() {
-            if (0..D).any(|d| !(0.0..size[d]).contains(&pos[d])) {
-                return Err(SimError::Input(format!(
-                    "body {i} at {:?} would lie outside the periodic box",
-                    pos.0
-                )));
-            }
+        if let Some(why) = self.placement_error(&format!("body {i}"), pos, vel, r, kinematic) {
+            return Err(SimError::Input(why));
         }
-        if let Some(j) = self.overlapped_by(i, pos, |j| self.world.collides(i, j)) {
+        if let Some(j) = self.overlapped_by(i, pos, r, kinematic, |j| self.world.collides(i, j)) {
             return Err(SimError::Input(format!(
                 "body {i} at {:?} would overlap body {j}",
                 pos.0
             )));
-        }
-        if !kinematic {
-            let walls = self.world.walls();
-            if let Some(w) = walls
-                .iter()
-                .position(|w| crate::wall::wall_clearance(w, pos) < r)
-            {
-                return Err(SimError::Input(format!(
-                    "body {i} at {:?} would cross wall {w}",
-                    pos.0
-                )));
-            }
-            let loops = crate::wall::closed_segments(walls);
-            if D == 2 && !loops.is_empty() && !crate::wall::inside_even_odd(&loops, pos[0], pos[1])
-            {
-                return Err(SimError::Input(format!(
-                    "body {i} at {:?} would lie outside the table",
-                    pos.0
-                )));
-            }
         }
         self.world.set_state(i, pos, vel, t);
         if !self.images.is_empty() {

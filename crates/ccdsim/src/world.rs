@@ -57,6 +57,12 @@ pub struct World<const D: usize> {
     thermostat: Option<crate::thermostat::Thermostat>,
     /// Collision groups and masks, by body index; empty when no body sets them.
     filters: Vec<CollisionFilter>,
+    /// Vacant slots by index (see [`World::is_vacant`]); empty while every slot holds a body.
+    vacant: Vec<bool>,
+    /// The vacant slots, the most recently vacated last: bodies added fill them first.
+    free: Vec<usize>,
+    /// The id the next added body gets unless it names its own: above every id so far.
+    next_id: u64,
     laws: Laws<D>,
     now: f64,
 }
@@ -104,6 +110,12 @@ impl<const D: usize> World<D> {
             },
             thermostat: scene.settings.thermostat,
             filters: scene.filters(),
+            vacant: Vec::new(),
+            free: Vec::new(),
+            next_id: (0..n)
+                .map(|i| scene.id_of(i))
+                .max()
+                .map_or(0, |m| m.saturating_add(1)),
             laws: Laws {
                 growth: scene.settings.growth.map(|g| GrowthLaw {
                     rate: g.rate,
@@ -117,16 +129,154 @@ impl<const D: usize> World<D> {
         })
     }
 
-    /// Number of bodies.
+    /// Number of body slots: every index below it names a body or a vacant slot (see
+    /// [`World::is_vacant`]; without `remove_body` and `add_body`, every slot holds a body).
     #[must_use]
     pub fn len(&self) -> usize {
         self.bodies.len()
     }
 
-    /// True when there are no bodies.
+    /// True when there are no body slots.
     #[must_use]
     pub fn is_empty(&self) -> bool {
         self.bodies.is_empty()
+    }
+
+    /// True when slot `i` holds no body: its body was removed, or the slot was reserved for
+    /// bodies to come ([`crate::Simulation::add_body`]). A vacant slot is kept as a kinematic
+    /// ball at rest that collides with nothing (group and mask 0), so every finder passes it
+    /// by like the oracle does; tools skip it (it has no energy, momentum or sensor events).
+    #[must_use]
+    #[inline]
+    pub fn is_vacant(&self, i: usize) -> bool {
+        self.vacant.get(i).copied().unwrap_or(false)
+    }
+
+    /// Number of bodies: slots that are not vacant.
+    #[must_use]
+    pub fn body_count(&self) -> usize {
+        self.bodies.len() - self.free.len()
+    }
+
+    /// The slot of the body with user id `id`, if one holds it. O(n).
+    #[must_use]
+    pub fn index_of(&self, id: u64) -> Option<usize> {
+        (0..self.id.len()).find(|&i| self.id[i] == id && !self.is_vacant(i))
+    }
+
+    /// The id a body added without one gets: above every id given so far.
+    #[must_use]
+    pub fn next_id(&self) -> u64 {
+        self.next_id
+    }
+
+    /// The vacant slot the next added body fills, if any ([`World::occupy`] needs one).
+    #[must_use]
+    pub fn free_slot(&self) -> Option<usize> {
+        self.free.last().copied()
+    }
+
+    /// Appends `count` vacant slots, slot `len + k` parked with the position and radius
+    /// `park(k)` at the current time (among the bodies, like them: where it costs a grid
+    /// finder least). The world's laws change when it
+    /// had no kinematic bodies or no filters: a finder serving it must then be re-initialised,
+    /// as it must after any new slot.
+    pub(crate) fn reserve(&mut self, count: usize, park: impl Fn(usize) -> (Vector<D>, f64)) {
+        let (n, now) = (self.bodies.len(), self.now);
+        self.vacant.resize(n, false);
+        if self.filters.is_empty() {
+            self.filters = vec![CollisionFilter::DEFAULT; n];
+        }
+        for k in 0..count {
+            let (pos, radius) = park(k);
+            self.bodies.push(Body {
+                motion: Motion {
+                    pos,
+                    vel: Vector::ZERO,
+                    time: now,
+                },
+                radius,
+                mass: f64::INFINITY,
+                changes: 0,
+            });
+            self.id.push(u64::MAX);
+            self.filters.push(CollisionFilter::NONE);
+            self.vacant.push(true);
+            if !self.restitutions.is_empty() {
+                self.restitutions.push(self.restitution);
+            }
+            if self.tc.is_some() {
+                self.last_collision.push(f64::NEG_INFINITY);
+            }
+        }
+        // Filled lowest slot first.
+        self.free.extend((n..n + count).rev());
+        self.laws.kinematic = true;
+        self.laws.filtered = true;
+    }
+
+    /// Puts the body `spec`, with user id `id` and its position and velocity holding at the
+    /// current time, in the vacant slot filled next; returns the slot. The world's laws change
+    /// when the body is the first with its own restitution. A finder serving the world must be
+    /// told through [`Finder::update`](crate::Finder::update), or re-initialised if the laws
+    /// changed or the radius exceeds what it was sized for.
+    ///
+    /// # Panics
+    /// When no slot is vacant ([`World::reserve`] first).
+    pub(crate) fn occupy(&mut self, spec: &BodySpec<D>, id: u64) -> usize {
+        let i = self.free.pop().expect("a vacant slot was reserved");
+        let b = &mut self.bodies[i];
+        b.motion = Motion {
+            pos: spec.pos,
+            vel: spec.vel,
+            time: self.now,
+        };
+        b.radius = spec.radius;
+        b.mass = spec.effective_mass();
+        b.changes += 1;
+        self.id[i] = id;
+        self.next_id = self.next_id.max(id.saturating_add(1));
+        self.vacant[i] = false;
+        self.filters[i] = spec.filter();
+        if spec.restitution.is_some() && self.restitutions.is_empty() {
+            self.restitutions = vec![self.restitution; self.bodies.len()];
+            self.restitution_rules = true;
+        }
+        if !self.restitutions.is_empty() {
+            self.restitutions[i] = spec.restitution.unwrap_or(self.restitution);
+        }
+        if self.tc.is_some() {
+            self.last_collision[i] = f64::NEG_INFINITY;
+        }
+        i
+    }
+
+    /// Empties slot `i` at the current time: its body stops where it is, becomes a kinematic
+    /// ball at rest colliding with nothing, and the slot is filled next. The world's laws
+    /// change when it had no kinematic bodies or no filters (re-initialise a finder then);
+    /// otherwise a finder needs [`Finder::update`](crate::Finder::update) of `i`.
+    pub(crate) fn vacate(&mut self, i: usize) {
+        let now = self.now;
+        let pos = self.position_at(i, now);
+        let n = self.bodies.len();
+        self.vacant.resize(n, false);
+        if self.filters.is_empty() {
+            self.filters = vec![CollisionFilter::DEFAULT; n];
+        }
+        let b = &mut self.bodies[i];
+        b.motion = Motion {
+            pos,
+            vel: Vector::ZERO,
+            time: now,
+        };
+        b.mass = f64::INFINITY;
+        b.changes += 1;
+        self.id[i] = u64::MAX;
+        self.filters[i] = CollisionFilter::NONE;
+        self.vacant[i] = true;
+        self.free.push(i);
+        self.laws.kinematic = true;
+        self.laws.filtered = true;
     }
 
     /// Current simulated time, seconds: every event before it has been resolved.
@@ -344,7 +494,7 @@ impl<const D: usize> World<D> {
         self.bodies.iter().map(|b| b.mass)
     }
 
-    /// User ids, by body index.
+    /// User ids, by body index (`u64::MAX` for a vacant slot).
     #[must_use]
     pub fn ids(&self) -> &[u64] {
         &self.id

@@ -81,7 +81,7 @@ fn steered_runs_record_their_edits_and_verify() {
     let want = steered_run("all-pairs");
     assert_eq!(
         u32::from_le_bytes(want[8..12].try_into().unwrap()),
-        ccdsim::record::VERSION_EDITS
+        ccdsim::record::VERSION_SLOTS
     );
     for finder in ["bvh", "sedgewick", "cells"] {
         assert!(steered_run(finder) == want, "[{finder}] run files differ");

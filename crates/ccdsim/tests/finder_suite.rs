@@ -111,6 +111,26 @@ enum Drive {
     /// moved to a random spot (as [`Drive::Teleports`]): the finders have looked past the
     /// frame's end by then (to the next event), and must take back what they did there.
     FrameTeleports { dt: f64 },
+    /// Every `every` events, add or remove a body ([`edit_slots`]).
+    Slots { every: u64 },
+    /// Frames of `dt` seconds as [`Drive::Frames`], and at the end of each frame a body
+    /// added or removed (as [`Drive::Slots`]), after the finders looked past the frame.
+    FrameSlots { dt: f64 },
+}
+
+impl Drive {
+    /// True for the drives whose runs record their edits (steered run files).
+    fn steered(self) -> bool {
+        matches!(
+            self,
+            Drive::Kicks { .. }
+                | Drive::Teleports { .. }
+                | Drive::FrameTeleports { .. }
+                | Drive::Filters { .. }
+                | Drive::Slots { .. }
+                | Drive::FrameSlots { .. }
+        )
+    }
 }
 
 /// The collision filters random scenes and edits draw from: the default, groups that ignore
@@ -145,11 +165,7 @@ fn record_run<const D: usize>(
     let mut sim = Simulation::with_finder(scene, finder).expect("valid scene");
     // Runs steered by velocity kicks and teleports record their edits too: the run files
     // then compare the edits as well, and the oracle's can be verified.
-    let steered = matches!(
-        drive,
-        Drive::Kicks { .. } | Drive::Teleports { .. } | Drive::FrameTeleports { .. }
-    );
-    let mut rec = if steered {
+    let mut rec = if drive.steered() {
         sim.record_edits(true);
         RunWriter::new_steered(Vec::new(), name.into(), scene).expect("header")
     } else {
@@ -200,7 +216,9 @@ fn record_run<const D: usize>(
                 }),
             }
         }
-        if let Drive::Frames { dt } | Drive::FrameTeleports { dt } = drive {
+        if let Drive::Frames { dt } | Drive::FrameTeleports { dt } | Drive::FrameSlots { dt } =
+            drive
+        {
             match got {
                 None => break,
                 Some(e) if e.time > frame_end => {
@@ -210,6 +228,11 @@ fn record_run<const D: usize>(
                     frame_end += dt;
                     if let Drive::FrameTeleports { .. } = drive {
                         teleport_one(&mut sim, scene, &mut kick);
+                    }
+                    if let Drive::FrameSlots { .. } = drive {
+                        edit_slots(&mut sim, scene, &mut kick);
+                    }
+                    {
                         for edit in sim.take_edits() {
                             rec.write_event(&edit).expect("write");
                         }
@@ -240,6 +263,11 @@ fn record_run<const D: usize>(
         if let Drive::Teleports { every } = drive {
             if events % every == 0 {
                 teleport_one(&mut sim, scene, &mut kick);
+            }
+        }
+        if let Drive::Slots { every } = drive {
+            if events % every == 0 {
+                edit_slots(&mut sim, scene, &mut kick);
             }
         }
         if let Drive::Filters { every } = drive {
@@ -285,6 +313,47 @@ fn teleport_one<const D: usize>(sim: &mut Simulation<D>, scene: &Scene<D>, kick:
     let _ = sim.set_position(i, p);
 }
 
+/// Adds or removes one body, drawn by the generator state `kick`: a vacant slot drawn gets a
+/// body, an occupied one loses its body or (half the time) a new body is added, appending
+/// slots when none is vacant. New bodies land at a random spot inside the scene's bounds,
+/// with a random velocity, a radius up to 1.5 times the scene's largest (the finder must
+/// then be re-initialised), now and then kinematic or in a group from [`FILTERS`]. A refused
+/// add (overlapping a body or a wall) changes nothing, alike in every run.
+fn edit_slots<const D: usize>(sim: &mut Simulation<D>, scene: &Scene<D>, kick: &mut u64) {
+    let mut next = || {
+        *kick = kick
+            .wrapping_mul(6_364_136_223_846_793_005)
+            .wrapping_add(1_442_695_040_888_963_407);
+        *kick >> 11
+    };
+    let i = next() as usize % sim.world().len().max(1);
+    if !sim.world().is_empty() && !sim.world().is_vacant(i) && next() % 2 == 0 {
+        sim.remove_body(i).expect("remove");
+        return;
+    }
+    let (lo, hi) = teleport_bounds(scene);
+    let r_max = scene.bodies.iter().fold(0.0f64, |m, b| m.max(b.radius));
+    let unit = |x: u64| (x % 1024) as f64 / 1024.0;
+    let mut spec = BodySpec::new(
+        Vector::ZERO,
+        Vector::ZERO,
+        r_max * (0.3 + 1.2 * unit(next())),
+    );
+    for k in 0..D {
+        spec.pos[k] = lo[k] + (hi[k] - lo[k]) * unit(next());
+        spec.vel[k] = 4.0 * unit(next()) - 2.0;
+    }
+    match next() % 8 {
+        0 => spec.kinematic = true,
+        1 | 2 => {
+            let f = FILTERS[next() as usize % FILTERS.len()];
+            (spec.group, spec.mask) = (Some(f.group), Some(f.mask));
+        }
+        _ => {}
+    }
+    let _ = sim.add_body(spec);
+}
+
 /// The all-pairs run of `scene` that every finder's run file must equal byte for byte.
 fn reference<const D: usize>(
     label: &str,
@@ -303,13 +372,7 @@ fn reference<const D: usize>(
         false,
     );
     // A steered run replays: its edit records say what the program did.
-    let verifiable =
-        !(scene.settings.gravity.is_some() && scene.bodies.iter().any(|b| b.kinematic));
-    let steered = matches!(
-        drive,
-        Drive::Kicks { .. } | Drive::Teleports { .. } | Drive::FrameTeleports { .. }
-    );
-    if steered && verifiable {
+    if drive.steered() {
         let mut r =
             ccdsim::record::RunReader::<_, D>::new(&run.bytes[..], label.into()).expect("header");
         let (events, end) = r.read_events().expect("records");
@@ -1671,6 +1734,39 @@ fn collision_filters() {
         }
     }
     check_periodic("filter edits periodic 2D", &p2, 1500, drive);
+}
+
+#[test]
+fn bodies_added_and_removed() {
+    // add_body and remove_body: bodies come and go in stable slots, vacant slots are passed
+    // by, new slots are appended (a finder rebuild) and larger bodies re-size the finders;
+    // every finder still gives the oracle's events, in walled worlds, under gravity, with
+    // kinematic bodies and filters, after events and at the ends of frames.
+    let s2 = gas_scene::<2>(100, 0.3, (0.2, 0.6), SMALL_SEEDS[0]);
+    let s3 = gas_scene::<3>(60, 0.15, (0.3, 0.5), SMALL_SEEDS[1]);
+    let f2 = with_kinematic(falling(s2.clone(), [0.0, -9.81]), 3);
+    let board = peg_board(5, 32, SMALL_SEEDS[2]);
+    let filtered = s2_of(SMALL_SEEDS[1]);
+    for drive in [
+        Drive::Slots { every: 3 },
+        Drive::FrameSlots { dt: 1.0 / 30.0 },
+    ] {
+        for (label, scene) in [
+            ("slots 2D", &s2),
+            ("slots gravity kinematic 2D", &f2),
+            ("slots peg board", &board),
+            ("slots filtered 2D", &filtered),
+        ] {
+            let oracle = reference(label, scene, 1500, drive);
+            for (name, options) in variants() {
+                check_run(label, scene, name, &options, 1500, drive, &oracle);
+            }
+        }
+        let oracle = reference("slots 3D", &s3, 1200, drive);
+        for (name, options) in variants() {
+            check_run("slots 3D", &s3, name, &options, 1200, drive, &oracle);
+        }
+    }
 }
 
 /// A filtered 2D gas (for the edit runs).

@@ -41,6 +41,10 @@
 //! [`RunWriter::new_steered`], for runs a program steers, so that `verify` and the viewer
 //! can replay them.
 //!
+//! Version 9 is version 8 whose edit records may also add and remove bodies and change
+//! collision filters (`b` ≠ 0, see [`crate::edit`]): bodies added may fill slots past the
+//! scene's. Every steered run file is written in it; version 8 files still read.
+//!
 //! A record is: tag `u8` (1 body event, 2 wall event, 3 end of run, 4 reset, 5 edit), `a: u32`, `b: u32`,
 //! `t: f64`, then for two body slots the position at `t` and the velocity after the event
 //! (`D` `f64`s each; the second slot is zero for wall events and the end record), then an
@@ -73,8 +77,11 @@ pub const VERSION_FILTERS: u32 = 6;
 pub const VERSION_SENSORS: u32 = 7;
 /// Format version of steered run files, which may hold edit records.
 pub const VERSION_EDITS: u32 = 8;
+/// Format version of steered run files whose edits may add and remove bodies and change
+/// collision filters.
+pub const VERSION_SLOTS: u32 = 9;
 /// The newest format version this build reads.
-pub const VERSION_NEWEST: u32 = VERSION_EDITS;
+pub const VERSION_NEWEST: u32 = VERSION_SLOTS;
 
 /// The format version a run of `scene` is written in.
 #[must_use]

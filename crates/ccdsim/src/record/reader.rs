@@ -2,7 +2,7 @@
 
 use super::{
     fnv1a, record_len, RecordError, RunRecord, MAGIC, PREAMBLE_LEN, TAG_BODY, TAG_EDIT, TAG_END,
-    TAG_RESET, TAG_WALL, VERSION, VERSION_EDITS, VERSION_NEWEST,
+    TAG_RESET, TAG_WALL, VERSION, VERSION_EDITS, VERSION_NEWEST, VERSION_SLOTS,
 };
 use crate::event::Event;
 use crate::geom::Vector;
@@ -313,10 +313,15 @@ impl<R: Read, const D: usize> RunReader<R, D> {
 
     fn check_indices(&self, rec: RunRecord<D>) -> Result<RunRecord<D>, String> {
         if let RunRecord::Event(c) = &rec {
-            let (n, w) = (
+            let (mut n, w) = (
                 self.scene.bodies.len() as u32,
                 self.scene.walls.len() as u32,
             );
+            if self.version >= VERSION_SLOTS {
+                // Bodies added during the run fill slots past the scene's (see
+                // `crate::edit`); a record read on its own cannot know how many there are.
+                n = u32::MAX >> 1;
+            }
             let limit_b = match c.event.kind {
                 crate::event::EventKind::Body => n,
                 crate::event::EventKind::Wall => w,
@@ -333,7 +338,11 @@ impl<R: Read, const D: usize> RunReader<R, D> {
                             self.version
                         ));
                     }
-                    1
+                    if self.version < VERSION_SLOTS {
+                        1
+                    } else {
+                        crate::edit::EDIT_CODES
+                    }
                 }
             };
             if c.event.a >= n || c.event.b >= limit_b {
@@ -404,7 +413,10 @@ fn decode<const D: usize>(buf: &[u8]) -> Result<RunRecord<D>, String> {
         TAG_WALL => Ok(RunRecord::Event(c(Event::wall(t, a as usize, b as usize)))),
         TAG_END => Ok(RunRecord::End(t)),
         TAG_RESET => Ok(RunRecord::Event(c(Event::reset(t, a as usize)))),
-        TAG_EDIT => Ok(RunRecord::Event(c(Event::edit(t, a as usize)))),
+        TAG_EDIT => Ok(RunRecord::Event(c(Event {
+            b,
+            ..Event::edit(t, a as usize)
+        }))),
         tag => Err(format!("bad tag {tag} or body order {a} ≥ {b}")),
     }
 }

@@ -77,6 +77,30 @@ pub(super) fn closest_to_wall_falling<const D: usize>(
         )
 }
 
+/// Smallest distance over `[0, span]` from the origin of a point at `dp + dv·s + ½·acc·s²`
+/// (a falling body seen from a kinematic one), and the offset `s` where it occurs: the
+/// squared distance is a quartic, smallest at an end of the window or at a root of its
+/// derivative, a cubic, all of which are evaluated.
+pub(super) fn closest_to_point_falling<const D: usize>(
+    dp: Vector<D>,
+    dv: Vector<D>,
+    acc: Vector<D>,
+    span: f64,
+) -> (f64, f64) {
+    let half = acc * 0.5;
+    let mut candidates = vec![0.0, span];
+    candidates.extend(stationary_points([dp, dv, half], span));
+    candidates
+        .into_iter()
+        .filter(|s| s.is_finite())
+        .map(|s| s.clamp(0.0, span))
+        .map(|s| ((dp + dv * s + half * (s * s)).norm(), s))
+        .fold(
+            (f64::INFINITY, 0.0),
+            |best, c| if c.0 < best.0 { c } else { best },
+        )
+}
+
 /// The real roots of `a·x² + b·x + c` (a linear or constant one when `a` or `b` is zero), in
 /// the cancellation-free forms.
 fn quadratic_roots(a: f64, b: f64, c: f64) -> [Option<f64>; 2] {

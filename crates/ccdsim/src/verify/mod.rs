@@ -32,6 +32,7 @@
 mod closest;
 mod falling;
 mod proximity;
+mod slots;
 
 use crate::collision_filter::CollisionFilter;
 use crate::event::EventKind;
@@ -44,7 +45,7 @@ use crate::sim::Collision;
 use crate::thermostat::ResetClock;
 use crate::wall::{wall_clearance, Wall};
 use closest::{closest_approach, closest_approach_growing, closest_to_wall};
-use falling::closest_to_wall_falling;
+use falling::{closest_to_point_falling, closest_to_wall_falling};
 use proximity::Proximity;
 
 /// Allowed overlap relative to the contact distance.
@@ -135,6 +136,10 @@ pub struct Verifier<const D: usize> {
     growth: Option<GrowthLaw>,
     /// The acceleration of every body, if the scene has gravity.
     gravity: Option<Vector<D>>,
+    /// Vacant slots by index (bodies removed, see [`crate::edit`]); empty while none is.
+    vacant: Vec<bool>,
+    /// The first record of an added body, waiting for its id record.
+    pending_add: Option<Collision<D>>,
 }
 
 impl<const D: usize> Verifier<D> {
@@ -182,11 +187,14 @@ impl<const D: usize> Verifier<D> {
         grid.start_slab(scene.start_time, scene.start_time + slab);
         let grown = growth.map_or(1.0, |g| g.scale(grid.end));
         for (i, m) in motion.iter().enumerate() {
-            grid.file(i, m, radius[i] * grown, scene.start_time);
+            let falls = !scene.bodies[i].kinematic;
+            grid.file(i, m, radius[i] * grown, scene.start_time, falls);
         }
         Verifier {
             growth,
             gravity,
+            vacant: Vec::new(),
+            pending_add: None,
             grid: Some(grid),
             slab,
             motion,
@@ -227,6 +235,21 @@ impl<const D: usize> Verifier<D> {
         self.kinematic.get(i).copied().unwrap_or(false)
     }
 
+    /// Body `i`'s acceleration: the scene's gravity, unless it is kinematic.
+    fn g(&self, i: usize) -> Option<Vector<D>> {
+        self.gravity.filter(|_| !self.is_kinematic(i))
+    }
+
+    /// Body `i`'s position at `t` on its current motion.
+    fn pos_of(&self, i: usize, t: f64) -> Vector<D> {
+        self.pos_at(&self.motion[i], t, self.g(i))
+    }
+
+    /// Body `i`'s velocity at `t` on its current motion.
+    fn vel_of(&self, i: usize, t: f64) -> Vector<D> {
+        self.vel_at(&self.motion[i], t, self.g(i))
+    }
+
     /// True when bodies `i` and `j` never meet: both kinematic, or kept apart by their
     /// collision filters (see [`crate::collision_filter`]).
     fn never_meet(&self, i: usize, j: usize) -> bool {
@@ -245,11 +268,8 @@ impl<const D: usize> Verifier<D> {
     /// Checks the next event of the run and applies it.
     pub fn check(&mut self, c: &Collision<D>) -> Result<(), Violation> {
         let t = c.event.time;
-        if self.gravity.is_some() && !self.kinematic.is_empty() {
-            return Err(self.fail(
-                t,
-                "runs with kinematic bodies under gravity cannot be verified yet".into(),
-            ));
+        if self.pending_add.is_some() || crate::edit::Edit::starts_add(c) {
+            return self.check_add(c);
         }
         if !t.is_finite() || t < self.last_time {
             return Err(self.fail(
@@ -273,12 +293,13 @@ impl<const D: usize> Verifier<D> {
         let k = c.body_count();
         let ids = [c.event.a as usize, c.event.b as usize];
         // An edit may move its body anywhere (a teleport): its new position is checked by
-        // `check_edit` instead.
-        let moved = usize::from(c.event.kind != EventKind::Edit) * k;
+        // `check_edit` instead. Removing a body or changing its filter does not move it.
+        let teleport = c.event.kind == EventKind::Edit && c.event.b == 0;
+        let moved = usize::from(!teleport) * k;
         for (s, &i) in ids[..moved].iter().enumerate() {
-            let expect = self.pos_at(&self.motion[i], t);
+            let expect = self.pos_of(i, t);
             let dt = (t - self.motion[i].time).abs();
-            let fall = self.gravity.map_or(0.0, |g| 0.5 * g.norm() * dt * dt);
+            let fall = self.g(i).map_or(0.0, |g| 0.5 * g.norm() * dt * dt);
             let scale = 1.0 + expect.norm() + self.motion[i].vel.norm() * dt + fall;
             if self.image(c.pos[s] - expect).norm() > 1e-9 * scale {
                 return Err(self.fail(
@@ -301,7 +322,7 @@ impl<const D: usize> Verifier<D> {
             EventKind::Body => self.check_pair(c, ids[0], ids[1])?,
             EventKind::Wall => self.check_wall(c, ids[0], ids[1])?,
             EventKind::Reset => self.check_reset(c, ids[0])?,
-            EventKind::Edit => self.check_edit(c, ids[0])?,
+            EventKind::Edit => self.check_slot_edit(c, ids[0])?,
         }
         for (s, &i) in ids[..k].iter().enumerate() {
             self.motion[i] = Motion {
@@ -309,10 +330,7 @@ impl<const D: usize> Verifier<D> {
                 vel: c.vel[s],
                 time: t,
             };
-            let r = self.radius_until_slab_end(i);
-            if let Some(grid) = &mut self.grid {
-                grid.file(i, &self.motion[i], r, t);
-            }
+            self.refile(i, t);
         }
         self.last_time = t;
         self.report.events += 1;
@@ -341,10 +359,7 @@ impl<const D: usize> Verifier<D> {
         self.report.max_overlap = self.report.max_overlap.max(-gap);
         let (mi, mj) = (self.mass[i], self.mass[j]);
         // Just before the collision: under gravity the stored velocities have changed since.
-        let (vi, vj) = (
-            self.vel_at(&self.motion[i], t),
-            self.vel_at(&self.motion[j], t),
-        );
+        let (vi, vj) = (self.vel_of(i, t), self.vel_of(j, t));
         if self.is_kinematic(i) || self.is_kinematic(j) {
             // A kinematic body (infinite mass) is a moving wall: neither momentum nor energy
             // is kept, and two of them never meet.
@@ -408,19 +423,32 @@ impl<const D: usize> Verifier<D> {
                 ),
             ));
         }
-        let e0 = 0.5 * mass * self.vel_at(&self.motion[i], t).norm_sq();
+        let e0 = 0.5 * mass * self.vel_of(i, t).norm_sq();
         let e1 = 0.5 * mass * c.vel[0].norm_sq();
         self.report.resets += 1;
         self.report.kinetic_energy_end += e1 - e0;
         Ok(())
     }
 
-    /// A program's edit of body `i` (see [`EventKind::Edit`]): its new state must overlap no
-    /// body it collides with and no wall, and stay inside a closed table. The energy it adds
-    /// (kinetic and, under gravity, potential) is counted in the report.
+    /// A program's edit of body `i`'s motion (see [`EventKind::Edit`]): its new state must
+    /// overlap no body it collides with and no wall, and stay inside a closed table. The
+    /// energy it adds (kinetic and, under gravity, potential) is counted in the report.
     fn check_edit(&mut self, c: &Collision<D>, i: usize) -> Result<(), Violation> {
         let t = c.event.time;
         let (pos, vel) = (c.pos[0], c.vel[0]);
+        self.check_placement(i, pos, t)?;
+        let (m, g) = (self.mass[i], self.g(i));
+        let kinetic = 0.5 * m * (vel.norm_sq() - self.vel_of(i, t).norm_sq());
+        let potential = g.map_or(0.0, |g| -m * g.dot(pos - self.pos_of(i, t)));
+        self.report.edits += 1;
+        self.report.edit_energy += kinetic + potential;
+        Ok(())
+    }
+
+    /// Body `i` (its radius, filter and kind as they are now) may be put at `pos` at `t`: it
+    /// overlaps no body it collides with, and (unless kinematic) crosses no wall and stays
+    /// inside a closed table.
+    fn check_placement(&self, i: usize, pos: Vector<D>, t: f64) -> Result<(), Violation> {
         if !pos.is_finite() {
             return Err(self.fail(t, format!("an edit puts body {i} at a non-finite position")));
         }
@@ -430,7 +458,7 @@ impl<const D: usize> Verifier<D> {
                 continue;
             }
             let sigma = r + self.radius_at(j, t);
-            let d = self.image(self.pos_at(&self.motion[j], t) - pos).norm();
+            let d = self.image(self.pos_of(j, t) - pos).norm();
             if (sigma - d) / sigma > OVERLAP_TOLERANCE {
                 return Err(self.fail(
                     t,
@@ -440,8 +468,16 @@ impl<const D: usize> Verifier<D> {
         }
         if !self.is_kinematic(i) {
             for (w, wall) in self.walls.iter().enumerate() {
-                if (r - wall_clearance(wall, pos)) / r > OVERLAP_TOLERANCE {
-                    return Err(self.fail(t, format!("an edit puts body {i} across wall {w}")));
+                let clearance = wall_clearance(wall, pos);
+                if (r - clearance) / r > OVERLAP_TOLERANCE {
+                    return Err(self.fail(
+                        t,
+                        format!(
+                            "an edit puts body {i} across wall {w} (centre {:?} at {clearance} \
+                             from it, radius {r})",
+                            pos.0
+                        ),
+                    ));
                 }
             }
             let loops = crate::wall::closed_segments(&self.walls);
@@ -450,12 +486,6 @@ impl<const D: usize> Verifier<D> {
                 return Err(self.fail(t, format!("an edit puts body {i} outside the table")));
             }
         }
-        let before = self.motion[i];
-        let (m, g) = (self.mass[i], self.gravity.filter(|_| !self.is_kinematic(i)));
-        let kinetic = 0.5 * m * (vel.norm_sq() - self.vel_at(&before, t).norm_sq());
-        let potential = g.map_or(0.0, |g| -m * g.dot(pos - self.pos_at(&before, t)));
-        self.report.edits += 1;
-        self.report.edit_energy += kinetic + potential;
         Ok(())
     }
 
@@ -477,7 +507,7 @@ impl<const D: usize> Verifier<D> {
         }
         self.report.max_overlap = self.report.max_overlap.max(-gap);
         let m = self.mass[i];
-        let before = self.vel_at(&self.motion[i], t);
+        let before = self.vel_of(i, t);
         let e0 = 0.5 * m * before.norm_sq();
         let e1 = 0.5 * m * c.vel[0].norm_sq();
         match (self.growth, wall_normal(&self.walls[w], c.pos[0])) {
@@ -552,6 +582,14 @@ impl<const D: usize> Verifier<D> {
             .map_or(self.radius[i], |law| law.radius_at(self.radius[i], t))
     }
 
+    /// Files body `i` in the grid (if any) anew from `t`, on its current motion.
+    fn refile(&mut self, i: usize, t: f64) {
+        let (r, falls) = (self.radius_until_slab_end(i), self.g(i).is_some());
+        if let Some(grid) = &mut self.grid {
+            grid.file(i, &self.motion[i], r, t, falls);
+        }
+    }
+
     /// The radius body `i` reaches by the end of the current slab, to file it with.
     fn radius_until_slab_end(&self, i: usize) -> f64 {
         match &self.grid {
@@ -571,20 +609,27 @@ impl<const D: usize> Verifier<D> {
         let (mi, mj) = (self.motion[i], self.motion[j]);
         let sigma0 = self.radius_at(i, t0) + self.radius_at(j, t0);
         let sigma1 = self.radius_at(i, t1) + self.radius_at(j, t1);
-        if self.stay_apart(&mi, &mj, t0, t1, sigma1) {
+        let (gi, gj) = (self.g(i), self.g(j));
+        let (pi, vi) = (self.pos_at(&mi, t0, gi), self.vel_at(&mi, t0, gi));
+        let (pj, vj) = (self.pos_at(&mj, t0, gj), self.vel_at(&mj, t0, gj));
+        let acc = gj.unwrap_or(Vector::ZERO) - gi.unwrap_or(Vector::ZERO);
+        let span = (t1 - t0).max(0.0);
+        let travel = (vj - vi).norm() * span + 0.5 * acc.norm() * span * span;
+        if self.image(pj - pi).norm() - travel > sigma1 * (1.0 + 1e-6) {
+            // Cheap bound: they stay apart (the distance to any image changes no faster than
+            // the relative motion).
             return None;
+        }
+        if acc != Vector::ZERO {
+            // A kinematic body and a falling one (open worlds only): the relative motion is a
+            // parabola.
+            let (d, s) = closest_to_point_falling(pj - pi, vj - vi, acc, span);
+            return Some(((sigma0 - d) / sigma0, t0 + s));
         }
         let grow = self.growth_speed(i) + self.growth_speed(j);
         // `d` is the distance less what the contact distance grew by since `t0`. Under
-        // gravity the relative motion is linear from the states at `t0`.
-        let (d, at) = self.approach(
-            self.pos_at(&mi, t0),
-            self.vel_at(&mi, t0),
-            self.pos_at(&mj, t0),
-            self.vel_at(&mj, t0),
-            t1 - t0,
-            grow,
-        );
+        // gravity the relative motion of two falling bodies is linear from the states at `t0`.
+        let (d, at) = self.approach(pi, vi, pj, vj, t1 - t0, grow);
         let sigma_at = self.radius_at(i, t0 + at) + self.radius_at(j, t0 + at);
         Some(((sigma0 - d) / sigma_at, t0 + at))
     }
@@ -593,7 +638,7 @@ impl<const D: usize> Verifier<D> {
     /// reference time to `t`, and when.
     fn wall_overlap(&self, i: usize, w: usize, t: f64) -> (f64, f64) {
         let mi = self.motion[i];
-        let (d, at) = match &self.gravity {
+        let (d, at) = match &self.g(i) {
             Some(g) => closest_to_wall_falling(&self.walls[w], &mi, t, g),
             None => closest_to_wall(&self.walls[w], &mi, t, self.growth_speed(i)),
         };
@@ -636,6 +681,12 @@ impl<const D: usize> Verifier<D> {
     /// kinetic energy recomputed from scratch.
     pub fn finish(mut self, end_time: f64) -> Result<VerifyReport, Violation> {
         let end = end_time.max(self.last_time);
+        if self.pending_add.is_some() {
+            return Err(self.fail(
+                end_time,
+                "an added body's record without its id record".into(),
+            ));
+        }
         if let Some(clock) = &self.resets {
             if clock.next_time() < end_time {
                 return Err(self.fail(
@@ -659,11 +710,8 @@ impl<const D: usize> Verifier<D> {
         for i in 0..self.motion.len() {
             self.check_walls_upto(i, end)?;
         }
-        self.report.kinetic_energy_end = self
-            .motion
-            .iter()
-            .zip(&self.mass)
-            .map(|(m, ms)| 0.5 * ms * self.vel_at(m, end).norm_sq())
+        self.report.kinetic_energy_end = (0..self.motion.len())
+            .map(|i| 0.5 * self.mass[i] * self.vel_of(i, end).norm_sq())
             .sum();
         self.report.potential_energy_end =
             potential_energy(&self.motion, &self.mass, self.gravity, end);
@@ -753,10 +801,8 @@ impl<const D: usize> Verifier<D> {
             return Ok(());
         }
         self.check_pairs_until(end, "")?;
-        let mean_speed = self
-            .motion
-            .iter()
-            .map(|m| self.vel_at(m, end).norm())
+        let mean_speed = (0..self.motion.len())
+            .map(|i| self.vel_of(i, end).norm())
             .sum::<f64>()
             / self.motion.len().max(1) as f64;
         let r_max = self.radius.iter().fold(0.0f64, |m, &r| m.max(r));
@@ -765,10 +811,13 @@ impl<const D: usize> Verifier<D> {
         }
         let next_end = (end + self.slab).max(t);
         let grown = self.growth.map_or(1.0, |g| g.scale(next_end));
+        let falls: Vec<bool> = (0..self.motion.len())
+            .map(|i| self.g(i).is_some())
+            .collect();
         let grid = self.grid.as_mut().expect("grid mode");
         grid.start_slab(end, next_end);
         for (i, m) in self.motion.iter().enumerate() {
-            grid.file(i, m, self.radius[i] * grown, m.time.max(end));
+            grid.file(i, m, self.radius[i] * grown, m.time.max(end), falls[i]);
         }
         Ok(())
     }
@@ -792,22 +841,9 @@ impl<const D: usize> Verifier<D> {
 }
 
 impl<const D: usize> Verifier<D> {
-    /// True when two bodies moving as `mi` and `mj` cannot come within `sigma` (the
-    /// tolerance included) over `[t0, t1]`: their (nearest-image) distance at `t0` less the
-    /// most their relative motion can close it exceeds `sigma`. A cheap test before the
-    /// image-by-image search; it never skips a pair that comes close (the distance to any
-    /// image changes no faster than the relative speed).
-    fn stay_apart(&self, mi: &Motion<D>, mj: &Motion<D>, t0: f64, t1: f64, sigma: f64) -> bool {
-        let d0 = self.image(self.pos_at(mj, t0) - self.pos_at(mi, t0)).norm();
-        // Under gravity the relative velocity is the same at all times.
-        let dv = self.vel_at(mj, t0) - self.vel_at(mi, t0);
-        let travel = dv.norm() * (t1 - t0).max(0.0);
-        d0 - travel > sigma * (1.0 + 1e-6)
-    }
-
     /// Position at `t` of a body moving as `m`: along a straight line, or falling.
-    fn pos_at(&self, m: &Motion<D>, t: f64) -> Vector<D> {
-        match &self.gravity {
+    fn pos_at(&self, m: &Motion<D>, t: f64, g: Option<Vector<D>>) -> Vector<D> {
+        match &g {
             Some(g) => m.falling_at(t, g),
             None => m.at(t),
         }
@@ -815,8 +851,8 @@ impl<const D: usize> Verifier<D> {
 
     /// Velocity at `t` of a body moving as `m`: the stored one, or under gravity that plus
     /// `g` times the time since its reference time.
-    fn vel_at(&self, m: &Motion<D>, t: f64) -> Vector<D> {
-        match &self.gravity {
+    fn vel_at(&self, m: &Motion<D>, t: f64, g: Option<Vector<D>>) -> Vector<D> {
+        match &g {
             Some(g) => m.falling_velocity(t, g),
             None => m.vel,
         }

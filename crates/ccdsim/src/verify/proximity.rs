@@ -101,6 +101,18 @@ impl<const D: usize> Proximity<D> {
         }
     }
 
+    /// Makes room for `n` bodies (bodies added during a run), none of the new ones filed.
+    pub(super) fn resize(&mut self, n: usize) {
+        self.filed.resize(
+            n,
+            Filed {
+                lo: [0; D],
+                hi: [-1; D],
+            },
+        );
+        self.is_wide.resize(n, false);
+    }
+
     /// The cell index range of a grown box, per axis.
     fn range(&self, lo: Vector<D>, hi: Vector<D>) -> Filed<D> {
         let mut f = Filed {
@@ -149,12 +161,14 @@ impl<const D: usize> Proximity<D> {
         }
     }
 
-    /// Files body `i`, moving as `m` with radius `r`, for the rest of the slab from `from`,
-    /// replacing where it was filed.
-    pub(super) fn file(&mut self, i: usize, m: &Motion<D>, r: f64, from: f64) {
+    /// Files body `i`, moving as `m` with radius `r` (falling under the grid's gravity if
+    /// `falls`; kinematic bodies do not), for the rest of the slab from `from`, replacing
+    /// where it was filed.
+    pub(super) fn file(&mut self, i: usize, m: &Motion<D>, r: f64, from: f64, falls: bool) {
         self.unfile(i);
         let end = self.end.max(from);
-        let (a, b, lo, hi) = match &self.gravity {
+        let gravity = self.gravity.filter(|_| falls);
+        let (a, b, lo, hi) = match &gravity {
             None => {
                 let (a, b) = (m.at(from), m.at(end));
                 (a, b, a.min(b), a.max(b))
@@ -182,9 +196,7 @@ impl<const D: usize> Proximity<D> {
         for d in 0..D {
             let terms = a[d].abs()
                 + b[d].abs()
-                + self
-                    .gravity
-                    .map_or(0.0, |g| (m.vel[d].abs() + g[d].abs() * dt) * dt);
+                + gravity.map_or(0.0, |g| (m.vel[d].abs() + g[d].abs() * dt) * dt);
             let grow = r * (1.0 + 1e-6) + 1e-12 * terms;
             lo[d] -= grow;
             hi[d] += grow;

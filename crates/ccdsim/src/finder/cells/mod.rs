@@ -730,9 +730,15 @@ impl<const D: usize> Finder<D> for Cells<D> {
             return;
         };
         if !self.filters.is_empty() {
-            // A changed body may have changed its filter (`set_collision_filter`).
+            // A changed body may have changed its filter (`set_collision_filter`), or its
+            // slot may have been emptied or filled (`remove_body`, `add_body`).
             for &i in changed {
                 self.filters[i] = world.filters()[i];
+            }
+        }
+        if !self.kinematic.is_empty() {
+            for &i in changed {
+                self.kinematic[i] = world.is_kinematic(i);
             }
         }
         match self.mode {

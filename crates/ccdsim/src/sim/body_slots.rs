@@ -1,0 +1,190 @@
+//! Bodies added to and removed from a running simulation, in slots whose indices stay put.
+//!
+//! A body's index is its handle: it names the same body until the body is removed. Removing
+//! a body leaves its slot *vacant* ([`World::is_vacant`]): a kinematic ball at rest that
+//! collides with nothing, which every finder, like the oracle, passes by. Adding a body fills
+//! the most recently vacated slot; when none is left the world appends a quarter more slots
+//! (at least one), vacant, parked among the bodies, and the finder is re-initialised once,
+//! so adding `k` bodies costs O(log k) re-initialisations in all. Every other add and every
+//! remove is one [`Finder::update`](crate::Finder::update) of one body, plus O(n) for the
+//! overlap check; a finder is also re-initialised when the world's laws change (the first
+//! removal, or the first body with its own restitution) or when an added body is larger than
+//! the finder was sized for.
+
+use super::{SimError, Simulation};
+use crate::edit::Edit;
+use crate::geom::Vector;
+use crate::scene::{BodySpec, Settings};
+use crate::world::World;
+
+/// The largest radius a body may take in a vacant slot without the finder being
+/// re-initialised: the second-largest radius of the slots when it was. (A grid sized for
+/// contact distance `r₁ + r₂` of the two largest radii still covers every pair then.)
+pub(super) fn sized_radius<const D: usize>(world: &World<D>) -> f64 {
+    let (mut r1, mut r2) = (0.0f64, 0.0f64);
+    for r in world.radii() {
+        if r > r1 {
+            r2 = r1;
+            r1 = r;
+        } else if r > r2 {
+            r2 = r;
+        }
+    }
+    r2
+}
+
+impl<const D: usize> Simulation<D> {
+    /// Refuses `what` (adding or removing bodies) in worlds it does not serve yet: growing
+    /// radii, a thermostat (both act on every slot), a periodic box (which takes no
+    /// kinematic bodies, as vacant slots are).
+    fn check_slots_supported(&self, what: &str) -> Result<(), SimError> {
+        let why = if self.world.growth().is_some() {
+            "growing radii"
+        } else if self.world.thermostat().is_some() {
+            "a thermostat"
+        } else if self.world.periodic().is_some() {
+            "a periodic box"
+        } else {
+            return Ok(());
+        };
+        Err(SimError::Input(format!(
+            "{what} is not supported yet in a world with {why}"
+        )))
+    }
+
+    /// Adds the body `spec` at the current time (its `pos` and `vel` hold now) and returns
+    /// its index, which names it until it is removed. Its id is `spec.id`, or the next id
+    /// above every id so far ([`World::next_id`]).
+    ///
+    /// Refused, leaving everything as it was, when a field is invalid (as in a scene), the id
+    /// is taken, the body would overlap a body it collides with, cross a wall or lie outside
+    /// the table (as for [`Simulation::set_position`]), or the world has growing radii, a
+    /// thermostat or a periodic box. See the module docs for the cost.
+    ///
+    /// ```
+    /// use ccdsim::{BodySpec, Scene, Simulation, Vector};
+    /// let mut sim = Simulation::<2>::new(&Scene::default(), "cells").unwrap();
+    /// let a = sim.add_body(BodySpec::new(Vector([0.0, 0.0]), Vector([1.0, 0.0]), 0.5)).unwrap();
+    /// let b = sim.add_body(BodySpec::new(Vector([3.0, 0.0]), Vector([-1.0, 0.0]), 0.5)).unwrap();
+    /// let hit = sim.step_event().unwrap();
+    /// assert_eq!((hit.event.time, hit.event.a as usize, hit.event.b as usize), (1.0, a, b));
+    /// sim.remove_body(a).unwrap();
+    /// assert_eq!(sim.world().body_count(), 1);
+    /// assert!(sim.step_event().is_none()); // b flies off alone
+    /// ```
+    pub fn add_body(&mut self, spec: BodySpec<D>) -> Result<usize, SimError> {
+        self.check_slots_supported("add_body")?;
+        let slot = self.world.free_slot().unwrap_or(self.world.len());
+        let settings = Settings {
+            restitution: self.world.restitution(),
+            ..Settings::default()
+        };
+        spec.check_fields(slot, &settings, false)
+            .map_err(|e| SimError::Input(format!("add_body: {e}")))?;
+        let id = spec.id.unwrap_or(self.world.next_id());
+        if let Some(j) = self.world.index_of(id) {
+            return Err(SimError::Input(format!(
+                "add_body: id {id} is taken by body {j}"
+            )));
+        }
+        let what = format!("the added body (slot {slot})");
+        if let Some(why) =
+            self.placement_error(&what, spec.pos, spec.vel, spec.radius, spec.kinematic)
+        {
+            return Err(SimError::Input(format!("add_body: {why}")));
+        }
+        let filter = spec.filter();
+        if let Some(j) =
+            self.overlapped_by(usize::MAX, spec.pos, spec.radius, spec.kinematic, |j| {
+                filter.collides(&self.world.filter(j))
+            })
+        {
+            return Err(SimError::Input(format!(
+                "add_body: {what} at {:?} would overlap body {j}",
+                spec.pos.0
+            )));
+        }
+        let laws = self.world.laws().copied();
+        let appended = self.world.free_slot().is_none();
+        if appended {
+            let n = self.world.len();
+            let now = self.world.now();
+            let count = (n / 4).max(1);
+            let world = &self.world;
+            // Parked among the bodies, one per body at most, so that no cell of a grid
+            // finder fills up with them.
+            let park: Vec<(Vector<D>, f64)> = (0..count)
+                .map(|k| {
+                    if n == 0 {
+                        (spec.pos, spec.radius)
+                    } else {
+                        let j = k % n;
+                        (world.position_at(j, now), world.radius(j))
+                    }
+                })
+                .collect();
+            self.world.reserve(count, |k| park[k]);
+            if !self.images.is_empty() {
+                self.images.resize(self.world.len(), [0; D]);
+            }
+        }
+        let i = self.world.occupy(&spec, id);
+        if !self.images.is_empty() {
+            self.images[i] = [0; D];
+        }
+        if !spec.kinematic {
+            self.guard
+                .add_energy(0.5 * self.world.mass(i) * spec.vel.norm_sq());
+        }
+        if let Some(s) = &mut self.sensors {
+            s.resize(self.world.len());
+        }
+        self.journal(Edit::Add {
+            body: i,
+            id,
+            pos: spec.pos,
+            vel: spec.vel,
+            radius: spec.radius,
+            mass: self.world.mass(i),
+            filter,
+            restitution: spec.restitution,
+        });
+        if appended || laws != self.world.laws().copied() || spec.radius > self.sized_radius {
+            self.rebuild()?;
+        } else {
+            self.finder.update(&self.world, &[i]);
+            self.sensors_changed(i);
+            self.pending = None;
+            self.halt = None;
+            self.idle = None;
+        }
+        Ok(i)
+    }
+
+    /// Removes body `i` at the current time: it stops where it is and its slot becomes
+    /// vacant (a later [`Simulation::add_body`] may fill it); every other body keeps its
+    /// index. A body inside a sensor leaves it now. Refused for an index that names no body,
+    /// or in a world with growing radii, a thermostat or a periodic box.
+    pub fn remove_body(&mut self, i: usize) -> Result<(), SimError> {
+        self.check_slots_supported("remove_body")?;
+        self.check_body(i)?;
+        let laws = self.world.laws().copied();
+        self.world.vacate(i);
+        if !self.images.is_empty() {
+            self.images[i] = [0; D];
+        }
+        self.journal(Edit::Remove {
+            body: i,
+            pos: self.world.position(i),
+        });
+        self.sensors_changed(i);
+        if laws != self.world.laws().copied() {
+            return self.rebuild();
+        }
+        self.finder.update(&self.world, &[i]);
+        self.pending = None;
+        self.halt = None;
+        self.idle = None;
+        Ok(())
+    }
+}
