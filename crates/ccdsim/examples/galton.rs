@@ -1,8 +1,9 @@
 //! A Galton board with a sink: balls fall through rows of pegs under gravity into bins along
 //! the floor, sensors that report the instant a ball enters one; the sink takes each ball
-//! that lands, counts it in its bin's column and drops it in again from above the pegs (a
-//! teleport, `set_position`). Collisions and landings are exact, respawns refused where a
-//! ball would overlap another are tried elsewhere; the end prints the histogram. (Pegs and
+//! that lands out of the game (`remove_body`), counts it in its bin's column, and a new ball
+//! is dropped in from above the pegs (`add_body`, which fills the slot the landed ball left:
+//! every other ball keeps its index). Collisions and landings are exact; a new ball refused
+//! where it would overlap another is tried elsewhere; the end prints the histogram. (Pegs and
 //! side walls this far apart scatter the balls widely: the edges fill as well as the middle.)
 //!
 //! ```sh
@@ -11,12 +12,12 @@
 //! ccdsim verify galton.ccd && ccdsim view galton.ccd
 //! ```
 //!
-//! With a file name the run is recorded as a steered run file, the respawns as edit records,
-//! so that `verify` and the viewer replay it exactly.
+//! With a file name the run is recorded as a steered run file, the balls taken out and
+//! dropped in as edit records, so that `verify` and the viewer replay it exactly.
 
 use ccdsim::generate::{pegs, PegsConfig};
 use ccdsim::record::RunWriter;
-use ccdsim::{SensorChange, Simulation, Vector};
+use ccdsim::{BodySpec, SensorChange, Simulation, Vector};
 
 /// Bins along the floor.
 const BINS: usize = 12;
@@ -47,6 +48,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         .iter()
         .map(|b| b.pos[1])
         .fold(f64::NEG_INFINITY, f64::max);
+    let radius = scene.bodies[0].radius;
     let mut sim = Simulation::new(&scene, "cells")?;
     let out = std::env::args().nth(1);
     let mut run = out
@@ -79,12 +81,13 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                 continue;
             }
             counts[e.sensor] += 1;
-            // Back to the top, falling from rest above the middle of the board: try spots
-            // until one is free of other balls.
+            sim.remove_body(e.body)?;
+            // A new ball, falling from above the middle of the board: try spots until one is
+            // free of other balls.
             for _ in 0..100 {
-                let x = 4.0 + 4.0 * next();
-                if sim.set_position(e.body, Vector([x, top])).is_ok() {
-                    sim.set_velocity(e.body, Vector([0.2 * (next() - 0.5), 0.0]))?;
+                let pos = Vector([4.0 + 4.0 * next(), top]);
+                let vel = Vector([0.2 * (next() - 0.5), 0.0]);
+                if sim.add_body(BodySpec::new(pos, vel, radius)).is_ok() {
                     break;
                 }
             }

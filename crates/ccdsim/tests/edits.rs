@@ -151,7 +151,7 @@ fn edits_need_a_steered_run_file_and_an_edit_journal() {
 fn exports_name_edits_and_old_versions_refuse_them() {
     let bytes = steered_run("cells");
     let mut r = ccdsim::record::RunReader::<_, 2>::new(&bytes[..], "steered".into()).unwrap();
-    assert_eq!(r.version(), ccdsim::record::VERSION_EDITS);
+    assert_eq!(r.version(), ccdsim::record::VERSION_SLOTS);
     let mut out = Vec::new();
     ccdsim::record::export_jsonl(&mut r, &mut out).unwrap();
     let text = String::from_utf8(out).unwrap();

@@ -1,6 +1,7 @@
 //! Export of run files to JSON Lines.
 
 use super::{RecordError, RunReader, RunRecord};
+use crate::edit::Edit;
 use crate::event::EventKind;
 use crate::geom::Vector;
 use crate::scene::Wall;
@@ -66,18 +67,40 @@ struct EventOut<'a, const D: usize> {
     b: u64,
     pos: &'a [Vector<D>],
     vel: &'a [Vector<D>],
+    /// Added bodies: the slot (body index) they fill.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    slot: Option<usize>,
+    /// Added bodies: radius, metres.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    radius: Option<f64>,
+    /// Added bodies: mass, kilograms (absent for a kinematic body).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    mass: Option<f64>,
+    /// Added kinematic bodies only.
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    kinematic: bool,
+    /// Added bodies and filter changes: the collision group and mask.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    group: Option<u32>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    mask: Option<u32>,
+    /// Added bodies with their own restitution.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    restitution: Option<f64>,
 }
 
 /// Writes a run as JSON Lines: a header object, then one object per event (see the README).
-/// Body events name bodies by id; wall events give the wall index as `b`. Returns the number
-/// of events written.
+/// Body events name bodies by id; wall events give the wall index as `b`. Edits are `edit`
+/// (new position or velocity), `add` (with the body's slot, radius, mass, filter and
+/// restitution; its id is `a`), `remove` and `filter` lines (see [`crate::edit`]). Returns the
+/// number of lines written after the header.
 pub fn export_jsonl<R: Read, W: Write, const D: usize>(
     reader: &mut RunReader<R, D>,
     out: &mut W,
 ) -> Result<u64, ExportError> {
     let scene = reader.scene().clone();
     let header = Header {
-        version: super::version_for(&scene),
+        version: reader.version(),
         dim: D,
         bodies: scene
             .bodies
@@ -104,24 +127,80 @@ pub fn export_jsonl<R: Read, W: Write, const D: usize>(
     };
     serde_json::to_writer(&mut *out, &header).map_err(std::io::Error::from)?;
     out.write_all(b"\n")?;
+    // Each slot's id: the scene's, then those of the bodies added.
+    let mut ids: Vec<u64> = (0..scene.bodies.len()).map(|i| scene.id_of(i)).collect();
+    let id_of = |ids: &[u64], i: u32| ids.get(i as usize).copied().unwrap_or(u64::MAX);
+    let mut pending_add = None;
     let mut count = 0;
     while let Some(rec) = reader.next_record()? {
         let RunRecord::Event(c) = rec else { break };
+        if Edit::starts_add(&c) {
+            pending_add = Some(c);
+            continue;
+        }
         let k = c.body_count();
-        let (kind, b) = match c.event.kind {
-            EventKind::Body => ("body", scene.id_of(c.event.b as usize)),
-            EventKind::Wall => ("wall", u64::from(c.event.b)),
-            EventKind::Reset => ("reset", 0),
-            EventKind::Edit => ("edit", 0),
-        };
-        let line = EventOut {
+        let mut line = EventOut {
             t: c.event.time,
-            kind,
-            a: scene.id_of(c.event.a as usize),
-            b,
+            kind: "edit",
+            a: id_of(&ids, c.event.a),
+            b: 0,
             pos: &c.pos[..k],
             vel: &c.vel[..k],
+            slot: None,
+            radius: None,
+            mass: None,
+            kinematic: false,
+            group: None,
+            mask: None,
+            restitution: None,
         };
+        let added;
+        match c.event.kind {
+            EventKind::Body => (line.kind, line.b) = ("body", id_of(&ids, c.event.b)),
+            EventKind::Wall => (line.kind, line.b) = ("wall", u64::from(c.event.b)),
+            EventKind::Reset => line.kind = "reset",
+            EventKind::Edit => {
+                let first = pending_add.take();
+                let edit = match &first {
+                    Some(f) => Edit::decode(f, Some(&c)),
+                    None => Edit::decode(&c, None),
+                }
+                .map_err(|why| std::io::Error::new(std::io::ErrorKind::InvalidData, why))?;
+                match edit {
+                    Edit::Motion { .. } => {}
+                    Edit::Add {
+                        body,
+                        id,
+                        radius,
+                        mass,
+                        filter,
+                        restitution,
+                        ..
+                    } => {
+                        if ids.len() <= body {
+                            ids.resize(body + 1, u64::MAX);
+                        }
+                        ids[body] = id;
+                        let first = first.expect("an add decodes from its first record");
+                        added = [first.pos[0], first.vel[0]];
+                        line.kind = "add";
+                        line.a = id;
+                        (line.pos, line.vel) = (&added[..1], &added[1..]);
+                        line.slot = Some(body);
+                        line.radius = Some(radius);
+                        line.mass = mass.is_finite().then_some(mass);
+                        line.kinematic = !mass.is_finite();
+                        (line.group, line.mask) = (Some(filter.group), Some(filter.mask));
+                        line.restitution = restitution;
+                    }
+                    Edit::Remove { .. } => line.kind = "remove",
+                    Edit::Filter { filter, .. } => {
+                        line.kind = "filter";
+                        (line.group, line.mask) = (Some(filter.group), Some(filter.mask));
+                    }
+                }
+            }
+        }
         serde_json::to_writer(&mut *out, &line).map_err(std::io::Error::from)?;
         out.write_all(b"\n")?;
         count += 1;

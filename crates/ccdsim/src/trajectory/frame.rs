@@ -55,11 +55,13 @@ pub struct Frame<const D: usize> {
 }
 
 impl<const D: usize> Frame<D> {
-    /// The state of `sim` at its current time.
+    /// The state of `sim` at its current time: its bodies in slot order, vacant slots left
+    /// out (after `remove_body` the frame has fewer bodies; `ids` tell them apart).
     #[must_use]
     pub fn of(sim: &Simulation<D>) -> Self {
         let world = sim.world();
-        let n = world.len();
+        let slots: Vec<usize> = (0..world.len()).filter(|&i| !world.is_vacant(i)).collect();
+        let each = |f: &dyn Fn(usize) -> Vector<D>| slots.iter().map(|&i| f(i)).collect();
         let cell = match world.periodic() {
             Some(size) => Cell::Periodic(size),
             None => match walls_bounds(world.walls()) {
@@ -70,14 +72,17 @@ impl<const D: usize> Frame<D> {
         Frame {
             time: sim.time(),
             cell,
-            ids: world.ids().to_vec(),
-            positions: (0..n).map(|i| sim.position(i)).collect(),
-            images: (0..n).map(|i| sim.image(i)).collect(),
+            ids: slots.iter().map(|&i| world.ids()[i]).collect(),
+            positions: each(&|i| sim.position(i)),
+            images: slots.iter().map(|&i| sim.image(i)).collect(),
             // At the frame's time: under gravity the stored velocities hold only at each
             // body's reference time.
-            velocities: (0..n).map(|i| world.velocity_at(i, sim.time())).collect(),
-            radii: (0..n).map(|i| world.radius_at(i, sim.time())).collect(),
-            masses: world.masses().collect(),
+            velocities: each(&|i| world.velocity_at(i, sim.time())),
+            radii: slots
+                .iter()
+                .map(|&i| world.radius_at(i, sim.time()))
+                .collect(),
+            masses: slots.iter().map(|&i| world.mass(i)).collect(),
         }
     }
 
