@@ -291,16 +291,20 @@ fn a_run_that_adds_and_removes_bodies_plays_the_simulations_slots() {
         run.adds.len(),
         run.removals.len()
     );
-    assert!(run.adds.iter().any(|a| a.0 >= n0 + 10));
-    assert!(run.adds.iter().any(|a| a.3), "a kinematic body is added");
-    assert!(run
-        .adds
+    assert!(run.adds.iter().any(|a| a.slot >= n0 + 10));
+    assert!(
+        run.adds.iter().any(|a| a.kinematic),
+        "a kinematic body is added"
+    );
+    assert!(run.adds.iter().any(|a| a.id >= 1000), "an id of its own");
+    assert!(run.adds.iter().any(|a| run
+        .removals
         .iter()
-        .any(|a| run.removals.iter().any(|r| r.slot == a.0 && r.time < a.1)));
+        .any(|r| r.slot == a.slot && r.time < a.time)));
     let mut p = Playback::<2>::open(&path, &DENSE).unwrap();
     assert_eq!(p.events(), run.events);
     assert!(p.has_slot_edits());
-    let slots = run.adds.iter().map(|a| a.0 + 1).max().unwrap().max(n0);
+    let slots = run.adds.iter().map(|a| a.slot + 1).max().unwrap().max(n0);
     assert_eq!(p.slots(), slots);
     assert_eq!(p.index().slots, slots);
     for cp in &run.checkpoints {
@@ -311,7 +315,10 @@ fn a_run_that_adds_and_removes_bodies_plays_the_simulations_slots() {
     // A removed body's slot is vacant from its removal (until a body is added there), and
     // its body stays where it stopped.
     for r in &run.removals {
-        let refilled = run.adds.iter().any(|a| a.0 == r.slot && a.1 >= r.time);
+        let refilled = run
+            .adds
+            .iter()
+            .any(|a| a.slot == r.slot && a.time >= r.time);
         let later = if refilled { r.time } else { run.end };
         let snap = p.snapshot_at(later).unwrap();
         assert!(

@@ -64,6 +64,16 @@ pub struct Removal {
     pub radius: f64,
 }
 
+/// A body added.
+#[derive(Clone, Copy, Debug)]
+pub struct Add {
+    pub slot: usize,
+    pub time: f64,
+    pub radius: f64,
+    pub kinematic: bool,
+    pub id: u64,
+}
+
 /// What was recorded.
 pub struct SlotRun {
     pub scene: Scene<2>,
@@ -71,8 +81,7 @@ pub struct SlotRun {
     pub end: f64,
     pub checkpoints: Vec<Checkpoint>,
     pub removals: Vec<Removal>,
-    /// Bodies added: slot, time, radius, kinematic.
-    pub adds: Vec<(usize, f64, f64, bool)>,
+    pub adds: Vec<Add>,
 }
 
 /// A small deterministic generator (an LCG), so that runs are the same everywhere.
@@ -165,7 +174,13 @@ pub fn record_slot_run(path: &Path, plan: &Plan) -> SlotRun {
                     ..BodySpec::new(pos, vel, radius)
                 };
                 if let Ok(i) = sim.add_body(spec) {
-                    adds.push((i, t, radius, kinematic));
+                    adds.push(Add {
+                        slot: i,
+                        time: t,
+                        radius,
+                        kinematic,
+                        id: sim.world().ids()[i],
+                    });
                     break;
                 }
             }
