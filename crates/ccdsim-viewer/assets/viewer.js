@@ -4,7 +4,12 @@
 // State is kept as the simulator keeps it: body i is at P[i] at time T0[i] and moves with
 // V[i], so drawing at time t is P + V·(t − T0) and an event only rewrites its two bodies. In
 // a run with gravity g (meta.gravity) bodies fall between events: P + V·dt + ½·g·dt², with
-// velocity V + g·dt, dt = t − T0.
+// velocity V + g·dt, dt = t − T0 (kinematic bodies do not fall).
+//
+// Arrays are per body slot, meta.bodies of them: a run that adds and removes bodies
+// (meta.slot_edits) fills slots past the scene's and leaves removed bodies' slots vacant.
+// A vacant slot has radius 0 and is not drawn. Snapshots of such a run carry every slot's
+// radius, id and kinematic flag (src/wire.rs), and edit events update them as they play.
 'use strict';
 
 (() => {
@@ -19,10 +24,13 @@
   const CATCH_UP_WALL = 0.25; // playback may lag the clock by this many wall seconds
   const SLOWMO_WALL = 0.4; // slow motion starts this many wall seconds from an event
   const STATE_HEADER = 8; // f64 values before a snapshot's arrays (src/wire.rs)
+  const SLOT_SECTION = 1; // opens a snapshot's slot section (src/wire.rs)
+  const EDIT = 3; // event kind of edits; their codes (b) as in crates/ccdsim/src/edit.rs:
+  const ADD = 1, ADD_ID = 2, REMOVE = 3;
 
   const S = {
     meta: null, D: 2, n: 0, stride: 12,
-    radius: null, ids: null, idBucket: null,
+    radius: null, ids: null, idBucket: null, kin: null, scene: null,
     P: null, V: null, T0: null, G: null, flash: null, evTime: null,
     time: 0, applied: 0, lastEvent: null,
     buf: { start: 0, count: 0, data: new Float64Array(0) },
@@ -61,14 +69,17 @@
 
   function loadSnapshot(ab) {
     const h = new Float64Array(ab, 0, STATE_HEADER);
-    const { n, D } = S;
+    const { D } = S;
+    // The snapshot's slots: up to meta.bodies (a run that adds bodies has fewer earlier on).
+    const n = h[2], m = Math.min(n, S.n);
     const pos = new Float32Array(ab, 8 * STATE_HEADER, n * D);
     const vel = new Float32Array(ab, 8 * STATE_HEADER + 4 * n * D, n * D);
     S.time = h[0];
     S.applied = h[1];
-    S.P.set(pos);
-    S.V.set(vel);
+    S.P.set(pos.subarray(0, m * D));
+    S.V.set(vel.subarray(0, m * D));
     S.T0.fill(S.time);
+    loadSlots(ab, 8 * STATE_HEADER + 8 * n * D, n, m);
     S.lastEvent = h[4] >= 0 ? { t: h[5], kind: h[4], a: h[6], b: h[7] } : null;
     // Flashes of the events played before a jump mean nothing after it.
     S.flash.fill(-Infinity);
@@ -78,6 +89,30 @@
     S.fetching = false;
     // Landing exactly on an event (a step, or a seek to an event's time): flash its pair.
     if (S.lastEvent && S.lastEvent.t === S.time) flashEvent(S.lastEvent);
+  }
+
+  // The slots' radii, ids and kinematic flags: the snapshot's slot section from byte `off`
+  // when it has one (bodies were added or removed by then), the scene's otherwise. Slots past
+  // the snapshot's `n` hold no body yet.
+  function loadSlots(ab, off, n, m) {
+    if (ab.byteLength >= off + 8 && new Float64Array(ab, off, 1)[0] === SLOT_SECTION) {
+      const radius = new Float64Array(ab, off + 8, n);
+      const ids = new Float64Array(ab, off + 8 + 8 * n, n);
+      const flags = new Uint8Array(ab, off + 8 + 16 * n, n);
+      for (let i = 0; i < m; i++) {
+        S.radius[i] = radius[i];
+        S.ids[i] = ids[i];
+        S.idBucket[i] = Raster.idBucket(ids[i]);
+        S.kin[i] = flags[i] & 1;
+      }
+    } else {
+      S.radius.set(S.scene.radius);
+      S.ids.set(S.scene.ids);
+      S.idBucket.set(S.scene.idBucket);
+      S.kin.set(S.scene.kin);
+    }
+    S.radius.fill(0, m);
+    S.kin.fill(1, m);
   }
 
   // Remembers when each body last collided, so that a view paused at an event shows its pair
@@ -160,12 +195,28 @@
       }
       S.T0[i] = t;
     };
+    S.lastEvent = { t, kind, a, b };
+    S.applied++;
+    if (kind === EDIT && b === ADD_ID) {
+      // The id of the body just added: the bits of slot 1's first position component. No
+      // state (slot 0 is zero).
+      const bits = new DataView(d.buffer, d.byteOffset).getBigUint64(8 * (o + 4 + 2 * D), true);
+      S.ids[a] = Number(bits);
+      S.idBucket[a] = Raster.idBucket(S.ids[a]);
+      return;
+    }
     set(a, o + 4);
     if (kind === 0) set(b, o + 4 + 2 * D);
-    S.lastEvent = { t, kind, a, b };
+    if (kind === EDIT && b === ADD) {
+      // Slot 1's position: radius, mass (Infinity for a kinematic body).
+      S.radius[a] = d[o + 4 + 2 * D];
+      S.kin[a] = d[o + 4 + 2 * D + 1] === Infinity ? 1 : 0;
+    } else if (kind === EDIT && b === REMOVE) {
+      S.radius[a] = 0;
+      S.kin[a] = 1;
+    }
     markEvent(S.lastEvent);
     flashEvent(S.lastEvent);
-    S.applied++;
   }
 
   // Moves the clock forward to `target`, applying the events on the way. Returns false when
@@ -273,7 +324,7 @@
   }
 
   function position(i, t, out) {
-    const D = S.D, dt = t - S.T0[i], G = S.kinematic.has(i) ? null : S.G;
+    const D = S.D, dt = t - S.T0[i], G = S.kin[i] ? null : S.G;
     for (let k = 0; k < D; k++) out[k] = S.P[i * D + k] + S.V[i * D + k] * dt;
     if (G) for (let k = 0; k < D; k++) out[k] += 0.5 * G[k] * dt * dt;
     return out;
@@ -282,7 +333,7 @@
   // Body i's colour word at time t (its speed changes between events under gravity).
   function bodyWord(i, t) {
     if (S.colour === 'speed') {
-      const D = S.D, G = S.kinematic.has(i) ? null : S.G, dt = t - S.T0[i];
+      const D = S.D, G = S.kin[i] ? null : S.G, dt = t - S.T0[i];
       let v2 = 0;
       for (let k = 0; k < D; k++) v2 += (S.V[i * D + k] + (G ? G[k] * dt : 0)) ** 2;
       return Raster.SPEED_WORDS[Raster.speedBucket(Math.sqrt(v2), S.meta.max_speed)];
@@ -367,8 +418,10 @@
     drawWalls(cam, surf);
     const flashing = [];
     const lit = (i) => now - S.flash[i] < S.flashMs || (!S.playing && S.evTime[i] === t);
+    // Vacant slots (radius 0) are neither drawn nor flashed.
     if (D === 2) {
       for (let i = 0; i < n; i++) {
+        if (S.radius[i] === 0) continue;
         position(i, t, p);
         const [x, y] = cam.project(p[0], p[1]);
         const r = S.radius[i] * grown(t) * cam.scale;
@@ -378,6 +431,7 @@
     } else {
       surf.useDepth();
       for (let i = 0; i < n; i++) {
+        if (S.radius[i] === 0) continue;
         position(i, t, p);
         const [x, y, z] = cam.project(p[0], p[1], p[2]);
         const r = S.radius[i] * grown(t) * cam.scale;
@@ -572,18 +626,25 @@
       S.n = meta.bodies;
       S.stride = 4 + 4 * meta.dim;
       S.G = meta.gravity || null;
-      // Kinematic bodies (by index) move in straight lines: gravity does not move them.
-      S.kinematic = new Set(meta.kinematic || []);
+      // Kinematic bodies (by slot) move in straight lines: gravity does not move them.
+      const kin = new Uint8Array(S.n);
+      for (const i of meta.kinematic || []) kin[i] = 1;
+      // The scene's radii and ids (padded to the slots with radius 0): snapshots without a
+      // slot section have these; the page's own copies change as bodies are added and removed.
       const bodies = new Float64Array(await bin('/api/bodies'));
-      S.radius = bodies.subarray(0, S.n);
-      S.ids = bodies.subarray(S.n, 2 * S.n);
-      S.idBucket = Uint8Array.from(S.ids, Raster.idBucket);
+      const radius = bodies.slice(0, S.n), ids = bodies.slice(S.n, 2 * S.n);
+      S.scene = { radius, ids, idBucket: Uint8Array.from(ids, Raster.idBucket), kin };
+      S.radius = radius.slice();
+      S.ids = ids.slice();
+      S.idBucket = S.scene.idBucket.slice();
+      S.kin = kin.slice();
       S.P = new Float64Array(S.n * S.D);
       S.V = new Float64Array(S.n * S.D);
       S.T0 = new Float64Array(S.n);
       S.flash = new Float64Array(S.n).fill(-Infinity);
       S.evTime = new Float64Array(S.n).fill(-Infinity);
-      $('file').textContent = `${meta.file} · ${meta.dim}D · ${meta.bodies} bodies · ${meta.events} events${meta.complete ? '' : ' (no end record)'}`;
+      const bodyCount = meta.slot_edits ? `${meta.scene_bodies} bodies at the start, bodies added and removed (${meta.bodies} slots)` : `${meta.bodies} bodies`;
+      $('file').textContent = `${meta.file} · ${meta.dim}D · ${bodyCount} · ${meta.events} events${meta.complete ? '' : ' (no end record)'}`;
       $('finder').value = meta.finder;
       bindControls();
       await seek(meta.start_time);
@@ -607,7 +668,10 @@
     error: () => S.error,
     boxes: () => ({ on: S.boxes.on, count: S.boxes.data ? S.boxes.data.length / (2 + 2 * S.D) : 0, time: S.boxes.time, error: S.boxes.error }),
     seek: (t) => seek(t),
-    // Body i at the current time, in CSS pixels from the canvas's top-left corner.
+    // Slot i as the page holds it: radius (0 when vacant), id and kinematic flag.
+    slot: (i) => ({ radius: S.radius[i], id: S.ids[i], kinematic: S.kin[i] === 1 }),
+    // Body i at the current time, in CSS pixels from the canvas's top-left corner (r is 0 for
+    // a vacant slot, which is not drawn).
     bodyOnScreen(i) {
       const p = position(i, S.time, [0, 0, 0]);
       const [x, y] = S.camera.project(p[0], p[1], p[2]);

@@ -2,7 +2,8 @@
 # End-to-end tests of the browser viewer in headless Chromium.
 #
 # Needs Debian's chromium (apt-get install -y chromium) and Node.js with npm. Builds the
-# `ccdsim` binary, installs playwright-core from package-lock.json, then runs node's test
+# `ccdsim` binary and the viewer's `slot_run` example (which writes a run that adds and
+# removes bodies), installs playwright-core from package-lock.json, then runs node's test
 # runner; screenshots land in e2e/out/. `run.sh --which-bin` prints the binary's path and
 # exits.
 set -euo pipefail
@@ -17,7 +18,10 @@ if [ "${1:-}" = "--which-bin" ]; then
   exit 0
 fi
 cargo build --locked -p ccdsim-cli
+cargo build --locked -p ccdsim-viewer --example slot_run
+slot_run="$(dirname "$bin")/examples/slot_run"
 [ -x "$bin" ] || { echo "e2e: no ccdsim binary at $bin" >&2; exit 1; }
+[ -x "$slot_run" ] || { echo "e2e: no slot_run example at $slot_run" >&2; exit 1; }
 cd "$here"
 npm ci --no-audit --no-fund
-CCDSIM_BIN="$bin" node --test viewer.test.mjs viewer3d.test.mjs
+CCDSIM_BIN="$bin" SLOT_RUN_BIN="$slot_run" node --test viewer.test.mjs viewer3d.test.mjs slots.test.mjs

@@ -1,31 +1,28 @@
 //! Where and how fast things go over a whole run, for framing views and colouring by speed.
 
-use ccdsim::narrow::Motion;
 use ccdsim::{Aabb, Collision, EventKind, Scene, Vector, Wall};
 
-use crate::states::BodyStates;
+use crate::states::{edit_code, BodyStates};
 
 /// The space a run uses and its top speed.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Extent<const D: usize> {
-    /// A box holding every body over the whole run (at the start, at each of its collisions
-    /// and at the end: motion is straight in between; under gravity, also at the vertices of
-    /// the parabolas in between, per axis), the segment walls and the offsets of axis-aligned
-    /// planes, metres.
+    /// A box holding every body over the whole run (at the start or when added, at each of
+    /// its collisions and edits, and at the end or when removed: motion is straight in
+    /// between; under gravity, also at the vertices of the parabolas in between, per axis),
+    /// the segment walls and the offsets of axis-aligned planes, metres.
     pub bounds: Aabb<D>,
-    /// The largest body speed at the start or after any collision (under gravity, also just
+    /// The largest body speed at the start or after any collision or edit (under gravity, also just
     /// before each collision and at the end: a falling body's speed is largest at an end of
     /// its arc), metres per second.
     pub max_speed: f64,
 }
 
-/// Accumulates an [`Extent`] over the records of a run.
+/// Accumulates an [`Extent`] over the records of a run; radii and kinematic flags are read
+/// from the states each record ends (so bodies added during the run count with theirs).
 pub(crate) struct ExtentBuilder<const D: usize> {
-    radius: Vec<f64>,
     extent: Extent<D>,
     gravity: Option<Vector<D>>,
-    /// Which bodies are kinematic (they do not fall).
-    kinematic: Vec<bool>,
 }
 
 impl<const D: usize> ExtentBuilder<D> {
@@ -40,21 +37,19 @@ impl<const D: usize> ExtentBuilder<D> {
             extent.max_speed = extent.max_speed.max(b.vel.norm());
         }
         ExtentBuilder {
-            radius: scene.bodies.iter().map(|b| b.radius).collect(),
             extent,
             gravity: scene.gravity(),
-            kinematic: scene.bodies.iter().map(|b| b.kinematic).collect(),
         }
     }
 
-    /// Under gravity: takes in body `i`'s arc from its reference time to `t` (moving as `m`),
-    /// the vertex of the parabola on each axis where it lies in between, and its speed at
-    /// `t`. The ends of the arc are taken in elsewhere.
-    fn add_arc(&mut self, i: usize, m: &Motion<D>, t: f64) {
-        let Some(g) = self.gravity.filter(|_| !self.kinematic[i]) else {
+    /// Under gravity: takes in body `i`'s arc from its reference time to `t` (as `states`
+    /// hold it), the vertex of the parabola on each axis where it lies in between, and its
+    /// speed at `t`. The ends of the arc are taken in elsewhere.
+    fn add_arc(&mut self, states: &BodyStates<D>, i: usize, t: f64) {
+        let Some(g) = self.gravity.filter(|_| !states.is_kinematic(i)) else {
             return;
         };
-        let r = self.radius[i];
+        let (m, r) = (states.motion(i), states.radius(i));
         for d in 0..D {
             if g[d] != 0.0 {
                 let vertex = m.time - m.vel[d] / g[d];
@@ -69,30 +64,44 @@ impl<const D: usize> ExtentBuilder<D> {
         self.extent.max_speed = self.extent.max_speed.max(speed);
     }
 
-    /// Takes in the states a collision left its bodies in, and the arcs that led there from
-    /// `before`, the states it ends.
+    /// Takes in a body of radius `r` at `p` moving at `v`.
+    fn add_ball(&mut self, p: Vector<D>, r: f64, v: Vector<D>) {
+        self.extent.bounds = self.extent.bounds.union(Aabb::of_ball(p, r));
+        self.extent.max_speed = self.extent.max_speed.max(v.norm());
+    }
+
+    /// Takes in the states a collision or edit left its bodies in, and the arcs that led
+    /// there from `before`, the states it ends. An added body has no arc before (its slot
+    /// held none) and its radius from its record; an id record holds no state.
     pub(crate) fn add(&mut self, c: &Collision<D>, before: &BodyStates<D>) {
-        let slots = if c.event.kind == EventKind::Body {
-            2
-        } else {
-            1
-        };
-        let ids = [c.event.a as usize, c.event.b as usize];
-        for (s, &i) in ids.iter().enumerate().take(slots) {
-            self.add_arc(i, &before.motion(i), c.event.time);
-            let ball = Aabb::of_ball(c.pos[s], self.radius[i]);
-            self.extent.bounds = self.extent.bounds.union(ball);
-            self.extent.max_speed = self.extent.max_speed.max(c.vel[s].norm());
+        let t = c.event.time;
+        let (a, b) = (c.event.a as usize, c.event.b as usize);
+        match c.event.kind {
+            EventKind::Body => {
+                for (s, i) in [(0, a), (1, b)] {
+                    self.add_arc(before, i, t);
+                    self.add_ball(c.pos[s], before.radius(i), c.vel[s]);
+                }
+            }
+            EventKind::Edit if c.event.b == edit_code::ADD => {
+                self.add_ball(c.pos[0], c.pos[1][0], c.vel[0]);
+            }
+            EventKind::Edit if c.event.b == edit_code::ADD_ID => {}
+            // Walls, resets, and edits of a body present (a motion, a filter, a removal).
+            _ => {
+                self.add_arc(before, a, t);
+                self.add_ball(c.pos[0], before.radius(a), c.vel[0]);
+            }
         }
     }
 
-    /// Adds every body's position at the run's end `end` and the walls.
+    /// Adds every body's position at the run's end `end` (vacant slots have none) and the
+    /// walls.
     pub(crate) fn finish(mut self, last: &BodyStates<D>, end: f64, walls: &[Wall<D>]) -> Extent<D> {
-        for i in 0..last.len() {
-            let m = last.motion(i);
-            let at = end.max(m.time);
-            self.add_arc(i, &m, at);
-            let ball = Aabb::of_ball(last.position_at(i, at), self.radius[i]);
+        for i in (0..last.len()).filter(|&i| !last.is_vacant(i)) {
+            let at = end.max(last.time[i]);
+            self.add_arc(last, i, at);
+            let ball = Aabb::of_ball(last.position_at(i, at), last.radius(i));
             self.extent.bounds = self.extent.bounds.union(ball);
         }
         let b = &mut self.extent.bounds;

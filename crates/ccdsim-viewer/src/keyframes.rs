@@ -4,12 +4,14 @@
 //! full state after every `K`-th event instead; the state after any event `k` is then the
 //! keyframe at or before `k` plus at most `K − 1` records replayed from the file (records are
 //! fixed-size, so record `k` is at a known offset). `K` is chosen so that all keyframes fit a
-//! memory budget.
+//! memory budget; a run that adds bodies, and so outgrows the estimate made from its scene,
+//! doubles `K` (dropping every other keyframe) whenever its keyframes would not fit.
 
 use crate::error::ViewerError;
 use crate::extent::{Extent, ExtentBuilder};
-use crate::states::BodyStates;
+use crate::states::{edit_code, BodyStates};
 use ccdsim::record::{RunReader, RunRecord, Tail};
+use ccdsim::EventKind;
 use std::io::Read;
 
 /// How densely to keyframe.
@@ -54,6 +56,19 @@ pub struct Keyframe<const D: usize> {
     pub states: BodyStates<D>,
 }
 
+impl<const D: usize> Keyframe<D> {
+    /// Heap bytes this keyframe adds to the one before it, `before` (the slot table counts
+    /// only when it is not the one `before` shares).
+    fn bytes_after(&self, before: Option<&Keyframe<D>>) -> usize {
+        let s = &self.states;
+        if before.is_some_and(|b| b.states.shares_slot_table(s)) {
+            s.heap_bytes() - s.slot_table_bytes()
+        } else {
+            s.heap_bytes()
+        }
+    }
+}
+
 /// Keyframes of a whole run, and what the pass learnt about it.
 #[derive(Clone, Debug)]
 pub struct KeyframeIndex<const D: usize> {
@@ -71,33 +86,66 @@ pub struct KeyframeIndex<const D: usize> {
     pub tail: Tail,
     /// The space the run uses and its top speed.
     pub extent: Extent<D>,
+    /// The largest number of body slots over the run: the scene's bodies, or more when
+    /// bodies were added past them (see [`BodyStates`]).
+    pub slots: usize,
+    /// True when the run adds or removes bodies.
+    pub slot_edits: bool,
 }
 
 impl<const D: usize> KeyframeIndex<D> {
     /// Reads every record of `reader` from the first one on, keyframing every `interval`
-    /// events. Refuses events that go back in time.
+    /// events, or every `2^j · interval` when the keyframes after the first would take more
+    /// than `budget_bytes` (a run whose added bodies outgrow its scene). Refuses events that
+    /// go back in time, and records naming slots that hold no body (see
+    /// [`BodyStates::check`]) or an added body without its id record right after it.
     pub fn build<R: Read>(
         reader: &mut RunReader<R, D>,
         interval: u64,
+        budget_bytes: usize,
     ) -> Result<Self, ViewerError> {
         let scene = reader.scene().clone();
+        let mut interval = interval.max(1);
         let mut states = BodyStates::from_scene(&scene);
         let mut keyframes = vec![Keyframe {
             applied: 0,
             time: scene.start_time,
             states: states.clone(),
         }];
+        // Bytes of the keyframes after the first (the interval was sized for those).
+        let mut bytes = 0usize;
         let (mut events, mut last, mut end_time) = (0u64, scene.start_time, None);
         let mut extent = ExtentBuilder::new(&scene);
+        // The added body whose id record must come next, and when it was added.
+        let mut pending_add: Option<(u32, f64)> = None;
         while let Some(rec) = reader.next_record()? {
             match rec {
                 RunRecord::Event(c) => {
                     let t = c.event.time;
+                    let bad = |why: String| ViewerError::BadRun {
+                        path: reader.path().to_string(),
+                        why: format!("event {events} (t = {t}) {why}"),
+                    };
                     if t < last {
-                        return Err(ViewerError::BadRun {
-                            path: reader.path().to_string(),
-                            why: format!("event {events} at t = {t} is earlier than the one before it (t = {last})"),
-                        });
+                        return Err(bad(format!(
+                            "is earlier than the one before it (t = {last})"
+                        )));
+                    }
+                    let is_id = c.event.kind == EventKind::Edit && c.event.b == edit_code::ADD_ID;
+                    match pending_add.take() {
+                        Some((a, at)) if !(is_id && c.event.a == a && t == at) => {
+                            return Err(bad(format!(
+                                "follows the added body {a} instead of its id record"
+                            )))
+                        }
+                        None if is_id => {
+                            return Err(bad("is an id record without its added body".into()))
+                        }
+                        _ => {}
+                    }
+                    states.check(&c).map_err(bad)?;
+                    if c.event.kind == EventKind::Edit && c.event.b == edit_code::ADD {
+                        pending_add = Some((c.event.a, t));
                     }
                     // The extent reads the states the collision ends (their arcs under gravity).
                     extent.add(&c, &states);
@@ -105,16 +153,27 @@ impl<const D: usize> KeyframeIndex<D> {
                     events += 1;
                     last = t;
                     if events % interval == 0 {
-                        keyframes.push(Keyframe {
+                        let kf = Keyframe {
                             applied: events,
                             time: t,
                             states: states.clone(),
-                        });
+                        };
+                        bytes += kf.bytes_after(keyframes.last());
+                        keyframes.push(kf);
+                        while bytes > budget_bytes && keyframes.len() > 2 {
+                            interval *= 2;
+                            keyframes.retain(|k| k.applied % interval == 0);
+                            bytes = (1..keyframes.len())
+                                .map(|j| keyframes[j].bytes_after(Some(&keyframes[j - 1])))
+                                .sum();
+                        }
                     }
                 }
                 RunRecord::End(t) => end_time = Some(t),
             }
         }
+        // A file cut between an added body and its id record plays up to the cut: the body is
+        // there, its id unknown (`u64::MAX`).
         let extent = extent.finish(&states, end_time.unwrap_or(last), &scene.walls);
         Ok(KeyframeIndex {
             interval,
@@ -124,6 +183,8 @@ impl<const D: usize> KeyframeIndex<D> {
             end_time,
             tail: reader.tail(),
             extent,
+            slots: states.len(),
+            slot_edits: states.has_slot_edits(),
         })
     }
 
@@ -148,9 +209,13 @@ impl<const D: usize> KeyframeIndex<D> {
         &self.keyframes[j.min(self.keyframes.len() - 1)]
     }
 
-    /// Heap bytes the keyframes hold.
+    /// Heap bytes the keyframes hold (a slot table shared by consecutive keyframes counted
+    /// once).
     #[must_use]
     pub fn heap_bytes(&self) -> usize {
-        self.keyframes.iter().map(|k| k.states.heap_bytes()).sum()
+        let k = &self.keyframes;
+        (0..k.len())
+            .map(|j| k[j].bytes_after(j.checked_sub(1).map(|i| &k[i])))
+            .sum()
     }
 }

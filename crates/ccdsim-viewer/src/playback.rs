@@ -7,7 +7,7 @@ use crate::keyframes::{KeyframeIndex, KeyframeOptions};
 use crate::states::BodyStates;
 use ccdsim::finder::DebugBox;
 use ccdsim::record::{open_run, record_len, AnyRunReader, RunReader, RunRecord, Tail};
-use ccdsim::{make_finder, Collision, FinderOptions, Scene, World};
+use ccdsim::{make_finder, BodySpec, Collision, FinderOptions, Scene, Vector, World};
 use std::fs::File;
 use std::io::BufReader;
 use std::path::Path;
@@ -83,7 +83,7 @@ impl<const D: usize> Playback<D> {
         let records = file_len.saturating_sub(reader.data_start()) / record_len(D) as u64;
         let n = reader.scene().bodies.len();
         let interval = options.interval::<D>(records, n);
-        let index = KeyframeIndex::build(&mut reader, interval)?;
+        let index = KeyframeIndex::build(&mut reader, interval, options.budget_bytes)?;
         Ok(Playback {
             scene: reader.scene().clone(),
             reader,
@@ -135,6 +135,19 @@ impl<const D: usize> Playback<D> {
     #[must_use]
     pub fn complete(&self) -> bool {
         self.index.tail == Tail::Complete
+    }
+
+    /// The largest number of body slots over the run (the scene's bodies, or more when the
+    /// run adds bodies past them).
+    #[must_use]
+    pub fn slots(&self) -> usize {
+        self.index.slots
+    }
+
+    /// True when the run adds or removes bodies.
+    #[must_use]
+    pub fn has_slot_edits(&self) -> bool {
+        self.index.slot_edits
     }
 
     /// The keyframe index.
@@ -262,12 +275,48 @@ impl<const D: usize> Playback<D> {
         Ok(found)
     }
 
-    /// The run's world rebuilt to `snap`: the bodies' stored states as the simulation had
-    /// them, and the clock at the snapshot's time.
+    /// The run's world rebuilt to `snap`, with the clock at the snapshot's time.
+    ///
+    /// Until a body is added or removed, this is the scene's world with every body's stored
+    /// state as the simulation had it. After that (the snapshot's states have slot edits),
+    /// the world holds the snapshot's bodies only, vacant slots left out (so its indices are
+    /// not the run's slots), each with its stored state, radius and kinematic flag, and the
+    /// scene's settings; it has no walls or sensors, its bodies collide with nothing (group
+    /// and mask 0, so that bodies that pass through each other in the run may overlap) and
+    /// their ids and masses are the defaults. That is what a finder's boxes need (every
+    /// body present, where it is), not a world to simulate on; the simulation's own world
+    /// also holds its vacant and reserved slots, at rest and out of every collision.
     pub fn world_at(&self, snap: &Snapshot<D>) -> Result<World<D>, ViewerError> {
-        let mut world = World::from_scene(&self.scene)?;
-        for i in 0..snap.states.len() {
-            world.set_motion(i, snap.states.motion(i));
+        let s = &snap.states;
+        if !s.has_slot_edits() {
+            let mut world = World::from_scene(&self.scene)?;
+            for i in 0..s.len() {
+                world.set_motion(i, s.motion(i));
+            }
+            world.set_time(snap.time);
+            return Ok(world);
+        }
+        let present: Vec<usize> = (0..s.len()).filter(|&i| !s.is_vacant(i)).collect();
+        // Built at the origin (which validates: they may overlap), then given their states.
+        let scene = Scene {
+            bodies: present
+                .iter()
+                .map(|&i| BodySpec {
+                    kinematic: s.is_kinematic(i),
+                    group: Some(0),
+                    mask: Some(0),
+                    ..BodySpec::new(Vector::ZERO, Vector::ZERO, s.radius(i))
+                })
+                .collect(),
+            walls: Vec::new(),
+            sensors: Vec::new(),
+            periodic: None,
+            start_time: snap.time,
+            settings: self.scene.settings,
+        };
+        let mut world = World::from_scene(&scene)?;
+        for (k, &i) in present.iter().enumerate() {
+            world.set_motion(k, s.motion(i));
         }
         world.set_time(snap.time);
         Ok(world)
@@ -305,7 +354,7 @@ mod tests {
     use ccdsim::generate::{gas, GasConfig};
     use ccdsim::gravity::Gravity;
     use ccdsim::record::RunWriter;
-    use ccdsim::{BodySpec, Simulation, Vector};
+    use ccdsim::Simulation;
     use std::path::PathBuf;
 
     fn temp_file(name: &str) -> PathBuf {

@@ -2,14 +2,69 @@
 
 use ccdsim::narrow::Motion;
 use ccdsim::{Collision, EventKind, Scene, Vector};
+use std::sync::Arc;
 
-/// The stored state of every body (structure of arrays): body `i` is at `pos[i]` at time
-/// `time[i]` and moves with `vel[i]`, so its position at `t` is `pos + vel·(t − time)`, or,
-/// in a run with gravity `g`, `pos + vel·(t − time) + ½·g·(t − time)²` (its velocity then
-/// is `vel + g·(t − time)`).
+/// The edit codes of a run file's edit records (the `b` field), as [`ccdsim::edit`] writes
+/// them (a unit test keeps the two in step).
+pub mod edit_code {
+    /// A new position or velocity: the first slot holds the body's state.
+    pub const MOTION: u32 = 0;
+    /// A body added: its state in the first slot; its radius and mass (∞: kinematic) in the
+    /// second slot's position. Always followed by [`ADD_ID`].
+    pub const ADD: u32 = 1;
+    /// The id of the body just added: the bits of the second slot's first position
+    /// component. Carries no state (its first slot is zero).
+    pub const ADD_ID: u32 = 2;
+    /// A body removed: where it stopped in the first slot; its slot is vacant from then on.
+    pub const REMOVE: u32 = 3;
+    /// A new collision filter: the first slot restates the body's state.
+    pub const FILTER: u32 = 4;
+}
+
+use edit_code::{ADD, ADD_ID, FILTER, MOTION, REMOVE};
+
+/// The slots' radii, ids, kinematic flags and vacancies.
 ///
-/// Replaying a run's collisions with [`BodyStates::apply`] reproduces the simulation's stored
-/// states bit for bit, since a run file records exactly the states a collision stored.
+/// They change only when a body is added or removed, which most runs never do, while the
+/// keyframe index keeps one [`BodyStates`] per keyframe. So the table is shared (an [`Arc`])
+/// between the states it was copied into, and copied on the first write after that
+/// ([`Arc::make_mut`]): a run without adds and removals keeps one table for all its
+/// keyframes, 8 bytes of pointer each, and a run with them keeps one per keyframe interval
+/// in which a slot changed, the same order of memory as the motions themselves.
+#[derive(Clone, Debug, PartialEq)]
+struct SlotTable {
+    /// Radius per slot, metres; 0 for a vacant slot.
+    radius: Vec<f64>,
+    /// User id per slot (`u64::MAX` for a vacant slot, as the simulation keeps it).
+    id: Vec<u64>,
+    /// Kinematic bodies (and vacant slots, kept at rest as the simulation keeps them).
+    kinematic: Vec<bool>,
+    /// Vacant slots.
+    vacant: Vec<bool>,
+    /// True once a body was added or removed.
+    edited: bool,
+}
+
+impl SlotTable {
+    fn heap_bytes(&self) -> usize {
+        self.radius.len() * (2 * std::mem::size_of::<u64>() + 2)
+    }
+}
+
+/// The stored state of every body slot (structure of arrays): body `i` is at `pos[i]` at
+/// time `time[i]` and moves with `vel[i]`, so its position at `t` is `pos + vel·(t − time)`,
+/// or, in a run with gravity `g`, `pos + vel·(t − time) + ½·g·(t − time)²` (its velocity then
+/// is `vel + g·(t − time)`); kinematic bodies move in straight lines even under gravity.
+///
+/// Slots are the simulation's: a run that adds and removes bodies (see [`ccdsim::edit`])
+/// grows the slots as bodies are added past the last one, and a removed body's slot is
+/// *vacant* ([`BodyStates::is_vacant`]: at rest where the body stopped, radius 0, drawn by
+/// no one) until a body is added there. Slots the simulation reserved but the run never
+/// filled are not known here: [`BodyStates::len`] counts the slots up to the last one used.
+///
+/// Replaying a run's records with [`BodyStates::apply`] reproduces the simulation's stored
+/// states of its bodies bit for bit, since a run file records exactly the states a collision
+/// or edit stored.
 #[derive(Clone, Debug, PartialEq)]
 pub struct BodyStates<const D: usize> {
     /// Reference positions, metres.
@@ -21,43 +76,179 @@ pub struct BodyStates<const D: usize> {
     /// The acceleration of every body between events (the scene's `settings.gravity`), if
     /// the run has gravity, metres per second squared.
     pub gravity: Option<Vector<D>>,
-    /// Which bodies are kinematic, by index (they move in straight lines even under gravity).
-    pub kinematic: Vec<bool>,
+    slots: Arc<SlotTable>,
 }
 
 impl<const D: usize> BodyStates<D> {
     /// The states at the start of a run of `scene`.
     #[must_use]
     pub fn from_scene(scene: &Scene<D>) -> Self {
+        let n = scene.bodies.len();
         BodyStates {
             pos: scene.bodies.iter().map(|b| b.pos).collect(),
             vel: scene.bodies.iter().map(|b| b.vel).collect(),
-            time: vec![scene.start_time; scene.bodies.len()],
+            time: vec![scene.start_time; n],
             gravity: scene.gravity(),
-            kinematic: scene.bodies.iter().map(|b| b.kinematic).collect(),
+            slots: Arc::new(SlotTable {
+                radius: scene.bodies.iter().map(|b| b.radius).collect(),
+                id: (0..n).map(|i| scene.id_of(i)).collect(),
+                kinematic: scene.bodies.iter().map(|b| b.kinematic).collect(),
+                vacant: vec![false; n],
+                edited: false,
+            }),
         }
     }
 
-    /// Number of bodies.
+    /// Number of slots (bodies and vacant slots).
     #[must_use]
     pub fn len(&self) -> usize {
         self.pos.len()
     }
 
-    /// True when there are no bodies.
+    /// True when there are no slots.
     #[must_use]
     pub fn is_empty(&self) -> bool {
         self.pos.is_empty()
     }
 
-    /// Stores the states a recorded collision left its bodies in.
+    /// Radius of the body in slot `i`, metres (at the run's start, in a run with growing
+    /// radii); 0 when the slot is vacant.
+    #[must_use]
+    pub fn radius(&self, i: usize) -> f64 {
+        self.slots.radius[i]
+    }
+
+    /// User id of the body in slot `i` (`u64::MAX` when the slot is vacant, as in the
+    /// simulation).
+    #[must_use]
+    pub fn id(&self, i: usize) -> u64 {
+        self.slots.id[i]
+    }
+
+    /// True when the body in slot `i` is kinematic (or the slot is vacant: kept at rest).
+    #[must_use]
+    pub fn is_kinematic(&self, i: usize) -> bool {
+        self.slots.kinematic[i]
+    }
+
+    /// True when slot `i` holds no body: its body was removed, or the slot lies between the
+    /// last one and a body added past it.
+    #[must_use]
+    pub fn is_vacant(&self, i: usize) -> bool {
+        self.slots.vacant[i]
+    }
+
+    /// True once a body was added or removed: radii, ids, kinematic flags or the number of
+    /// slots may then differ from the scene's.
+    #[must_use]
+    pub fn has_slot_edits(&self) -> bool {
+        self.slots.edited
+    }
+
+    /// Checks that record `c` can be applied: every slot it names holds a body, except an
+    /// added body's, which must be vacant or past the last slot (by at most
+    /// `len().max(1024)`: the simulation reserves a quarter more slots at a time and fills
+    /// the lowest first). An added body's id record ([`edit_code::ADD_ID`]) is checked by
+    /// the caller, which knows the record before.
+    pub fn check(&self, c: &Collision<D>) -> Result<(), String> {
+        let a = c.event.a as usize;
+        let present = |i: usize| -> Result<(), String> {
+            if i >= self.len() {
+                Err(format!(
+                    "names body {i}, past the last slot ({})",
+                    self.len()
+                ))
+            } else if self.is_vacant(i) {
+                Err(format!("names body {i}, whose slot is vacant"))
+            } else {
+                Ok(())
+            }
+        };
+        match c.event.kind {
+            EventKind::Body => present(a).and_then(|()| present(c.event.b as usize)),
+            EventKind::Wall | EventKind::Reset => present(a),
+            EventKind::Edit => match c.event.b {
+                MOTION | REMOVE | FILTER => present(a),
+                ADD => {
+                    let n = self.len();
+                    if a < n && !self.is_vacant(a) {
+                        return Err(format!("adds a body in slot {a}, which holds one"));
+                    }
+                    if a >= n + n.max(1024) {
+                        return Err(format!(
+                            "adds a body in slot {a}, far past the last slot ({n})"
+                        ));
+                    }
+                    let r = c.pos[1][0];
+                    if !(r.is_finite() && r > 0.0) {
+                        return Err(format!("adds a body of radius {r} in slot {a}"));
+                    }
+                    Ok(())
+                }
+                ADD_ID => Ok(()),
+                code => Err(format!("an edit of unknown code {code}")),
+            },
+        }
+    }
+
+    /// Stores the states a recorded collision or edit left its bodies in: a body added fills
+    /// its slot (the slots up to it grow, vacant), a body removed stops and leaves its slot
+    /// vacant, an id record sets the added body's id. Assumes [`BodyStates::check`] passed.
     pub fn apply(&mut self, c: &Collision<D>) {
         let t = c.event.time;
         let a = c.event.a as usize;
-        self.set(a, c.pos[0], c.vel[0], t);
-        if c.event.kind == EventKind::Body {
-            self.set(c.event.b as usize, c.pos[1], c.vel[1], t);
+        match c.event.kind {
+            EventKind::Body => {
+                self.set(a, c.pos[0], c.vel[0], t);
+                self.set(c.event.b as usize, c.pos[1], c.vel[1], t);
+            }
+            EventKind::Wall | EventKind::Reset => self.set(a, c.pos[0], c.vel[0], t),
+            EventKind::Edit => match c.event.b {
+                ADD => {
+                    if a >= self.len() {
+                        self.grow(a + 1, c.pos[0], t);
+                    }
+                    self.set(a, c.pos[0], c.vel[0], t);
+                    let s = self.slots_mut();
+                    s.radius[a] = c.pos[1][0];
+                    s.kinematic[a] = c.pos[1][1] == f64::INFINITY;
+                    s.vacant[a] = false;
+                    // The id record follows at once, at the same time.
+                    s.id[a] = u64::MAX;
+                }
+                ADD_ID => self.slots_mut().id[a] = c.pos[1][0].to_bits(),
+                REMOVE => {
+                    self.set(a, c.pos[0], Vector::ZERO, t);
+                    let s = self.slots_mut();
+                    s.radius[a] = 0.0;
+                    s.id[a] = u64::MAX;
+                    s.kinematic[a] = true;
+                    s.vacant[a] = true;
+                }
+                // A new motion or filter: the body's state restated. (Unknown codes are
+                // refused by `check`.)
+                _ => self.set(a, c.pos[0], c.vel[0], t),
+            },
         }
+    }
+
+    /// The slot table, to be written: copied first when keyframes share it.
+    fn slots_mut(&mut self) -> &mut SlotTable {
+        let s = Arc::make_mut(&mut self.slots);
+        s.edited = true;
+        s
+    }
+
+    /// Adds vacant slots up to `n`, at rest at `p` since `t`.
+    fn grow(&mut self, n: usize, p: Vector<D>, t: f64) {
+        self.pos.resize(n, p);
+        self.vel.resize(n, Vector::ZERO);
+        self.time.resize(n, t);
+        let s = self.slots_mut();
+        s.radius.resize(n, 0.0);
+        s.id.resize(n, u64::MAX);
+        s.kinematic.resize(n, true);
+        s.vacant.resize(n, true);
     }
 
     fn set(&mut self, i: usize, p: Vector<D>, v: Vector<D>, t: f64) {
@@ -81,7 +272,7 @@ impl<const D: usize> BodyStates<D> {
     #[must_use]
     pub fn position_at(&self, i: usize, t: f64) -> Vector<D> {
         match &self.gravity {
-            Some(g) if !self.kinematic[i] => self.motion(i).falling_at(t, g),
+            Some(g) if !self.is_kinematic(i) => self.motion(i).falling_at(t, g),
             _ => self.motion(i).at(t),
         }
     }
@@ -91,20 +282,144 @@ impl<const D: usize> BodyStates<D> {
     #[must_use]
     pub fn velocity_at(&self, i: usize, t: f64) -> Vector<D> {
         match &self.gravity {
-            Some(g) if !self.kinematic[i] => self.motion(i).falling_velocity(t, g),
+            Some(g) if !self.is_kinematic(i) => self.motion(i).falling_velocity(t, g),
             _ => self.vel[i],
         }
     }
 
-    /// Heap bytes held, for the keyframe budget.
+    /// Heap bytes held: the motions, and the slot table as if this were its only holder.
     #[must_use]
     pub fn heap_bytes(&self) -> usize {
-        Self::bytes_per_body() * self.len()
+        Self::bytes_per_body() * self.len() + self.slot_table_bytes()
     }
 
-    /// Bytes one body's state takes.
+    /// Heap bytes of the slot table (radii, ids, kinematic flags, vacancies), which copies
+    /// of these states share until a body is added or removed in one of them.
+    #[must_use]
+    pub fn slot_table_bytes(&self) -> usize {
+        self.slots.heap_bytes()
+    }
+
+    /// True when `self` and `other` share one slot table (see
+    /// [`BodyStates::slot_table_bytes`]).
+    #[must_use]
+    pub fn shares_slot_table(&self, other: &Self) -> bool {
+        Arc::ptr_eq(&self.slots, &other.slots)
+    }
+
+    /// Bytes one body's motion takes (the slot table is shared; see
+    /// [`BodyStates::slot_table_bytes`]).
     #[must_use]
     pub const fn bytes_per_body() -> usize {
         (2 * D + 1) * std::mem::size_of::<f64>()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use ccdsim::edit::Edit;
+    use ccdsim::{BodySpec, CollisionFilter};
+
+    #[test]
+    fn the_edit_codes_are_the_librarys() {
+        let (p, v) = (Vector([1.0, 2.0]), Vector([0.5, 0.0]));
+        let code = |e: Edit<2>| -> Vec<u32> { e.records(0.5).iter().map(|r| r.event.b).collect() };
+        assert_eq!(
+            code(Edit::Motion {
+                body: 0,
+                pos: p,
+                vel: v
+            }),
+            [MOTION]
+        );
+        let add = Edit::Add {
+            body: 3,
+            id: 77,
+            pos: p,
+            vel: v,
+            radius: 0.25,
+            mass: f64::INFINITY,
+            filter: CollisionFilter::DEFAULT,
+            restitution: None,
+        };
+        assert_eq!(code(add), [ADD, ADD_ID]);
+        assert_eq!(code(Edit::Remove { body: 0, pos: p }), [REMOVE]);
+        assert_eq!(
+            code(Edit::Filter {
+                body: 0,
+                pos: p,
+                vel: v,
+                filter: CollisionFilter::NONE
+            }),
+            [FILTER]
+        );
+        // And the fields read here are the ones the library decodes.
+        let rs = add.records(0.5);
+        let Ok(Edit::Add {
+            radius, mass, id, ..
+        }) = Edit::decode(&rs[0], Some(&rs[1]))
+        else {
+            panic!("an add decodes");
+        };
+        assert_eq!((rs[0].pos[1][0], rs[0].pos[1][1]), (radius, mass));
+        assert_eq!(rs[1].pos[1][0].to_bits(), id);
+    }
+
+    #[test]
+    fn adds_and_removes_change_the_slots_and_share_the_table_until_then() {
+        let scene = Scene::<2> {
+            bodies: vec![BodySpec::new(Vector([0.0, 0.0]), Vector([1.0, 0.0]), 0.5)],
+            ..Scene::default()
+        };
+        let mut s = BodyStates::from_scene(&scene);
+        let copy = s.clone();
+        assert!(s.shares_slot_table(&copy) && !s.has_slot_edits());
+        let add = Edit::<2>::Add {
+            body: 3,
+            id: 9,
+            pos: Vector([5.0, 1.0]),
+            vel: Vector([0.0, -1.0]),
+            radius: 0.25,
+            mass: f64::INFINITY,
+            filter: CollisionFilter::DEFAULT,
+            restitution: None,
+        }
+        .records(2.0);
+        for r in &add {
+            s.check(r).unwrap();
+            s.apply(r);
+        }
+        assert!(!s.shares_slot_table(&copy) && s.has_slot_edits());
+        assert_eq!(copy.len(), 1, "the copy is untouched");
+        assert_eq!(s.len(), 4);
+        for i in [1, 2] {
+            assert!(
+                s.is_vacant(i) && s.radius(i) == 0.0 && s.is_kinematic(i),
+                "slot {i}"
+            );
+        }
+        assert!(!s.is_vacant(3));
+        assert_eq!((s.radius(3), s.id(3), s.is_kinematic(3)), (0.25, 9, true));
+        assert_eq!(s.position_at(3, 3.0), Vector([5.0, 0.0]));
+        // A second add at slot 3 is refused; one far past the slots too.
+        assert!(s.check(&add[0]).unwrap_err().contains("holds one"));
+        let mut far = add[0];
+        far.event.a = 5000;
+        assert!(s.check(&far).unwrap_err().contains("far past"));
+        let remove = Edit::<2>::Remove {
+            body: 0,
+            pos: Vector([2.0, 0.0]),
+        }
+        .records(2.0)[0];
+        s.check(&remove).unwrap();
+        s.apply(&remove);
+        assert!(s.is_vacant(0) && s.radius(0) == 0.0);
+        assert_eq!(s.position_at(0, 10.0), Vector([2.0, 0.0]), "at rest");
+        assert!(s.check(&remove).unwrap_err().contains("vacant"));
+        // Vacant slot 1 takes the next body.
+        let mut again = add[0];
+        again.event.a = 1;
+        s.check(&again).unwrap();
     }
 }

@@ -3,18 +3,35 @@
 //!
 //! | endpoint | layout |
 //! |---|---|
-//! | `/api/bodies` | `f64` radii (`n`), then `f64` ids (`n`) |
-//! | `/api/state` | `f64` header of [`STATE_HEADER`] values, then `f32` positions at the snapshot time (`n·D`), then `f32` velocities at the snapshot time (`n·D`) |
-//! | `/api/events` | per event `4 + 4·D` `f64`s: `t`, kind (0 body, 1 wall, 2 thermostat reset), `a`, `b`, position and velocity of slot 0, then of slot 1 |
+//! | `/api/bodies` | the scene's `f64` radii, then its `f64` ids, each padded to the run's slot count `n` (meta's `bodies`) with radius 0 and id 0 for slots the scene does not have |
+//! | `/api/state` | `f64` header of [`STATE_HEADER`] values (its `n` is the snapshot's slot count, at most meta's `bodies`), then `f32` positions at the snapshot time (`n·D`), then `f32` velocities at the snapshot time (`n·D`), then, only when bodies were added or removed by then, the slot section: one `f64` [`SLOT_SECTION`], `f64` radii (`n`, 0 for a vacant slot), `f64` ids (`n`), `u8` flags (`n`: bit 0 kinematic, bit 1 vacant) |
+//! | `/api/events` | per event `4 + 4·D` `f64`s: `t`, kind (0 body, 1 wall, 2 thermostat reset, 3 edit), `a`, `b`, position and velocity of slot 0, then of slot 1 |
 //! | `/api/boxes` | per box `2 + 2·D` `f32`s: depth, leaf (0/1), min corner, max corner |
+//!
+//! A state answer without the slot section has the scene's radii, ids and kinematic flags
+//! (`/api/bodies`, meta's `kinematic`), and slots past its `n` are vacant. Edit events
+//! (kind 3) carry the edit code in `b` (see [`ccdsim::edit`]): 0 a new motion and 4 a new
+//! filter restate body `a`'s state in slot 0; 1 adds body `a` (slot 0 its state, slot 1's
+//! position its radius and mass, ∞ for a kinematic body); 2, which follows each 1, holds the
+//! bits of its id in slot 1's first position component and no state; 3 removes body `a`,
+//! which stops at slot 0's position and leaves its slot vacant.
 
 use crate::playback::{Playback, Snapshot};
 use ccdsim::finder::DebugBox;
 use ccdsim::{Collision, EventKind, FINDER_NAMES};
 
 /// Number of `f64` values before the arrays of a `/api/state` answer: time, events applied,
-/// bodies, dimension, last event's kind (−1 none, 0 body, 1 wall, 2 reset), time, `a`, `b`.
+/// slots, dimension, last event's kind (−1 none, 0 body, 1 wall, 2 reset, 3 edit), time,
+/// `a`, `b`.
 pub const STATE_HEADER: usize = 8;
+
+/// The `f64` that opens the slot section of a `/api/state` answer (see the module docs).
+pub const SLOT_SECTION: f64 = 1.0;
+
+/// Bit of a slot's flags in the slot section: the body is kinematic.
+pub const SLOT_KINEMATIC: u8 = 1;
+/// Bit of a slot's flags in the slot section: the slot is vacant.
+pub const SLOT_VACANT: u8 = 2;
 
 fn put_f64(out: &mut Vec<u8>, x: f64) {
     out.extend_from_slice(&x.to_le_bytes());
@@ -33,26 +50,31 @@ fn kind_code(kind: EventKind) -> f64 {
     }
 }
 
-/// Radii then ids of every body.
+/// Radii then ids of the scene's bodies, padded to the run's slot count (radius 0, id 0).
 #[must_use]
 pub fn encode_bodies<const D: usize>(p: &Playback<D>) -> Vec<u8> {
     let scene = p.scene();
-    let mut out = Vec::with_capacity(16 * scene.bodies.len());
+    let (n, slots) = (scene.bodies.len(), p.slots());
+    let mut out = Vec::with_capacity(16 * slots);
     for b in &scene.bodies {
         put_f64(&mut out, b.radius);
     }
-    for i in 0..scene.bodies.len() {
-        put_f64(&mut out, scene.id_of(i) as f64);
+    for _ in n..slots {
+        put_f64(&mut out, 0.0);
+    }
+    for i in 0..slots {
+        put_f64(&mut out, if i < n { scene.id_of(i) as f64 } else { 0.0 });
     }
     out
 }
 
 /// A snapshot: header, positions at its time, velocities at its time (under gravity the
-/// stored velocities hold only at each body's last event).
+/// stored velocities hold only at each body's last event), and the slot section when bodies
+/// were added or removed by then.
 #[must_use]
 pub fn encode_snapshot<const D: usize>(s: &Snapshot<D>) -> Vec<u8> {
     let n = s.states.len();
-    let mut out = Vec::with_capacity(8 * STATE_HEADER + 8 * D * n);
+    let mut out = Vec::with_capacity(8 * STATE_HEADER + 8 * D * n + 8 + 17 * n);
     put_f64(&mut out, s.time);
     put_f64(&mut out, s.applied as f64);
     put_f64(&mut out, n as f64);
@@ -80,6 +102,25 @@ pub fn encode_snapshot<const D: usize>(s: &Snapshot<D>) -> Vec<u8> {
         let v = s.states.velocity_at(i, s.time);
         for k in 0..D {
             put_f32(&mut out, v[k]);
+        }
+    }
+    if s.states.has_slot_edits() {
+        put_f64(&mut out, SLOT_SECTION);
+        for i in 0..n {
+            put_f64(&mut out, s.states.radius(i));
+        }
+        for i in 0..n {
+            put_f64(&mut out, s.states.id(i) as f64);
+        }
+        for i in 0..n {
+            let mut flags = 0;
+            if s.states.is_kinematic(i) {
+                flags |= SLOT_KINEMATIC;
+            }
+            if s.states.is_vacant(i) {
+                flags |= SLOT_VACANT;
+            }
+            out.push(flags);
         }
     }
     out
@@ -125,15 +166,20 @@ pub fn encode_boxes<const D: usize>(boxes: &[DebugBox<D>]) -> Vec<u8> {
 /// The run's description as JSON: file, dimension, counts, times, walls, bounds, the
 /// largest speed, the keyframe interval, the finders that can draw boxes, the growth of
 /// the radii (`{"rate", "origin"}`: radii at time `t` are `/api/bodies`'s times
-/// `1 + rate·(t − origin)`), or `null`, and the gravity (`[gx, gy(, gz)]`: a body at `p`
-/// with velocity `v` at time `t0` is at `p + v·dt + ½·g·dt²` at `t0 + dt`), or `null`.
+/// `1 + rate·(t − origin)`), or `null`, the gravity (`[gx, gy(, gz)]`: a body at `p`
+/// with velocity `v` at time `t0` is at `p + v·dt + ½·g·dt²` at `t0 + dt`), or `null`, and
+/// the scene's kinematic bodies by index. `bodies` is the largest number of body slots over
+/// the run (the scene's bodies, or more in a run that adds bodies past them),
+/// `scene_bodies` the scene's, and `slot_edits` says whether bodies are added or removed.
 #[must_use]
 pub fn meta_json<const D: usize>(p: &Playback<D>, finder: &str) -> serde_json::Value {
     let e = p.extent();
     serde_json::json!({
         "file": p.path(),
         "dim": D,
-        "bodies": p.scene().bodies.len(),
+        "bodies": p.slots(),
+        "scene_bodies": p.scene().bodies.len(),
+        "slot_edits": p.has_slot_edits(),
         "events": p.events(),
         "start_time": p.start_time(),
         "end_time": p.end_time(),

@@ -242,3 +242,302 @@ fn bvh_boxes_are_the_thesis_tree_around_the_bodies() {
         }
     }
 }
+
+// ---- runs that add and remove bodies --------------------------------------------------------
+
+/// `states` holds the simulation's slots of checkpoint `cp`: each body's stored state,
+/// radius, id and kinematic flag, and vacant slots (radius 0, at rest, no id) where it has
+/// none; the slots it reserved past the last one used are not known to the replay.
+fn assert_slots(states: &ccdsim_viewer::BodyStates<2>, cp: &common::slots::Checkpoint) {
+    let at = format!("after {} records (t = {})", cp.applied, cp.time);
+    assert!(states.len() <= cp.slots.len(), "{at}");
+    for (i, slot) in cp.slots.iter().enumerate() {
+        if i >= states.len() {
+            assert!(
+                slot.is_none(),
+                "{at}: slot {i}, past the replay's, holds a body"
+            );
+            continue;
+        }
+        match slot {
+            Some(s) => {
+                assert!(!states.is_vacant(i), "{at}: slot {i} holds a body");
+                assert_eq!(states.motion(i), s.motion, "{at}: slot {i}");
+                assert_eq!(states.radius(i), s.radius, "{at}: slot {i}");
+                assert_eq!(states.id(i), s.id, "{at}: slot {i}");
+                assert_eq!(states.is_kinematic(i), s.kinematic, "{at}: slot {i}");
+            }
+            None => {
+                assert!(states.is_vacant(i), "{at}: slot {i} is vacant");
+                assert_eq!(states.radius(i), 0.0, "{at}: slot {i}");
+                assert_eq!(states.id(i), u64::MAX, "{at}: slot {i}");
+                assert!(states.is_kinematic(i), "{at}: slot {i} stays at rest");
+            }
+        }
+    }
+}
+
+#[test]
+fn a_run_that_adds_and_removes_bodies_plays_the_simulations_slots() {
+    use common::slots::{record_slot_run, PLAN};
+    let dir = common::temp_dir("playback-slots");
+    let path = dir.join("slots.ccd");
+    let run = record_slot_run(&path, &PLAN);
+    let n0 = run.scene.bodies.len();
+    // The run does what it is meant to: slots past the scene's, removed slots filled again.
+    assert!(
+        run.adds.len() >= 30 && run.removals.len() >= 20,
+        "{} adds, {} removals",
+        run.adds.len(),
+        run.removals.len()
+    );
+    assert!(run.adds.iter().any(|a| a.slot >= n0 + 10));
+    assert!(
+        run.adds.iter().any(|a| a.kinematic),
+        "a kinematic body is added"
+    );
+    assert!(run.adds.iter().any(|a| a.id >= 1000), "an id of its own");
+    assert!(run.adds.iter().any(|a| run
+        .removals
+        .iter()
+        .any(|r| r.slot == a.slot && r.time < a.time)));
+    let mut p = Playback::<2>::open(&path, &DENSE).unwrap();
+    assert_eq!(p.events(), run.events);
+    assert!(p.has_slot_edits());
+    let slots = run.adds.iter().map(|a| a.slot + 1).max().unwrap().max(n0);
+    assert_eq!(p.slots(), slots);
+    assert_eq!(p.index().slots, slots);
+    for cp in &run.checkpoints {
+        let snap = p.snapshot_after(cp.applied).unwrap();
+        assert_eq!(snap.applied, cp.applied);
+        assert_slots(&snap.states, cp);
+    }
+    // A removed body's slot is vacant from its removal (until a body is added there), and
+    // its body stays where it stopped.
+    for r in &run.removals {
+        let refilled = run
+            .adds
+            .iter()
+            .any(|a| a.slot == r.slot && a.time >= r.time);
+        let later = if refilled { r.time } else { run.end };
+        let snap = p.snapshot_at(later).unwrap();
+        assert!(
+            snap.states.is_vacant(r.slot),
+            "slot {} at t = {later}",
+            r.slot
+        );
+        assert_eq!(snap.states.radius(r.slot), 0.0);
+        assert_eq!(snap.states.position_at(r.slot, later), r.pos);
+    }
+}
+
+#[test]
+fn every_snapshot_of_a_slot_run_is_a_straight_replay() {
+    use common::slots::{record_slot_run, PLAN};
+    let dir = common::temp_dir("playback-slots-replay");
+    let path = dir.join("slots.ccd");
+    let run = record_slot_run(&path, &PLAN);
+    let mut p = Playback::<2>::open(&path, &DENSE).unwrap();
+    let all = p.events_window(0, u64::MAX).unwrap();
+    assert_eq!(all.len() as u64, run.events);
+    assert!(
+        all.windows(2)
+            .any(|w| w[0].event.b == 1 && w[1].event.b == 2),
+        "added bodies' records"
+    );
+    let mut s = ccdsim_viewer::BodyStates::from_scene(&run.scene);
+    let interval = p.index().interval;
+    let keyframes = p.index().keyframes.clone();
+    assert!(keyframes.len() as u64 > run.events / interval);
+    for k in 0..=all.len() {
+        if k > 0 {
+            s.apply(&all[k - 1]);
+        }
+        if k as u64 % interval == 0 {
+            let kf = &keyframes[k / interval as usize];
+            assert_eq!(kf.applied, k as u64);
+            assert_eq!(kf.states, s, "keyframe after {k} events");
+        }
+        // Every count of events, those between an added body and its id record included.
+        let snap = p.snapshot_after(k as u64).unwrap();
+        assert_eq!(snap.states, s, "after {k} events");
+        // (Compared as text: an added body's record holds a NaN, "the scene's restitution".)
+        assert_eq!(
+            format!("{:?}", snap.last),
+            format!("{:?}", k.checked_sub(1).map(|j| all[j]))
+        );
+    }
+}
+
+#[test]
+fn the_extent_and_the_finder_boxes_hold_every_body_present() {
+    use common::slots::{record_slot_run, PLAN};
+    let dir = common::temp_dir("playback-slots-extent");
+    let path = dir.join("slots.ccd");
+    let run = record_slot_run(&path, &PLAN);
+    let mut p = Playback::<2>::open(&path, &DENSE).unwrap();
+    let bounds = p.extent().bounds;
+    for (j, cp) in run.checkpoints.iter().enumerate() {
+        let snap = p.snapshot_after(cp.applied).unwrap();
+        let present: Vec<usize> = (0..snap.states.len())
+            .filter(|&i| !snap.states.is_vacant(i))
+            .collect();
+        let balls: Vec<ccdsim::Aabb<2>> = present
+            .iter()
+            .map(|&i| {
+                ccdsim::Aabb::of_ball(snap.states.position_at(i, cp.time), snap.states.radius(i))
+            })
+            .collect();
+        for b in &balls {
+            assert!(bounds.contains(b), "{b:?} in {bounds:?} at t = {}", cp.time);
+        }
+        if j % 10 != 5 {
+            continue;
+        }
+        // The world the boxes are built on: the bodies present, where they are.
+        let world = p.world_at(&snap).unwrap();
+        assert_eq!(world.len(), present.len());
+        assert_eq!(world.now(), snap.time);
+        let boxes = p
+            .finder_boxes(&snap, "bvh", &ccdsim::FinderOptions::default())
+            .unwrap();
+        let leaves: Vec<_> = boxes.iter().filter(|b| b.leaf).collect();
+        assert_eq!(leaves.len(), present.len(), "t = {}", cp.time);
+        for (b, &i) in balls.iter().zip(&present) {
+            let ball =
+                ccdsim::Aabb::of_ball(snap.states.position_at(i, snap.time), snap.states.radius(i));
+            assert!(
+                leaves.iter().any(|l| l.aabb.contains(&ball)),
+                "slot {i} ({b:?}) in a leaf at t = {}",
+                snap.time
+            );
+        }
+    }
+}
+
+#[test]
+fn keyframes_thin_out_when_added_bodies_outgrow_the_budget() {
+    use common::slots::{record_slot_run, Plan};
+    let plan = Plan {
+        start_bodies: 2,
+        frames: 100,
+        add_every: 1,
+        remove_every: 0,
+        size: 8.0,
+    };
+    let dir = common::temp_dir("playback-slots-budget");
+    let path = dir.join("growing.ccd");
+    let run = record_slot_run(&path, &plan);
+    assert!(run.adds.len() >= 90, "{} adds", run.adds.len());
+    let budget = 40_000;
+    let options = KeyframeOptions {
+        budget_bytes: budget,
+        min_interval: 1,
+    };
+    let mut p = Playback::<2>::open(&path, &options).unwrap();
+    let idx = p.index();
+    // Sized for 2 bodies, the interval had to grow with the bodies.
+    let first = options.interval::<2>(run.events + 1, 2);
+    assert!(idx.interval >= 4 * first, "{} vs {first}", idx.interval);
+    let first_bytes = idx.keyframes[0].states.heap_bytes();
+    assert!(
+        idx.heap_bytes() - first_bytes <= budget,
+        "{} bytes",
+        idx.heap_bytes()
+    );
+    for (j, kf) in idx.keyframes.iter().enumerate() {
+        assert_eq!(kf.applied, j as u64 * idx.interval);
+    }
+    assert!(
+        idx.keyframes.len() >= 4,
+        "{} keyframes",
+        idx.keyframes.len()
+    );
+    for cp in run.checkpoints.iter().step_by(7) {
+        let snap = p.snapshot_after(cp.applied).unwrap();
+        assert_slots(&snap.states, cp);
+    }
+}
+
+#[test]
+fn records_naming_slots_without_a_body_are_refused() {
+    use ccdsim::edit::Edit;
+    use ccdsim::record::RunWriter;
+    use ccdsim::{BodySpec, Collision, CollisionFilter, Event, EventKind, Vector};
+    let dir = common::temp_dir("playback-slots-bad");
+    let scene = Scene::<2> {
+        bodies: vec![
+            BodySpec::new(Vector([0.0, 0.0]), Vector([1.0, 0.0]), 0.5),
+            BodySpec::new(Vector([3.0, 0.0]), Vector([0.0, 0.0]), 0.5),
+        ],
+        ..Scene::default()
+    };
+    let body = |t: f64, a: u32, b: u32| Collision {
+        event: Event {
+            time: t,
+            kind: EventKind::Body,
+            a,
+            b,
+        },
+        pos: [Vector([1.0, 0.0]), Vector([2.0, 0.0])],
+        vel: [Vector::ZERO, Vector([1.0, 0.0])],
+    };
+    let add = Edit::<2>::Add {
+        body: 2,
+        id: 7,
+        pos: Vector([0.0, 5.0]),
+        vel: Vector::ZERO,
+        radius: 0.5,
+        mass: 1.0,
+        filter: CollisionFilter::DEFAULT,
+        restitution: None,
+    }
+    .records(0.5);
+    let remove = Edit::<2>::Remove {
+        body: 1,
+        pos: Vector([3.0, 0.0]),
+    }
+    .records(0.5);
+    let cases: Vec<(Vec<Collision<2>>, &str)> = vec![
+        (
+            vec![body(1.0, 0, 5)],
+            "names body 5, past the last slot (2)",
+        ),
+        (
+            vec![remove[0], body(1.0, 0, 1)],
+            "names body 1, whose slot is vacant",
+        ),
+        (vec![add[0], body(1.0, 0, 1)], "instead of its id record"),
+        (vec![add[1]], "an id record without its added body"),
+        (
+            vec![add[0], add[1], add[0], add[1]],
+            "adds a body in slot 2, which holds one",
+        ),
+    ];
+    for (k, (records, want)) in cases.into_iter().enumerate() {
+        let path = dir.join(format!("bad{k}.ccd"));
+        let mut w = RunWriter::create_steered(&path, &scene).unwrap();
+        for r in &records {
+            w.write_event(r).unwrap();
+        }
+        w.finish(2.0).unwrap();
+        match Playback::<2>::open(&path, &DENSE) {
+            Err(e @ ViewerError::BadRun { .. }) => {
+                assert!(e.to_string().contains(want), "case {k}: {e}")
+            }
+            Err(e) => panic!("case {k}: expected a bad run, got {e}"),
+            Ok(_) => panic!("case {k}: opened"),
+        }
+    }
+    // The good pair of records plays.
+    let path = dir.join("good.ccd");
+    let mut w = RunWriter::create_steered(&path, &scene).unwrap();
+    for r in add.iter().chain(&remove) {
+        w.write_event(r).unwrap();
+    }
+    w.finish(2.0).unwrap();
+    let mut p = Playback::<2>::open(&path, &DENSE).unwrap();
+    let s = p.snapshot_at(1.0).unwrap().states;
+    assert_eq!((s.len(), s.radius(2), s.id(2)), (3, 0.5, 7));
+    assert!(s.is_vacant(1) && !s.is_vacant(2));
+}

@@ -362,3 +362,103 @@ fn boxes_are_drawn_around_the_bodies() {
     assert_eq!(pixel(&b, 1.5, 0.5), id_colour(9));
     assert_eq!(pixel(&b, 0.8, 0.5), id_colour(7));
 }
+
+/// The two discs, steered: at t = 0.2 a body of id 42 and radius 0.15 m is added at rest at
+/// (1.0, 0.2) (clear of body 7's path along y = 0.5), at t = 0.4 body 9 is removed, before
+/// body 7 reaches it; recorded until t = 2.
+fn two_discs_edited(path: &std::path::Path) {
+    use ccdsim::record::RunWriter;
+    use ccdsim::Simulation;
+    let scene = two_discs();
+    let mut sim = Simulation::new(&scene, "all-pairs").unwrap();
+    let mut w = RunWriter::record_steered(&mut sim, path, &scene).unwrap();
+    let mut write = |records: Vec<ccdsim::Collision<2>>| {
+        for r in &records {
+            w.write_event(r).unwrap();
+        }
+    };
+    write(sim.advance(0.2));
+    let spec = BodySpec {
+        id: Some(42),
+        ..BodySpec::new(Vector([1.0, 0.2]), Vector([0.0, 0.0]), 0.15)
+    };
+    assert_eq!(sim.add_body(spec).unwrap(), 2);
+    write(sim.take_edits());
+    write(sim.advance(0.2));
+    sim.remove_body(1).unwrap();
+    write(sim.take_edits());
+    write(sim.advance(1.6));
+    w.finish(sim.time()).unwrap();
+}
+
+/// The picture a GIF's frames composite to, and its size.
+fn gif_canvas(path: &std::path::Path) -> (Vec<Rgb>, usize) {
+    let mut opts = gif::DecodeOptions::new();
+    opts.set_color_output(gif::ColorOutput::Indexed);
+    let mut d = opts.read_info(std::fs::File::open(path).unwrap()).unwrap();
+    let palette = d.global_palette().unwrap().to_vec();
+    let (w, h) = (usize::from(d.width()), usize::from(d.height()));
+    let mut canvas = vec![0u8; w * h];
+    while let Some(f) = d.read_next_frame().unwrap() {
+        for y in 0..usize::from(f.height) {
+            for x in 0..usize::from(f.width) {
+                let k = (usize::from(f.top) + y) * w + usize::from(f.left) + x;
+                canvas[k] = f.buffer[y * usize::from(f.width) + x];
+            }
+        }
+    }
+    let rgb = canvas
+        .iter()
+        .map(|&i| {
+            let i = usize::from(i);
+            [palette[3 * i], palette[3 * i + 1], palette[3 * i + 2]]
+        })
+        .collect();
+    (rgb, w)
+}
+
+#[test]
+fn added_bodies_are_drawn_with_their_radius_and_removed_ones_not_at_all() {
+    let dir = common::temp_dir("render-slots");
+    let run = dir.join("edited.ccd");
+    two_discs_edited(&run);
+    let out = dir.join("frame.png");
+    // Before the edits: both discs, nothing at (1.0, 0.2).
+    render_png(&run, 0.1, &out, &options()).unwrap();
+    let pm = Pixmap::load_png(&out).unwrap();
+    assert_eq!(pixel(&pm, 1.5, 0.5), id_colour(9));
+    assert_eq!(pixel(&pm, 1.0, 0.2), colour::BACKGROUND);
+    // After them: body 42 in its colour out to its own radius (past the scene's 0.1 m), body
+    // 9 gone, body 7 moving on at x = 1.1.
+    render_png(&run, 0.6, &out, &options()).unwrap();
+    let pm = Pixmap::load_png(&out).unwrap();
+    assert_eq!(pixel(&pm, 1.0, 0.2), id_colour(42));
+    assert_eq!(pixel(&pm, 1.0 + 0.12, 0.2), id_colour(42));
+    assert_eq!(pixel(&pm, 1.0 + 0.18, 0.2), colour::BACKGROUND);
+    assert_eq!(pixel(&pm, 1.5, 0.5), colour::BACKGROUND);
+    assert_eq!(pixel(&pm, 1.1, 0.5), id_colour(7));
+    // A GIF plays the edits forward to the same picture.
+    let gif_path = dir.join("anim.gif");
+    let o = GifOptions {
+        fps: 10.0,
+        speed: 1.0,
+        from: Some(0.0),
+        to: Some(0.6),
+        render: options(),
+    };
+    assert_eq!(render_gif(&run, &gif_path, &o).unwrap().frames, 7);
+    let (canvas, w) = gif_canvas(&gif_path);
+    for (k, px) in pm.pixels().iter().enumerate() {
+        let c = px.demultiply();
+        for (a, b) in canvas[k].iter().zip([c.red(), c.green(), c.blue()]) {
+            // The palette cube's coarsest step is 51: a colour is at most half of it away.
+            assert!(
+                (i32::from(*a) - i32::from(b)).abs() <= 26,
+                "pixel ({}, {}): {:?} vs {c:?}",
+                k % w,
+                k / w,
+                canvas[k]
+            );
+        }
+    }
+}

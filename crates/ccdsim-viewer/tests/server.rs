@@ -249,3 +249,83 @@ fn bvh_boxes_are_served_by_default() {
         get(s.port, "/api/boxes?t=0.5").body
     );
 }
+
+#[test]
+fn a_run_that_adds_and_removes_bodies_is_served_with_its_slots() {
+    use ccdsim_viewer::wire::{SLOT_KINEMATIC, SLOT_SECTION, SLOT_VACANT};
+    let dir = common::temp_dir("server-slots");
+    let path = dir.join("slots.ccd");
+    let run = common::slots::record_slot_run(&path, &common::slots::PLAN);
+    let n0 = run.scene.bodies.len();
+    let s = start(&path);
+    let mut p = Playback::<2>::open(&path, &KeyframeOptions::default()).unwrap();
+    let slots = p.slots();
+    assert!(slots > n0 + 5, "{slots} slots");
+    let meta: serde_json::Value = serde_json::from_slice(&get(s.port, "/api/meta").body).unwrap();
+    assert_eq!(meta["bodies"], slots);
+    assert_eq!(meta["scene_bodies"], n0);
+    assert_eq!(meta["slot_edits"], true);
+    // The scene's radii and ids, padded to the slots.
+    let bodies = f64s(&get(s.port, "/api/bodies").body);
+    assert_eq!(bodies.len(), 2 * slots);
+    for i in 0..slots {
+        let (r, id) = if i < n0 {
+            (run.scene.bodies[i].radius, i as f64)
+        } else {
+            (0.0, 0.0)
+        };
+        assert_eq!((bodies[i], bodies[slots + i]), (r, id), "slot {i}");
+    }
+    // Before the first record, the scene's bodies and no slot section.
+    let body = get(s.port, "/api/state?k=0").body;
+    let head = f64s(&body[..8 * STATE_HEADER]);
+    assert_eq!(head[2], n0 as f64);
+    assert_eq!(body.len(), 8 * STATE_HEADER + 2 * 4 * 2 * n0);
+    // Then every slot's radius, id and flags, as the playback has them.
+    let mut vacant_seen = 0;
+    for cp in run.checkpoints.iter().skip(1).step_by(5) {
+        let body = get(s.port, &format!("/api/state?t={}", cp.time)).body;
+        let snap = p.snapshot_at(cp.time).unwrap();
+        let st = &snap.states;
+        let n = st.len();
+        let head = f64s(&body[..8 * STATE_HEADER]);
+        assert_eq!(head[2], n as f64, "t = {}", cp.time);
+        let off = 8 * STATE_HEADER + 2 * 4 * 2 * n;
+        assert_eq!(body.len(), off + 8 + 17 * n, "t = {}", cp.time);
+        let section = f64s(&body[off..off + 8 + 16 * n]);
+        assert_eq!(section[0], SLOT_SECTION);
+        let flags = &body[off + 8 + 16 * n..];
+        for i in 0..n {
+            let (r, id, f) = (section[1 + i], section[1 + n + i], flags[i]);
+            assert_eq!(r, st.radius(i), "slot {i} at t = {}", cp.time);
+            assert_eq!(id, st.id(i) as f64, "slot {i} at t = {}", cp.time);
+            assert_eq!(f & SLOT_KINEMATIC != 0, st.is_kinematic(i));
+            assert_eq!(f & SLOT_VACANT != 0, st.is_vacant(i));
+            // The simulation's own slots at that instant.
+            match cp.slots[i] {
+                Some(b) => assert_eq!((r, f & SLOT_VACANT), (b.radius, 0), "slot {i}"),
+                None => {
+                    assert_eq!((r, f & SLOT_VACANT), (0.0, SLOT_VACANT), "slot {i}");
+                    vacant_seen += 1;
+                }
+            }
+        }
+    }
+    assert!(vacant_seen > 5, "{vacant_seen} vacant slots seen");
+    // An added body's pair of records in the events stream, in its usual layout.
+    let all = p.events_window(0, u64::MAX).unwrap();
+    let k = all
+        .iter()
+        .position(|c| c.event.b == 1 && c.event.kind == ccdsim::EventKind::Edit)
+        .unwrap();
+    let e = f64s(&get(s.port, &format!("/api/events?from={k}&count=2")).body);
+    assert_eq!(e.len(), 2 * 12);
+    assert_eq!((e[1], e[3], e[13], e[15]), (3.0, 1.0, 3.0, 2.0));
+    assert_eq!(e[8], all[k].pos[1][0], "the radius");
+    assert_eq!(
+        e[12 + 8].to_bits(),
+        all[k + 1].pos[1][0].to_bits(),
+        "the id's bits"
+    );
+    assert_eq!(e[12 + 4..12 + 8], [0.0; 4], "no state in the id record");
+}

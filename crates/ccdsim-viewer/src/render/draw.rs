@@ -10,7 +10,7 @@ use tiny_skia::{Color, FillRule, Paint, PathBuilder, Pixmap, Rect, Stroke, Trans
 
 /// Everything one frame shows.
 pub struct FrameInput<'a, const D: usize> {
-    /// The run's scene (radii, ids, walls).
+    /// The run's scene (walls, settings; the bodies' radii and ids are the snapshot's).
     pub scene: &'a Scene<D>,
     /// The state to draw, at its time.
     pub snap: &'a Snapshot<D>,
@@ -170,7 +170,7 @@ fn draw_bodies<const D: usize>(pm: &mut Pixmap, cam: &Camera, f: &FrameInput<'_,
     let flashing =
         |i: usize| s.time[i] > start && s.time[i] <= t && t - s.time[i] <= f.flash_window;
     let bucket = |i: usize| match f.colour {
-        ColourBy::Id => colour::id_bucket(f.scene.id_of(i)),
+        ColourBy::Id => colour::id_bucket(s.id(i)),
         ColourBy::Speed => colour::speed_bucket(s.velocity_at(i, t).norm(), f.max_speed),
     };
     let bucket_colour = |b: usize| match f.colour {
@@ -185,14 +185,16 @@ fn draw_bodies<const D: usize>(pm: &mut Pixmap, cam: &Camera, f: &FrameInput<'_,
         .map_or(1.0, |g| 1.0 + g.rate * (t - f.scene.start_time));
     let disc = |i: usize| {
         let (x, y, z) = cam.project(s.position_at(i, t));
-        let r = (f.scene.bodies[i].radius * grown * cam.scale).max(0.75) as f32;
+        let r = (s.radius(i) * grown * cam.scale).max(0.75) as f32;
         (x, y, z, r)
     };
     let mut flashes = Vec::new();
+    // Vacant slots (bodies removed, or slots not filled yet) are not drawn.
+    let present = || (0..s.len()).filter(|&i| !s.is_vacant(i));
     if D == 2 {
         // Bodies never overlap in 2D, so drawing order is free: one path per colour.
         let mut paths: Vec<PathBuilder> = (0..BUCKETS).map(|_| PathBuilder::new()).collect();
-        for i in 0..s.len() {
+        for i in present() {
             if flashing(i) {
                 flashes.push(i);
                 continue;
@@ -213,7 +215,7 @@ fn draw_bodies<const D: usize>(pm: &mut Pixmap, cam: &Camera, f: &FrameInput<'_,
         }
     } else {
         // 3D: far bodies first (painter's order), each shaded with a highlight.
-        let mut order: Vec<(f64, usize)> = (0..s.len()).map(|i| (disc(i).2, i)).collect();
+        let mut order: Vec<(f64, usize)> = present().map(|i| (disc(i).2, i)).collect();
         order.sort_by(|a, b| a.0.total_cmp(&b.0));
         for (_, i) in order {
             if flashing(i) {

@@ -2,6 +2,8 @@
 
 #![allow(dead_code)]
 
+pub mod slots;
+
 use ccdsim::record::RunWriter;
 use ccdsim::{Scene, Simulation};
 use std::io::{Read, Write};
