@@ -13,6 +13,8 @@ const Raster = (() => {
   const LEAF_BOX = [120, 230, 140];
   const FLASH_FILL = [255, 255, 255];
   const FLASH_RING = [255, 210, 40];
+  const SENSOR = [70, 150, 170];
+  const SENSOR_HELD = [80, 240, 255];
 
   function hsv(h, s, v) {
     const i = Math.floor(h * 6);
@@ -177,6 +179,6 @@ const Raster = (() => {
     Surface, pack, idBucket, speedBucket, idColour, speedColour, depthColour,
     ID_WORDS, SPEED_WORDS, DEPTH_WORDS, BACKGROUND, WALL, LEAF_BOX, FLASH_FILL, FLASH_RING,
     WALL_WORD: pack(WALL), LEAF_WORD: pack(LEAF_BOX), FLASH_FILL_WORD: pack(FLASH_FILL),
-    FLASH_RING_WORD: pack(FLASH_RING),
+    FLASH_RING_WORD: pack(FLASH_RING), SENSOR_WORD: pack(SENSOR), SENSOR_HELD_WORD: pack(SENSOR_HELD),
   };
 })();

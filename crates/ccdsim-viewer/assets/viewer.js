@@ -365,6 +365,28 @@
     if (planes || (D === 3 && S.meta.walls.length === 0)) boxEdges(cam, surf, bounds.min, bounds.max, Raster.WALL_WORD);
   }
 
+  // The scene's sensor regions as outlines, brighter while a body overlaps one (its centre
+  // within the sum of the radii, the simulation's rule).
+  function drawSensors(cam, surf, t) {
+    const sensors = S.meta.sensors || [];
+    if (sensors.length === 0) return;
+    const D = S.D, p = [0, 0, 0];
+    for (const s of sensors) {
+      let held = false;
+      for (let i = 0; i < S.n && !held; i++) {
+        if (!(S.radius[i] > 0)) continue;
+        position(i, t, p);
+        let d2 = 0;
+        for (let k = 0; k < D; k++) d2 += (p[k] - s.center[k]) ** 2;
+        const reach = s.radius + S.radius[i];
+        held = d2 < reach * reach;
+      }
+      const [x, y] = cam.project(s.center[0], s.center[1], D === 3 ? s.center[2] : 0);
+      const r = s.radius * cam.scale;
+      surf.ring(x, y, Math.max(0, r - 1.5 * dpr()), r, held ? Raster.SENSOR_HELD_WORD : Raster.SENSOR_WORD);
+    }
+  }
+
   function boxEdges(cam, surf, min, max, word) {
     const D = S.D;
     if (D === 2) {
@@ -416,6 +438,7 @@
     const p = [0, 0, 0];
     surf.clear();
     drawWalls(cam, surf);
+    drawSensors(cam, surf, t);
     const flashing = [];
     const lit = (i) => now - S.flash[i] < S.flashMs || (!S.playing && S.evTime[i] === t);
     // Vacant slots (radius 0) are neither drawn nor flashed.
@@ -670,6 +693,12 @@
     seek: (t) => seek(t),
     // Slot i as the page holds it: radius (0 when vacant), id and kinematic flag.
     slot: (i) => ({ radius: S.radius[i], id: S.ids[i], kinematic: S.kin[i] === 1 }),
+    // Sensor k's centre and radius, in CSS pixels from the canvas's top-left corner.
+    sensorOnScreen(k) {
+      const s = S.meta.sensors[k];
+      const [x, y] = S.camera.project(s.center[0], s.center[1], S.D === 3 ? s.center[2] : 0);
+      return { x: x / dpr(), y: y / dpr(), r: (s.radius * S.camera.scale) / dpr() };
+    },
     // Body i at the current time, in CSS pixels from the canvas's top-left corner (r is 0 for
     // a vacant slot, which is not drawn).
     bodyOnScreen(i) {

@@ -24,4 +24,4 @@ slot_run="$(dirname "$bin")/examples/slot_run"
 [ -x "$slot_run" ] || { echo "e2e: no slot_run example at $slot_run" >&2; exit 1; }
 cd "$here"
 npm ci --no-audit --no-fund
-CCDSIM_BIN="$bin" SLOT_RUN_BIN="$slot_run" node --test viewer.test.mjs viewer3d.test.mjs slots.test.mjs
+CCDSIM_BIN="$bin" SLOT_RUN_BIN="$slot_run" node --test viewer.test.mjs viewer3d.test.mjs slots.test.mjs sensors.test.mjs

@@ -185,6 +185,7 @@ pub fn meta_json<const D: usize>(p: &Playback<D>, finder: &str) -> serde_json::V
         "end_time": p.end_time(),
         "complete": p.complete(),
         "walls": p.scene().walls,
+        "sensors": p.scene().sensors,
         "bounds": { "min": e.bounds.min, "max": e.bounds.max },
         "max_speed": e.max_speed,
         "keyframe_interval": p.index().interval,

@@ -462,3 +462,39 @@ fn added_bodies_are_drawn_with_their_radius_and_removed_ones_not_at_all() {
         }
     }
 }
+
+#[test]
+fn sensors_are_outlined_and_light_up_while_a_body_is_in_them() {
+    // A sensor of radius 0.2 m around (1.0, 0.5): body 7 (x = 0.5 + t, radius 0.1) overlaps
+    // it while its centre is within 0.3 m, from t = 0.2 to t = 0.8.
+    let scene = Scene {
+        sensors: vec![ccdsim::Sensor {
+            center: Vector([1.0, 0.5]),
+            radius: 0.2,
+        }],
+        ..two_discs()
+    };
+    let dir = common::temp_dir("render-sensor");
+    let run = dir.join("sensor.ccd");
+    common::record(&scene, 2.0, &run);
+    let ring = |t: f64| {
+        let out = dir.join(format!("sensor-{t}.png"));
+        render_png(&run, t, &out, &options()).unwrap();
+        let pm = Pixmap::load_png(&out).unwrap();
+        // The outline's top, just inside the 1.5 px stroke centred on the circle.
+        (pixel(&pm, 1.0, 0.7 - 0.003), pixel(&pm, 1.0, 0.5))
+    };
+    // That pixel is three quarters under the stroke: three quarters outline colour, a
+    // quarter background.
+    let near = |got: Rgb, want: Rgb| {
+        (0..3).all(|k| {
+            let blend = 0.75 * f64::from(want[k]) + 0.25 * f64::from(colour::BACKGROUND[k]);
+            (f64::from(got[k]) - blend).abs() < 6.0
+        })
+    };
+    let (outline, inside) = ring(0.1);
+    assert!(near(outline, colour::SENSOR), "{outline:?}");
+    assert_eq!(inside, colour::BACKGROUND, "the region is not filled");
+    let (outline, _) = ring(0.5);
+    assert!(near(outline, colour::SENSOR_HELD), "{outline:?}");
+}

@@ -114,7 +114,11 @@ fn runs_with_kinematic_bodies_are_version_5_and_verify_with_and_without_gravity(
         .iter()
         .filter(|c| c.event.kind == ccdsim::EventKind::Body && c.event.a == 0)
         .count();
-    assert!(events.len() > 10 && paddle_hits > 0, "{} {paddle_hits}", events.len());
+    assert!(
+        events.len() > 10 && paddle_hits > 0,
+        "{} {paddle_hits}",
+        events.len()
+    );
     for all_pairs in [false, true] {
         let mut v = if all_pairs {
             Verifier::all_pairs(&falling)

@@ -13,6 +13,10 @@ pub const LEAF_BOX: Rgb = [120, 230, 140];
 pub const FLASH_FILL: Rgb = [255, 255, 255];
 /// Ring around a body that collides in the current frame.
 pub const FLASH_RING: Rgb = [255, 210, 40];
+/// Outline of a sensor region with no body in it.
+pub const SENSOR: Rgb = [70, 150, 170];
+/// Outline of a sensor region that holds a body.
+pub const SENSOR_HELD: Rgb = [80, 240, 255];
 /// Progress bar at the foot of a frame.
 pub const PROGRESS: Rgb = [90, 140, 220];
 /// Number of distinct body colours; bodies are drawn in batches of one colour.

@@ -50,6 +50,7 @@ pub fn draw_frame<const D: usize>(cam: &Camera, f: &FrameInput<'_, D>) -> Pixmap
     let bg = colour::BACKGROUND;
     pm.fill(Color::from_rgba8(bg[0], bg[1], bg[2], 255));
     draw_walls(&mut pm, cam, f);
+    draw_sensors(&mut pm, cam, f);
     draw_boxes(&mut pm, cam, f.boxes);
     draw_bodies(&mut pm, cam, f);
     if let Some(p) = f.progress {
@@ -126,6 +127,35 @@ fn draw_walls<const D: usize>(pm: &mut Pixmap, cam: &Camera, f: &FrameInput<'_, 
             Transform::identity(),
             None,
         );
+    }
+}
+
+/// The scene's sensor regions as outlines, brighter while a body overlaps one (its centre
+/// within the sum of the radii, the simulation's rule).
+fn draw_sensors<const D: usize>(pm: &mut Pixmap, cam: &Camera, f: &FrameInput<'_, D>) {
+    let s = &f.snap.states;
+    let t = f.snap.time;
+    for sensor in &f.scene.sensors {
+        let held = (0..s.len()).any(|i| {
+            !s.is_vacant(i)
+                && (s.position_at(i, t) - sensor.center).norm() < sensor.radius + s.radius(i)
+        });
+        let (x, y, _) = cam.project(sensor.center);
+        let r = (sensor.radius * cam.scale).max(1.0) as f32;
+        if let Some(path) = PathBuilder::from_circle(x, y, r) {
+            let c = if held {
+                colour::SENSOR_HELD
+            } else {
+                colour::SENSOR
+            };
+            pm.stroke_path(
+                &path,
+                &paint(c, 255),
+                &stroke(1.5),
+                Transform::identity(),
+                None,
+            );
+        }
     }
 }
 
