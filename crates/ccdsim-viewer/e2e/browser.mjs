@@ -38,3 +38,33 @@ export async function frames(page, n = 2) {
   const f = await page.evaluate(() => window.ccdsim.frames());
   await page.waitForFunction(([f, n]) => window.ccdsim.frames() >= f + n, [f, n]);
 }
+
+// Opens `run` in `ccdsim view` (binary `bin`) and a fresh headless page on it (profile in
+// `profileDir`), once the page says it is ready; the page's errors go to `onError`.
+export async function openViewer(bin, run, profileDir, onError) {
+  const viewer = await startViewer(bin, run);
+  const context = await launch(profileDir);
+  const page = await context.newPage();
+  page.on('pageerror', onError);
+  await page.goto(viewer.url);
+  await page.waitForFunction(() => window.ccdsim && window.ccdsim.ready);
+  return { url: viewer.url, server: viewer.process, context, page };
+}
+
+// The colour [r, g, b] of the canvas pixel at (x, y), in the page's pixels.
+export const pixelAt = (page, x, y) =>
+  page.evaluate(([x, y]) => Array.from(document.getElementById('view').getContext('2d')
+    .getImageData(Math.floor(x), Math.floor(y), 1, 1).data.slice(0, 3)), [x, y]);
+
+// Sets the speed slider to 10^log10 times real time.
+export async function setSpeed(page, log10) {
+  await page.$eval('#speed', (el, v) => { el.value = v; el.dispatchEvent(new Event('input')); }, String(log10));
+}
+
+// Types `t` into "go to", presses Enter and waits until the page is there and has drawn it.
+export async function goTo(page, t) {
+  await page.fill('#goto', String(t));
+  await page.press('#goto', 'Enter');
+  await page.waitForFunction((t) => window.ccdsim.time() === t, t);
+  await frames(page);
+}

@@ -9,7 +9,7 @@ import { mkdtempSync, mkdirSync, readFileSync, rmSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
-import { startViewer, launch, frames } from './browser.mjs';
+import { openViewer, pixelAt, goTo as goToOn } from './browser.mjs';
 
 const here = path.dirname(fileURLToPath(import.meta.url));
 const BIN = process.env.CCDSIM_BIN || path.resolve(here, '../../../target/debug/ccdsim');
@@ -33,13 +33,8 @@ before(async () => {
   scene = JSON.parse(readFileSync(sceneFile, 'utf8'));
   sensorLog = readFileSync(log, 'utf8').trim().split('\n')
     .filter((l) => l).map((l) => JSON.parse(l));
-  const viewer = await startViewer(BIN, run);
-  server = viewer.process;
-  context = await launch(path.join(work, 'profile'));
-  page = await context.newPage();
-  page.on('pageerror', (e) => pageErrors.push(e.message));
-  await page.goto(viewer.url);
-  await page.waitForFunction(() => window.ccdsim && window.ccdsim.ready);
+  ({ server, context, page } = await openViewer(BIN, run, path.join(work, 'profile'),
+    (e) => pageErrors.push(e.message)));
 });
 
 after(async () => {
@@ -48,19 +43,9 @@ after(async () => {
   if (work) rmSync(work, { recursive: true, force: true });
 });
 
-const pixel = (x, y) =>
-  page.evaluate(([x, y]) => {
-    const c = document.getElementById('view');
-    const dpr = window.devicePixelRatio || 1;
-    return Array.from(c.getContext('2d').getImageData(Math.floor(x * dpr), Math.floor(y * dpr), 1, 1).data.slice(0, 3));
-  }, [x, y]);
+const pixel = (x, y) => pixelAt(page, x, y);
 
-async function goTo(t) {
-  await page.fill('#goto', String(t));
-  await page.press('#goto', 'Enter');
-  await page.waitForFunction((t) => window.ccdsim.time() === t, t);
-  await frames(page);
-}
+const goTo = (t) => goToOn(page, t);
 
 // Which sensors hold a ball at time t, from the run's sensor log (enters and leaves).
 function heldAt(t) {

@@ -10,7 +10,7 @@ import { mkdtempSync, mkdirSync, rmSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
-import { startViewer, launch, frames } from './browser.mjs';
+import { frames, openViewer, pixelAt, setSpeed as setSpeedOf, goTo as goToOn } from './browser.mjs';
 
 const here = path.dirname(fileURLToPath(import.meta.url));
 const BIN = process.env.CCDSIM_BIN || path.resolve(here, '../../../target/debug/ccdsim');
@@ -26,13 +26,8 @@ before(async () => {
   mkdirSync(OUT, { recursive: true });
   const file = path.join(work, 'slots.ccd');
   run = JSON.parse(execFileSync(SLOT_RUN, [file]).toString());
-  const viewer = await startViewer(BIN, file);
-  server = viewer.process;
-  context = await launch(path.join(work, 'profile'));
-  page = await context.newPage();
-  page.on('pageerror', (e) => pageErrors.push(e.message));
-  await page.goto(viewer.url);
-  await page.waitForFunction(() => window.ccdsim && window.ccdsim.ready);
+  ({ server, context, page } = await openViewer(BIN, file, path.join(work, 'profile'),
+    (e) => pageErrors.push(e.message)));
 });
 
 after(async () => {
@@ -41,22 +36,11 @@ after(async () => {
   if (work) rmSync(work, { recursive: true, force: true });
 });
 
-const pixel = (x, y) =>
-  page.evaluate(([x, y]) => {
-    const c = document.getElementById('view');
-    return Array.from(c.getContext('2d').getImageData(Math.floor(x), Math.floor(y), 1, 1).data.slice(0, 3));
-  }, [x, y]);
+const pixel = (x, y) => pixelAt(page, x, y);
 
-async function setSpeed(log10) {
-  await page.$eval('#speed', (el, v) => { el.value = v; el.dispatchEvent(new Event('input')); }, String(log10));
-}
+const setSpeed = (log10) => setSpeedOf(page, log10);
 
-async function goTo(t) {
-  await page.fill('#goto', String(t));
-  await page.press('#goto', 'Enter');
-  await page.waitForFunction((t) => window.ccdsim.time() === t, t);
-  await frames(page);
-}
+const goTo = (t) => goToOn(page, t);
 
 const paused = () => page.evaluate(() => !window.ccdsim.playing());
 

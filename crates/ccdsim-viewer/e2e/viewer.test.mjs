@@ -12,7 +12,7 @@ import { mkdtempSync, mkdirSync, rmSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
-import { startViewer, launch, frames } from './browser.mjs';
+import { startViewer, launch, frames, pixelAt, setSpeed as setSpeedOf, goTo as goToOn } from './browser.mjs';
 
 const here = path.dirname(fileURLToPath(import.meta.url));
 const BIN = process.env.CCDSIM_BIN || path.resolve(here, '../../../target/debug/ccdsim');
@@ -47,11 +47,7 @@ async function api(p) {
   return r;
 }
 
-const pixel = (x, y) =>
-  page.evaluate(([x, y]) => {
-    const c = document.getElementById('view');
-    return Array.from(c.getContext('2d').getImageData(Math.floor(x), Math.floor(y), 1, 1).data.slice(0, 3));
-  }, [x, y]);
+const pixel = (x, y) => pixelAt(page, x, y);
 
 // A hash of the whole canvas, to tell pictures apart.
 const canvasHash = () =>
@@ -71,16 +67,9 @@ const simRate = (ms) =>
     return (window.ccdsim.time() - t0) / ((performance.now() - w0) / 1000);
   }, ms);
 
-async function setSpeed(log10) {
-  await page.$eval('#speed', (el, v) => { el.value = v; el.dispatchEvent(new Event('input')); }, String(log10));
-}
+const setSpeed = (log10) => setSpeedOf(page, log10);
 
-async function goTo(t) {
-  await page.fill('#goto', String(t));
-  await page.press('#goto', 'Enter');
-  await page.waitForFunction((t) => window.ccdsim.time() === t, t);
-  await frames(page); // so that the canvas shows the new state
-}
+const goTo = (t) => goToOn(page, t);
 
 async function paused() {
   if (await page.evaluate(() => window.ccdsim.playing())) await page.click('#play');

@@ -7,7 +7,7 @@ import { mkdtempSync, mkdirSync, rmSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
-import { startViewer, launch, frames } from './browser.mjs';
+import { frames, openViewer, pixelAt } from './browser.mjs';
 
 const here = path.dirname(fileURLToPath(import.meta.url));
 const BIN = process.env.CCDSIM_BIN || path.resolve(here, '../../../target/debug/ccdsim');
@@ -24,13 +24,8 @@ before(async () => {
   writeFileSync(scene, execFileSync(BIN, ['gen', 'gas', '--dim', '3', '--n', String(N), '--seed', '3', '--speed-max', '2']));
   const run = path.join(work, 'gas3d.ccd');
   execFileSync(BIN, ['run', scene, '--until', '2', '--record', run, '--quiet']);
-  const viewer = await startViewer(BIN, run);
-  server = viewer.process;
-  context = await launch(path.join(work, 'profile'));
-  page = await context.newPage();
-  page.on('pageerror', (e) => { throw e; });
-  await page.goto(viewer.url);
-  await page.waitForFunction(() => window.ccdsim && window.ccdsim.ready);
+  ({ server, context, page } = await openViewer(BIN, run, path.join(work, 'profile'),
+    (e) => { throw e; }));
 });
 
 after(async () => {
@@ -39,9 +34,7 @@ after(async () => {
   if (work) rmSync(work, { recursive: true, force: true });
 });
 
-const pixel = (x, y) =>
-  page.evaluate(([x, y]) => Array.from(document.getElementById('view').getContext('2d')
-    .getImageData(Math.floor(x), Math.floor(y), 1, 1).data.slice(0, 3)), [x, y]);
+const pixel = (x, y) => pixelAt(page, x, y);
 
 const canvasHash = () =>
   page.evaluate(() => {

@@ -704,11 +704,8 @@ impl<const D: usize> Simulation<D> {
             self.guard.add_energy(added);
         }
         self.restate(i, vel);
-        self.finder.update(&self.world, &[i]);
-        self.sensors_changed(i);
         self.journal_edit(i);
-        self.pending = None;
-        self.halt = None;
+        self.edited(i);
         Ok(())
     }
 
@@ -737,7 +734,6 @@ impl<const D: usize> Simulation<D> {
         // bodies' reference times, and a pair that passed through each other before now must
         // not be found in contact then.
         self.restate(i, self.world.velocity_at(i, t));
-        self.sensors_changed(i);
         self.journal(crate::edit::Edit::Filter {
             body: i,
             pos: self.world.position(i),
@@ -748,11 +744,19 @@ impl<const D: usize> Simulation<D> {
             // The world's laws changed (pairs are now filtered): every finder starts afresh.
             return self.rebuild();
         }
+        self.edited(i);
+        Ok(())
+    }
+
+    /// Body `i`'s stored state was replaced by an edit at the current time: the finder and
+    /// the sensors take it in, and what was found before (the next event, a halt, a resting
+    /// contact) no longer holds.
+    fn edited(&mut self, i: usize) {
         self.finder.update(&self.world, &[i]);
+        self.sensors_changed(i);
         self.pending = None;
         self.halt = None;
         self.idle = None;
-        Ok(())
     }
 
     /// The first body `j ≠ skip` that a ball of radius `r` put at `pos` now would overlap,
@@ -870,12 +874,8 @@ impl<const D: usize> Simulation<D> {
             // A teleport starts a new path: its unwrapped position is where it now is.
             self.images[i] = [0; D];
         }
-        self.finder.update(&self.world, &[i]);
-        self.sensors_changed(i);
         self.journal_edit(i);
-        self.pending = None;
-        self.halt = None;
-        self.idle = None;
+        self.edited(i);
         Ok(())
     }
 }

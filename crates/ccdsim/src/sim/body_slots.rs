@@ -152,11 +152,7 @@ impl<const D: usize> Simulation<D> {
         if appended || laws != self.world.laws().copied() || spec.radius > self.sized_radius {
             self.rebuild()?;
         } else {
-            self.finder.update(&self.world, &[i]);
-            self.sensors_changed(i);
-            self.pending = None;
-            self.halt = None;
-            self.idle = None;
+            self.edited(i);
         }
         Ok(i)
     }
@@ -177,14 +173,10 @@ impl<const D: usize> Simulation<D> {
             body: i,
             pos: self.world.position(i),
         });
-        self.sensors_changed(i);
         if laws != self.world.laws().copied() {
             return self.rebuild();
         }
-        self.finder.update(&self.world, &[i]);
-        self.pending = None;
-        self.halt = None;
-        self.idle = None;
+        self.edited(i);
         Ok(())
     }
 }
