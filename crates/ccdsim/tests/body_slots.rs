@@ -128,25 +128,53 @@ fn refused_adds_and_removes_change_nothing() {
 }
 
 #[test]
-fn worlds_that_act_on_every_slot_refuse_adds() {
+fn periodic_boxes_take_adds_and_worlds_that_act_on_every_slot_refuse_them() {
     let periodic = Scene::<2> {
-        bodies: vec![BodySpec::new(Vector([1.0, 1.0]), Vector([1.0, 0.0]), 0.5)],
+        bodies: vec![BodySpec::new(Vector([1.0, 1.0]), Vector([-1.0, 0.0]), 0.5)],
         periodic: Some(Vector([10.0, 10.0])),
         ..Scene::default()
     };
+    for finder in FINDERS {
+        let mut sim = Simulation::new(&periodic, finder).unwrap();
+        // Body 0 leaves through the face x = 0 at t = 1, comes back at x = 10 and meets the
+        // added body at x = 8 when their centres are 1 apart, at t = 2.
+        let k = sim
+            .add_body(BodySpec::new(Vector([8.0, 1.0]), Vector::ZERO, 0.5))
+            .unwrap_or_else(|e| panic!("[{finder}] {e}"));
+        assert_eq!(sim.step_event().unwrap().event.time, 2.0, "[{finder}]");
+        sim.remove_body(k).unwrap();
+        assert!(
+            sim.step_event().is_none(),
+            "[{finder}] body 0, stopped by the hit, rests alone"
+        );
+        for (spec, why) in [
+            (
+                BodySpec::new(Vector([12.0, 5.0]), Vector::ZERO, 0.5),
+                "outside the periodic box",
+            ),
+            (
+                BodySpec {
+                    kinematic: true,
+                    ..BodySpec::new(Vector([5.0, 5.0]), Vector::ZERO, 0.5)
+                },
+                "periodic box",
+            ),
+        ] {
+            let e = sim.add_body(spec).unwrap_err().to_string();
+            assert!(e.contains(why), "{e}");
+        }
+    }
     let mut growing = periodic.clone();
     growing.settings = Settings {
         growth: Some(ccdsim::growth::Growth { rate: 0.1 }),
         ..Settings::default()
     };
-    for (scene, why) in [(periodic, "periodic box"), (growing, "growing radii")] {
-        let mut sim = Simulation::new(&scene, "cells").unwrap();
-        let spec = BodySpec::new(Vector([5.0, 5.0]), Vector::ZERO, 0.5);
-        let e = sim.add_body(spec).unwrap_err().to_string();
-        assert!(e.contains(why), "{e}");
-        let e = sim.remove_body(0).unwrap_err().to_string();
-        assert!(e.contains(why), "{e}");
-    }
+    let mut sim = Simulation::new(&growing, "cells").unwrap();
+    let spec = BodySpec::new(Vector([5.0, 5.0]), Vector::ZERO, 0.5);
+    let e = sim.add_body(spec).unwrap_err().to_string();
+    assert!(e.contains("growing radii"), "{e}");
+    let e = sim.remove_body(0).unwrap_err().to_string();
+    assert!(e.contains("growing radii"), "{e}");
 }
 
 #[test]

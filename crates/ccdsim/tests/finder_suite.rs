@@ -1740,13 +1740,16 @@ fn collision_filters() {
 fn bodies_added_and_removed() {
     // add_body and remove_body: bodies come and go in stable slots, vacant slots are passed
     // by, new slots are appended (a finder rebuild) and larger bodies re-size the finders;
-    // every finder still gives the oracle's events, in walled worlds, under gravity, with
-    // kinematic bodies and filters, after events and at the ends of frames.
+    // every finder still gives the oracle's events, in walled and periodic worlds (every
+    // cells mode), under gravity, with kinematic bodies and filters, after events and at the
+    // ends of frames.
     let s2 = gas_scene::<2>(100, 0.3, (0.2, 0.6), SMALL_SEEDS[0]);
     let s3 = gas_scene::<3>(60, 0.15, (0.3, 0.5), SMALL_SEEDS[1]);
     let f2 = with_kinematic(falling(s2.clone(), [0.0, -9.81]), 3);
     let board = peg_board(5, 32, SMALL_SEEDS[2]);
     let filtered = s2_of(SMALL_SEEDS[1]);
+    let p2 = periodic_gas::<2>(120, 0.35, (0.3, 0.5), SMALL_SEEDS[2]);
+    let p3 = periodic_gas::<3>(80, 0.2, (0.5, 0.5), SMALL_SEEDS[0]);
     for drive in [
         Drive::Slots { every: 3 },
         Drive::FrameSlots { dt: 1.0 / 30.0 },
@@ -1766,6 +1769,8 @@ fn bodies_added_and_removed() {
         for (name, options) in variants() {
             check_run("slots 3D", &s3, name, &options, 1200, drive, &oracle);
         }
+        check_periodic("slots periodic 2D", &p2, 1500, drive);
+        check_periodic("slots periodic 3D", &p3, 1200, drive);
     }
 }
 

@@ -35,15 +35,14 @@ pub(super) fn sized_radius<const D: usize>(world: &World<D>) -> f64 {
 
 impl<const D: usize> Simulation<D> {
     /// Refuses `what` (adding or removing bodies) in worlds it does not serve yet: growing
-    /// radii, a thermostat (both act on every slot), a periodic box (which takes no
-    /// kinematic bodies, as vacant slots are).
+    /// radii and a thermostat, which act on every slot, vacant ones too. (A periodic box is
+    /// served: its vacant slots, at rest, never leave it, though it takes no kinematic body
+    /// that moves.)
     fn check_slots_supported(&self, what: &str) -> Result<(), SimError> {
         let why = if self.world.growth().is_some() {
             "growing radii"
         } else if self.world.thermostat().is_some() {
             "a thermostat"
-        } else if self.world.periodic().is_some() {
-            "a periodic box"
         } else {
             return Ok(());
         };
@@ -58,8 +57,8 @@ impl<const D: usize> Simulation<D> {
     ///
     /// Refused, leaving everything as it was, when a field is invalid (as in a scene), the id
     /// is taken, the body would overlap a body it collides with, cross a wall or lie outside
-    /// the table (as for [`Simulation::set_position`]), or the world has growing radii, a
-    /// thermostat or a periodic box. See the module docs for the cost.
+    /// the table (as for [`Simulation::set_position`]) or the periodic box, or the world has
+    /// growing radii or a thermostat. See the module docs for the cost.
     ///
     /// ```
     /// use ccdsim::{BodySpec, Scene, Simulation, Vector};
@@ -79,7 +78,7 @@ impl<const D: usize> Simulation<D> {
             restitution: self.world.restitution(),
             ..Settings::default()
         };
-        spec.check_fields(slot, &settings, false)
+        spec.check_fields(slot, &settings, self.world.periodic().is_some())
             .map_err(|e| SimError::Input(format!("add_body: {e}")))?;
         let id = spec.id.unwrap_or(self.world.next_id());
         if let Some(j) = self.world.index_of(id) {
@@ -160,7 +159,7 @@ impl<const D: usize> Simulation<D> {
     /// Removes body `i` at the current time: it stops where it is and its slot becomes
     /// vacant (a later [`Simulation::add_body`] may fill it); every other body keeps its
     /// index. A body inside a sensor leaves it now. Refused for an index that names no body,
-    /// or in a world with growing radii, a thermostat or a periodic box.
+    /// or in a world with growing radii or a thermostat.
     pub fn remove_body(&mut self, i: usize) -> Result<(), SimError> {
         self.check_slots_supported("remove_body")?;
         self.check_body(i)?;
