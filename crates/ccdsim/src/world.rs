@@ -182,11 +182,8 @@ impl<const D: usize> World<D> {
     /// had no kinematic bodies or no filters: a finder serving it must then be re-initialised,
     /// as it must after any new slot.
     pub(crate) fn reserve(&mut self, count: usize, park: impl Fn(usize) -> (Vector<D>, f64)) {
-        let (n, now) = (self.bodies.len(), self.now);
-        self.vacant.resize(n, false);
-        if self.filters.is_empty() {
-            self.filters = vec![CollisionFilter::DEFAULT; n];
-        }
+        let now = self.now;
+        self.allow_vacancies();
         for k in 0..count {
             let (pos, radius) = park(k);
             self.bodies.push(Body {
@@ -210,9 +207,35 @@ impl<const D: usize> World<D> {
             }
         }
         // Filled lowest slot first.
-        self.free.extend((n..n + count).rev());
+        let n = self.bodies.len();
+        self.free.extend((n - count..n).rev());
+    }
+
+    /// Makes room for vacant slots: a vacancy flag and a collision filter per slot, and the
+    /// laws under which finders pass vacant slots by (kinematic bodies, filtered pairs).
+    fn allow_vacancies(&mut self) {
+        let n = self.bodies.len();
+        self.vacant.resize(n, false);
+        if self.filters.is_empty() {
+            self.filters = vec![CollisionFilter::DEFAULT; n];
+        }
         self.laws.kinematic = true;
         self.laws.filtered = true;
+    }
+
+    /// The largest and second-largest radius of the slots, metres (0 for missing ones).
+    #[must_use]
+    pub fn two_largest_radii(&self) -> (f64, f64) {
+        let (mut r1, mut r2) = (0.0f64, 0.0f64);
+        for r in self.radii() {
+            if r > r1 {
+                r2 = r1;
+                r1 = r;
+            } else if r > r2 {
+                r2 = r;
+            }
+        }
+        (r1, r2)
     }
 
     /// Puts the body `spec`, with user id `id` and its position and velocity holding at the
@@ -258,11 +281,7 @@ impl<const D: usize> World<D> {
     pub(crate) fn vacate(&mut self, i: usize) {
         let now = self.now;
         let pos = self.position_at(i, now);
-        let n = self.bodies.len();
-        self.vacant.resize(n, false);
-        if self.filters.is_empty() {
-            self.filters = vec![CollisionFilter::DEFAULT; n];
-        }
+        self.allow_vacancies();
         let b = &mut self.bodies[i];
         b.motion = Motion {
             pos,
@@ -275,8 +294,6 @@ impl<const D: usize> World<D> {
         self.filters[i] = CollisionFilter::NONE;
         self.vacant[i] = true;
         self.free.push(i);
-        self.laws.kinematic = true;
-        self.laws.filtered = true;
     }
 
     /// Current simulated time, seconds: every event before it has been resolved.

@@ -21,16 +21,7 @@ use crate::world::World;
 /// re-initialised: the second-largest radius of the slots when it was. (A grid sized for
 /// contact distance `r₁ + r₂` of the two largest radii still covers every pair then.)
 pub(super) fn sized_radius<const D: usize>(world: &World<D>) -> f64 {
-    let (mut r1, mut r2) = (0.0f64, 0.0f64);
-    for r in world.radii() {
-        if r > r1 {
-            r2 = r1;
-            r1 = r;
-        } else if r > r2 {
-            r2 = r;
-        }
-    }
-    r2
+    world.two_largest_radii().1
 }
 
 impl<const D: usize> Simulation<D> {

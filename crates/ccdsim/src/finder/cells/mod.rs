@@ -537,20 +537,6 @@ impl<const D: usize> Cells<D> {
     }
 }
 
-/// The largest and second largest radius.
-fn two_largest(radii: impl Iterator<Item = f64>) -> (f64, f64) {
-    let (mut r1, mut r2) = (0.0f64, 0.0f64);
-    for r in radii {
-        if r > r1 {
-            r2 = r1;
-            r1 = r;
-        } else if r > r2 {
-            r2 = r;
-        }
-    }
-    (r1, r2)
-}
-
 /// Growing radii: the grid is sized for the radii they reach when they have grown by this
 /// fraction of their current size (see "Growing radii" in the module docs).
 const GROWTH_HEADROOM: f64 = 0.05;
@@ -624,7 +610,7 @@ impl<const D: usize> Finder<D> for Cells<D> {
             grown = law.scale(self.horizon);
         }
         self.wanted_horizon = f64::NEG_INFINITY;
-        let (r1, r2) = two_largest(world.radii());
+        let (r1, r2) = world.two_largest_radii();
         let (r1, r2) = (r1 * grown, r2 * grown);
         let sigma_max = if n >= 2 { r1 + r2 } else { 2.0 * r1.max(0.5) };
         let period = world.periodic();
