@@ -308,6 +308,29 @@ impl PySimulation {
         })
     }
 
+    /// Gives moving wall `k` (the scene's `moving_walls[k]`) the velocity `v` from the
+    /// current time on; it stays where it is now.
+    fn set_wall_velocity(&mut self, k: usize, v: Vec<f64>) -> PyResult<()> {
+        with_sim!(self, s, {
+            let v = vector::<D>(&v)?;
+            s.set_wall_velocity(k, v).map_err(value_error)
+        })
+    }
+
+    /// Moving wall `k`'s displacement from where the scene put it, now (a list of floats).
+    fn wall_offset(&self, k: usize) -> PyResult<Vec<f64>> {
+        with_sim!(self, s, {
+            let w = s.world();
+            if k >= w.moving_wall_count() {
+                return Err(value_error(format!(
+                    "moving wall {k} does not exist ({} moving walls)",
+                    w.moving_wall_count()
+                )));
+            }
+            Ok(w.wall_motion(k).offset_at(s.time()).0.to_vec())
+        })
+    }
+
     /// Moves body `i` to `p` at the current time, keeping its velocity; refused (ValueError)
     /// where it would overlap a body or a wall.
     fn set_position(&mut self, i: usize, p: Vec<f64>) -> PyResult<()> {

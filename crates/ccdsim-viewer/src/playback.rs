@@ -310,6 +310,7 @@ impl<const D: usize> Playback<D> {
                 .collect(),
             walls: Vec::new(),
             sensors: Vec::new(),
+            moving_walls: Vec::new(),
             periodic: None,
             start_time: snap.time,
             settings: self.scene.settings,

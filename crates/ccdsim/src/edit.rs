@@ -10,10 +10,12 @@
 //! | 2 | the added body's id (follows `b` = 1) | zero | position: the id |
 //! | 3 | a body removed | where it stopped, zero velocity | zero |
 //! | 4 | new collision group and mask | position at `t`, velocity | velocity: filter |
+//! | 5 | a moving wall's new velocity (`a` names the moving wall) | its displacement from the scene's geometry at `t`, its velocity from then on | zero |
 //!
 //! A filter is written as the `f64` whose bits are `group << 32 | mask`, an id as the `f64`
 //! whose bits are the id, a body's own restitution as itself and "the scene's" as NaN: every
-//! value comes back bit for bit. A run file with records of `b` ≠ 0 is format version 9.
+//! value comes back bit for bit. A run file with records of `b` ≠ 0 is format version 9, and
+//! one with records of `b` = 5 (moving walls, see [`crate::moving_wall`]) version 10.
 
 use crate::collision_filter::CollisionFilter;
 use crate::event::{Event, EventKind};
@@ -25,8 +27,11 @@ const ADD: u32 = 1;
 const ADD_ID: u32 = 2;
 const REMOVE: u32 = 3;
 const FILTER: u32 = 4;
+const WALL_MOTION: u32 = 5;
 /// How many edit codes there are (`b` is below it).
-pub const EDIT_CODES: u32 = 5;
+pub const EDIT_CODES: u32 = 6;
+/// How many edit codes a run file of version 9 may hold (no moving walls).
+pub const EDIT_CODES_SLOTS: u32 = 5;
 
 /// What a program did to a body, as recorded.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -78,6 +83,16 @@ pub enum Edit<const D: usize> {
         /// The new filter.
         filter: CollisionFilter,
     },
+    /// Moving wall `wall` (see [`crate::moving_wall`]) got a new velocity: from `time` on it
+    /// is displaced by `offset` from the scene's geometry and translates at `vel`.
+    WallMotion {
+        /// The moving wall's index among the moving walls.
+        wall: usize,
+        /// Its displacement at the edit, metres.
+        offset: Vector<D>,
+        /// Its velocity from then on, m/s.
+        vel: Vector<D>,
+    },
 }
 
 fn filter_bits(f: CollisionFilter) -> f64 {
@@ -120,15 +135,23 @@ fn record<const D: usize>(
 }
 
 impl<const D: usize> Edit<D> {
-    /// The body edited.
+    /// What the edit names in its records' `a`: the body edited, or for
+    /// [`Edit::WallMotion`] the moving wall.
     #[must_use]
-    pub fn body(&self) -> usize {
+    pub fn subject(&self) -> usize {
         match *self {
             Edit::Motion { body, .. }
             | Edit::Add { body, .. }
             | Edit::Remove { body, .. }
             | Edit::Filter { body, .. } => body,
+            Edit::WallMotion { wall, .. } => wall,
         }
+    }
+
+    /// True when record `c` gives a moving wall a new velocity (its `a` names no body).
+    #[must_use]
+    pub fn moves_a_wall(c: &Collision<D>) -> bool {
+        c.event.kind == EventKind::Edit && c.event.b == WALL_MOTION
     }
 
     /// The records of this edit made at time `t`, seconds: two for an added body, one
@@ -179,6 +202,9 @@ impl<const D: usize> Edit<D> {
                 FILTER,
                 [[pos, vel], [z, packed(&[filter_bits(filter)])]],
             )],
+            Edit::WallMotion { wall, offset, vel } => {
+                vec![record(t, wall, WALL_MOTION, [[offset, vel], [z, z]])]
+            }
         }
     }
 
@@ -235,6 +261,11 @@ impl<const D: usize> Edit<D> {
                 vel,
                 filter: filter_of(c.vel[1][0]),
             }),
+            WALL_MOTION => Ok(Edit::WallMotion {
+                wall: body,
+                offset: pos,
+                vel,
+            }),
             code => Err(format!("unknown edit code {code}")),
         }
     }
@@ -250,7 +281,7 @@ mod tests {
         assert_eq!(format!("{back:?}"), format!("{e:?}"));
         assert!(rs
             .iter()
-            .all(|r| r.event.time == 1.25 && r.event.a as usize == e.body()));
+            .all(|r| r.event.time == 1.25 && r.event.a as usize == e.subject()));
     }
 
     #[test]
@@ -262,6 +293,11 @@ mod tests {
             vel: v,
         });
         round_trip(Edit::<2>::Remove { body: 7, pos: p });
+        round_trip(Edit::<2>::WallMotion {
+            wall: 2,
+            offset: p,
+            vel: v,
+        });
         round_trip(Edit::<2>::Filter {
             body: 1,
             pos: p,

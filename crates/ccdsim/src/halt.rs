@@ -125,8 +125,12 @@ impl ResolutionGuard {
     /// worlds get no fast path.
     pub(crate) fn new<const D: usize>(world: &World<D>) -> Self {
         // Under gravity kinetic energy grows as bodies fall: no speed bound, no fast path.
-        // Kinematic bodies go as fast as they are told, and push others faster.
-        let coordinate_bound = if world.gravity().is_some() || world.has_kinematic() {
+        // Kinematic bodies and moving walls go as fast as they are told, and push others
+        // faster.
+        let coordinate_bound = if world.gravity().is_some()
+            || world.has_kinematic()
+            || world.moving_wall_count() > 0
+        {
             None
         } else if let Some(size) = world.periodic() {
             Some(2.0 * size.0.iter().fold(0.0f64, |m, &l| m.max(l)))

@@ -30,6 +30,8 @@ pub mod gravity;
 pub mod growth;
 pub mod halt;
 pub mod laws;
+pub mod moving_wall;
+pub mod moving_wall_tracker;
 pub mod narrow;
 pub(crate) mod narrow_lanes;
 pub mod observables;
@@ -54,6 +56,7 @@ pub use finder::{make_finder, AllPairs, Finder, FinderError, FinderOptions, FIND
 pub use geom::{Aabb, Vector};
 pub use halt::Halt;
 pub use laws::Laws;
+pub use moving_wall::MovingWall;
 pub use narrow::Motion;
 pub use observables::Observables;
 pub use scene::{AnyScene, BodySpec, Scene, SceneError, Settings};

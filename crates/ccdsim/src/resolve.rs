@@ -95,20 +95,23 @@ pub fn resolve_body_body_contact<const D: usize>(
 }
 
 /// Resolves a collision of body `i` with wall `w` at time `t`: the body is moved to `t` and
-/// its normal velocity reflected (scaled by the restitution); the wall is immovable.
+/// the normal component of its velocity relative to the wall reflected (scaled by the
+/// restitution); the wall, static or moving (`w ≥ walls().len()`, see
+/// [`crate::moving_wall`]), has infinite mass and keeps its velocity.
 ///
 /// Returns the overlap depth at contact relative to the radius (0 when not overlapping).
 pub fn resolve_body_wall<const D: usize>(world: &mut World<D>, i: usize, w: usize, t: f64) -> f64 {
     let p = world.position_at(i, t);
     let v = world.velocity_at(i, t);
-    let wall = world.walls()[w];
+    let wall = world.wall_at(w, t);
     let r = world.radius_at(i, t);
     // Growing radii: the surface moves towards the wall at the growth speed too (see
     // `crate::growth`).
     let grow = world.growth().map_or(0.0, |law| law.speed(world.radius(i)));
     let mut v2 = v;
     if let Some(n) = wall_normal(&wall, p) {
-        let vn = v.dot(n) - grow;
+        // A static wall's velocity is zero, and `v − 0` is `v` bit for bit.
+        let vn = (v - world.wall_velocity(w)).dot(n) - grow;
         if vn < 0.0 {
             v2 = v - n * ((1.0 + world.wall_restitution(i, t)) * vn);
         }

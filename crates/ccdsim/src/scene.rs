@@ -7,6 +7,7 @@ use crate::collision_filter::CollisionFilter;
 use crate::geom::{ball_volume, Vector};
 use crate::gravity::Gravity;
 use crate::growth::Growth;
+use crate::moving_wall::MovingWall;
 use crate::resolution::{resolution_error, resolves, ulp, RESOLUTION_LIMIT};
 use crate::sensor::Sensor;
 use crate::thermostat::Thermostat;
@@ -228,6 +229,10 @@ pub struct Scene<const D: usize> {
     /// and never touch them (see [`crate::sensor`]).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub sensors: Vec<Sensor<D>>,
+    /// Walls that translate (a paddle, a piston; see [`crate::moving_wall`]): moving wall `k`
+    /// is wall `walls.len() + k` in events. Not in periodic scenes, nor with growing radii.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub moving_walls: Vec<MovingWall<D>>,
 }
 
 impl<const D: usize> Default for Scene<D> {
@@ -239,6 +244,7 @@ impl<const D: usize> Default for Scene<D> {
             walls: Vec::new(),
             periodic: None,
             sensors: Vec::new(),
+            moving_walls: Vec::new(),
         }
     }
 }
@@ -466,6 +472,7 @@ impl<const D: usize> Scene<D> {
         for (i, b) in self.bodies.iter().enumerate() {
             b.check_fields(i, &self.settings, self.periodic.is_some())?;
         }
+        self.validate_moving_walls()?;
         self.validate_resolution()?;
         if let Some((first, second)) = self.first_duplicate_id() {
             return Err(SceneError::DuplicateId {
@@ -563,6 +570,52 @@ impl<const D: usize> Scene<D> {
             return unsupported(
                 "gravity with segment walls in 3D is not supported yet; use planes",
             );
+        }
+        Ok(())
+    }
+
+    /// Moving walls: finite, non-degenerate, a finite velocity; not in periodic scenes, nor
+    /// with growing radii, nor (under gravity) 3D segments; no body crossing one at the start.
+    fn validate_moving_walls(&self) -> Result<(), SceneError> {
+        let first = self.walls.len();
+        for (k, m) in self.moving_walls.iter().enumerate() {
+            let field = format!("moving_walls[{k}]");
+            let unsupported = |why: &str| {
+                Err(SceneError::Unsupported {
+                    field: field.clone(),
+                    why: why.into(),
+                })
+            };
+            if self.periodic.is_some() {
+                return unsupported("a periodic scene has no walls, moving or not");
+            }
+            if self.settings.growth.is_some() {
+                return unsupported("moving walls cannot be combined with settings.growth yet");
+            }
+            if D == 3 && self.settings.gravity.is_some() && matches!(m.wall, Wall::Segment { .. }) {
+                return unsupported(
+                    "gravity with segment walls in 3D is not supported yet; use planes",
+                );
+            }
+            validate_wall(first + k, &m.wall).map_err(|e| match e {
+                SceneError::NonFinite(_) => SceneError::NonFinite(field.clone()),
+                SceneError::DegenerateWall { why, .. } => SceneError::Field {
+                    path: field.clone(),
+                    message: format!("degenerate wall ({why})"),
+                },
+                other => other,
+            })?;
+            if !m.velocity.is_finite() {
+                return Err(SceneError::NonFinite(format!("{field}.velocity")));
+            }
+            for (i, b) in self.bodies.iter().enumerate() {
+                if wall_clearance(&m.wall, b.pos) < b.radius {
+                    return Err(SceneError::CrossesWall {
+                        body: self.name(i),
+                        wall: first + k,
+                    });
+                }
+            }
         }
         Ok(())
     }
@@ -793,6 +846,8 @@ struct SceneFile<const D: usize> {
     periodic: Option<Vector<D>>,
     #[serde(default)]
     sensors: Vec<Sensor<D>>,
+    #[serde(default)]
+    moving_walls: Vec<MovingWall<D>>,
 }
 
 fn parse_typed<const D: usize>(text: &str) -> Result<Scene<D>, SceneError> {
@@ -809,6 +864,7 @@ fn parse_typed<const D: usize>(text: &str) -> Result<Scene<D>, SceneError> {
         walls: f.walls,
         periodic: f.periodic,
         sensors: f.sensors,
+        moving_walls: f.moving_walls,
     })
 }
 

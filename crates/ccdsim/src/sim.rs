@@ -4,6 +4,7 @@ use crate::event::{Event, EventKind};
 use crate::finder::{make_finder, Finder, FinderError, FinderOptions};
 use crate::geom::Vector;
 use crate::halt::{beyond_range, unresolved, Halt, ResolutionGuard};
+use crate::moving_wall_tracker::MovingWallTracker;
 use crate::observables::{observables, Observables};
 use crate::periodic::wrap_point;
 use crate::resolve::{resolve_body_body_contact, resolve_body_wall, resolve_exit};
@@ -117,6 +118,9 @@ pub struct Simulation<const D: usize> {
     /// The largest radius a body added to a vacant slot may have without the finder being
     /// re-initialised (see [`body_slots::sized_radius`]).
     sized_radius: f64,
+    /// Each body's next contact with a moving wall, if the world has moving walls (see
+    /// [`crate::moving_wall`]).
+    moving: Option<MovingWallTracker>,
 }
 
 impl<const D: usize> Simulation<D> {
@@ -150,7 +154,9 @@ impl<const D: usize> Simulation<D> {
         let thermostat = world
             .thermostat()
             .map(|th| ResetClock::new(th, world.len(), world.now()));
+        let moving = (world.moving_wall_count() > 0).then(|| MovingWallTracker::new(&world));
         Ok(Simulation {
+            moving,
             thermostat,
             images,
             start_time: world.now(),
@@ -271,7 +277,12 @@ impl<const D: usize> Simulation<D> {
         if self.pending.is_none() {
             // Finders return finite events only (`finite_event`); the two halts are the cold
             // paths.
-            let answer = match self.finder.next_event(&self.world) {
+            let found = self.finder.next_event(&self.world);
+            let found = match &mut self.moving {
+                Some(m) => Event::earliest(found, m.next_event()),
+                None => found,
+            };
+            let answer = match found {
                 Some(e) if self.idle.is_some_and(|idle| idle == e) => {
                     self.halt = Some(Halt::Resting {
                         time: e.time,
@@ -318,9 +329,21 @@ impl<const D: usize> Simulation<D> {
         }
     }
 
-    /// True for a box exit (a wall event naming a face after the walls).
+    /// True for a box exit (a wall event naming a face after the walls, static and moving).
     fn is_exit(&self, e: &Event) -> bool {
-        e.kind == EventKind::Wall && e.b as usize >= self.world.walls().len()
+        e.kind == EventKind::Wall
+            && e.b as usize >= self.world.walls().len() + self.world.moving_wall_count()
+    }
+
+    /// The stored states of `bodies` changed: the finder and the moving walls' queue take
+    /// them in.
+    fn bodies_changed(&mut self, bodies: &[usize]) {
+        self.finder.update(&self.world, bodies);
+        if let Some(m) = &mut self.moving {
+            for &i in bodies {
+                m.body_changed(&self.world, i);
+            }
+        }
     }
 
     /// Applies a box exit: the body re-enters through the opposite face; the current time
@@ -333,7 +356,7 @@ impl<const D: usize> Simulation<D> {
         // `resolve_exit` moved the body back by one period through face `face`.
         let image = &mut self.images[e.a as usize][face / 2];
         *image += if face % 2 == 1 { 1 } else { -1 };
-        self.finder.update(&self.world, &[e.a as usize]);
+        self.bodies_changed(&[e.a as usize]);
         self.stats.exits += 1;
     }
 
@@ -391,7 +414,7 @@ impl<const D: usize> Simulation<D> {
                 // `r_ab · Δv_a · m_a` without taking the image a second time.
                 let r = -contact.separation;
                 self.stats.virial += r.dot(w.velocity(a) - before) * w.mass(a);
-                self.finder.update(&self.world, &[a, b]);
+                self.bodies_changed(&[a, b]);
                 let w = &self.world;
                 Collision {
                     event: e,
@@ -413,7 +436,7 @@ impl<const D: usize> Simulation<D> {
                     self.idle = Some(e);
                 }
                 self.stats.wall_collisions += 1;
-                self.finder.update(&self.world, &[a]);
+                self.bodies_changed(&[a]);
                 let w = &self.world;
                 Collision {
                     event: e,
@@ -558,6 +581,9 @@ impl<const D: usize> Simulation<D> {
     /// After a change of every body: the finder and the resolution guard start afresh.
     fn rebuild(&mut self) -> Result<(), SimError> {
         self.finder.init(&self.world)?;
+        if let Some(m) = &mut self.moving {
+            m.walls_changed(&self.world);
+        }
         self.sized_radius = body_slots::sized_radius(&self.world);
         if let Some(s) = &mut self.sensors {
             for i in 0..self.world.len() {
@@ -586,7 +612,7 @@ impl<const D: usize> Simulation<D> {
         self.guard.add_energy(added);
         let p = self.world.position_at(i, time);
         self.world.set_state(i, p, reset.velocity, time);
-        self.finder.update(&self.world, &[i]);
+        self.bodies_changed(&[i]);
         self.sensors_changed(i);
         // The world changed: an earlier halt may no longer hold.
         self.halt = None;
@@ -752,7 +778,7 @@ impl<const D: usize> Simulation<D> {
     /// the sensors take it in, and what was found before (the next event, a halt, a resting
     /// contact) no longer holds.
     fn edited(&mut self, i: usize) {
-        self.finder.update(&self.world, &[i]);
+        self.bodies_changed(&[i]);
         self.sensors_changed(i);
         self.pending = None;
         self.halt = None;
@@ -822,9 +848,9 @@ impl<const D: usize> Simulation<D> {
             return None;
         }
         let walls = self.world.walls();
-        if let Some(w) = walls
-            .iter()
-            .position(|w| crate::wall::wall_clearance(w, pos) < r)
+        let every_wall = walls.len() + self.world.moving_wall_count();
+        if let Some(w) = (0..every_wall)
+            .find(|&w| crate::wall::wall_clearance(&self.world.wall_at(w, t), pos) < r)
         {
             return Some(format!("{what} at {:?} would cross wall {w}", pos.0));
         }
@@ -845,6 +871,58 @@ impl<const D: usize> Simulation<D> {
             // The stored position is now the wrapped one: its image is the whole offset.
             self.images[i] = image;
         }
+    }
+
+    /// Gives moving wall `k` (wall `walls().len() + k` in events, see
+    /// [`crate::moving_wall`]) the velocity `vel`, m/s, from the current time on: a game's
+    /// paddle steered each frame, a piston started or stopped. The wall stays where it is now;
+    /// bodies it then meets bounce off it exactly, with every finder. O(n · moving walls):
+    /// every body's next contact with a moving wall is computed anew (the finder is not
+    /// touched). Recorded as an edit when the journal is on ([`Simulation::record_edits`]).
+    ///
+    /// ```
+    /// use ccdsim::{BodySpec, MovingWall, Scene, Simulation, Vector, Wall};
+    /// let scene = Scene::<2> {
+    ///     bodies: vec![BodySpec::new(Vector([0.0, 5.0]), Vector::ZERO, 0.5)],
+    ///     moving_walls: vec![MovingWall {
+    ///         wall: Wall::Plane { point: Vector([0.0, 0.0]), normal: Vector([0.0, 1.0]) },
+    ///         velocity: Vector::ZERO,
+    ///     }],
+    ///     ..Scene::default()
+    /// };
+    /// let mut sim = Simulation::new(&scene, "cells").unwrap();
+    /// sim.set_wall_velocity(0, Vector([0.0, 1.0])).unwrap(); // the floor rises at 1 m/s
+    /// let hit = sim.step_event().unwrap();
+    /// assert_eq!((hit.event.time, hit.event.b), (4.5, 0)); // wall 0: the first moving wall
+    /// assert_eq!(hit.vel[0], Vector([0.0, 2.0])); // off a wall of infinite mass
+    /// ```
+    pub fn set_wall_velocity(&mut self, k: usize, vel: Vector<D>) -> Result<(), SimError> {
+        let count = self.world.moving_wall_count();
+        if k >= count {
+            return Err(SimError::Input(format!(
+                "moving wall {k} does not exist ({count} moving walls)"
+            )));
+        }
+        if !vel.is_finite() {
+            return Err(SimError::Input(format!(
+                "velocity of moving wall {k} is not finite"
+            )));
+        }
+        let t = self.world.now();
+        self.world.set_wall_velocity(k, vel, t);
+        if let Some(m) = &mut self.moving {
+            m.walls_changed(&self.world);
+        }
+        let motion = self.world.wall_motion(k);
+        self.journal(crate::edit::Edit::WallMotion {
+            wall: k,
+            offset: motion.offset,
+            vel,
+        });
+        self.pending = None;
+        self.halt = None;
+        self.idle = None;
+        Ok(())
     }
 
     /// Moves body `i` to `pos` at the current time, keeping its velocity (a game's teleport

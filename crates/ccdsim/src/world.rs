@@ -13,6 +13,7 @@ use crate::collision_filter::CollisionFilter;
 use crate::geom::Vector;
 use crate::growth::GrowthLaw;
 use crate::laws::Laws;
+use crate::moving_wall::{translated, WallMotion};
 use crate::narrow::Motion;
 use crate::scene::{BodySpec, Scene, SceneError};
 use crate::wall::Wall;
@@ -43,6 +44,10 @@ pub struct World<const D: usize> {
     bodies: Vec<Body<D>>,
     id: Vec<u64>,
     walls: Vec<Wall<D>>,
+    /// The moving walls' geometry at the scene's start (see [`crate::moving_wall`]).
+    moving_walls: Vec<Wall<D>>,
+    /// Where each moving wall is and how it moves.
+    wall_motions: Vec<WallMotion<D>>,
     periodic: Option<Vector<D>>,
     restitution: f64,
     /// Per-body restitution, by body index; empty when every body has the scene's.
@@ -89,6 +94,16 @@ impl<const D: usize> World<D> {
                 .collect(),
             id: (0..n).map(|i| scene.id_of(i)).collect(),
             walls: scene.walls.clone(),
+            moving_walls: scene.moving_walls.iter().map(|m| m.wall).collect(),
+            wall_motions: scene
+                .moving_walls
+                .iter()
+                .map(|m| WallMotion {
+                    offset: Vector::ZERO,
+                    velocity: m.velocity,
+                    time: scene.start_time,
+                })
+                .collect(),
             periodic: scene.periodic,
             restitution: scene.settings.restitution,
             restitutions: if scene.bodies.iter().any(|b| b.restitution.is_some()) {
@@ -521,6 +536,53 @@ impl<const D: usize> World<D> {
     #[must_use]
     pub fn walls(&self) -> &[Wall<D>] {
         &self.walls
+    }
+
+    /// Number of moving walls (see [`crate::moving_wall`]); moving wall `k` is wall
+    /// `walls().len() + k` in events.
+    #[must_use]
+    pub fn moving_wall_count(&self) -> usize {
+        self.moving_walls.len()
+    }
+
+    /// Moving wall `k`'s geometry at the scene's start time.
+    #[must_use]
+    pub fn moving_wall_base(&self, k: usize) -> Wall<D> {
+        self.moving_walls[k]
+    }
+
+    /// How moving wall `k` moves now.
+    #[must_use]
+    pub fn wall_motion(&self, k: usize) -> WallMotion<D> {
+        self.wall_motions[k]
+    }
+
+    /// Wall `w` (static, or moving when `w ≥ walls().len()`) where it is at time `t`.
+    #[must_use]
+    pub fn wall_at(&self, w: usize, t: f64) -> Wall<D> {
+        match w.checked_sub(self.walls.len()) {
+            None => self.walls[w],
+            Some(k) => translated(&self.moving_walls[k], self.wall_motions[k].offset_at(t)),
+        }
+    }
+
+    /// Wall `w`'s velocity, m/s: zero for a static wall.
+    #[must_use]
+    pub fn wall_velocity(&self, w: usize) -> Vector<D> {
+        match w.checked_sub(self.walls.len()) {
+            None => Vector::ZERO,
+            Some(k) => self.wall_motions[k].velocity,
+        }
+    }
+
+    /// Moving wall `k` translates at `velocity` from time `t` on (where it is then stays).
+    pub(crate) fn set_wall_velocity(&mut self, k: usize, velocity: Vector<D>, t: f64) {
+        let m = &mut self.wall_motions[k];
+        *m = WallMotion {
+            offset: m.offset_at(t),
+            velocity,
+            time: t,
+        };
     }
 
     /// The sides of the periodic box, for periodic worlds (see [`crate::periodic`]).

@@ -77,8 +77,15 @@ pub struct DiscreteStepper<const D: usize> {
 }
 
 impl<const D: usize> DiscreteStepper<D> {
-    /// A stepper at the scene's start, with miss counting off.
+    /// A stepper at the scene's start, with miss counting off. Scenes with moving walls are
+    /// refused: the stepper knows static walls only.
     pub fn new(scene: &Scene<D>) -> Result<Self, SceneError> {
+        if !scene.moving_walls.is_empty() {
+            return Err(SceneError::Unsupported {
+                field: "moving_walls".into(),
+                why: "the discrete stepper has static walls only".into(),
+            });
+        }
         let world = World::from_scene(scene)?;
         let walls = world.walls().to_vec();
         let home = (0..world.len())

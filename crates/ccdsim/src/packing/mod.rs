@@ -257,6 +257,7 @@ pub fn compress<const D: usize>(
             walls: scene.walls.clone(),
             periodic: scene.periodic,
             sensors: scene.sensors.clone(),
+            moving_walls: scene.moving_walls.clone(),
         },
         packing_fraction: packing_fraction(world, sim.time()).unwrap_or(0.0),
         reduced_pressure,

@@ -198,6 +198,11 @@ pub fn export_jsonl<R: Read, W: Write, const D: usize>(
                         line.kind = "filter";
                         (line.group, line.mask) = (Some(filter.group), Some(filter.mask));
                     }
+                    Edit::WallMotion { wall, .. } => {
+                        // Named as wall events name it: after the static walls.
+                        line.kind = "wall_velocity";
+                        line.a = (scene.walls.len() + wall) as u64;
+                    }
                 }
             }
         }

@@ -45,6 +45,10 @@
 //! collision filters (`b` ≠ 0, see [`crate::edit`]): bodies added may fill slots past the
 //! scene's. Every steered run file is written in it; version 8 files still read.
 //!
+//! Version 10 is version 9 for scenes with moving walls (`moving_walls` in the header, see
+//! [`crate::moving_wall`]), steered or not: wall events may name a moving wall (`b` from
+//! the number of static walls on), and edit records of code 5 give one a new velocity.
+//!
 //! A record is: tag `u8` (1 body event, 2 wall event, 3 end of run, 4 reset, 5 edit), `a: u32`, `b: u32`,
 //! `t: f64`, then for two body slots the position at `t` and the velocity after the event
 //! (`D` `f64`s each; the second slot is zero for wall events and the end record), then an
@@ -80,13 +84,17 @@ pub const VERSION_EDITS: u32 = 8;
 /// Format version of steered run files whose edits may add and remove bodies and change
 /// collision filters.
 pub const VERSION_SLOTS: u32 = 9;
+/// Format version of run files of scenes with moving walls.
+pub const VERSION_MOVING_WALLS: u32 = 10;
 /// The newest format version this build reads.
-pub const VERSION_NEWEST: u32 = VERSION_SLOTS;
+pub const VERSION_NEWEST: u32 = VERSION_MOVING_WALLS;
 
 /// The format version a run of `scene` is written in.
 #[must_use]
 pub fn version_for<const D: usize>(scene: &crate::scene::Scene<D>) -> u32 {
-    if !scene.sensors.is_empty() {
+    if !scene.moving_walls.is_empty() {
+        VERSION_MOVING_WALLS
+    } else if !scene.sensors.is_empty() {
         VERSION_SENSORS
     } else if scene.bodies.iter().any(crate::scene::BodySpec::is_filtered) {
         VERSION_FILTERS

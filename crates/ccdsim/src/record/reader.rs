@@ -2,7 +2,8 @@
 
 use super::{
     fnv1a, record_len, RecordError, RunRecord, MAGIC, PREAMBLE_LEN, TAG_BODY, TAG_EDIT, TAG_END,
-    TAG_RESET, TAG_WALL, VERSION, VERSION_EDITS, VERSION_NEWEST, VERSION_SLOTS,
+    TAG_RESET, TAG_WALL, VERSION, VERSION_EDITS, VERSION_MOVING_WALLS, VERSION_NEWEST,
+    VERSION_SLOTS,
 };
 use crate::event::Event;
 use crate::geom::Vector;
@@ -313,9 +314,10 @@ impl<R: Read, const D: usize> RunReader<R, D> {
 
     fn check_indices(&self, rec: RunRecord<D>) -> Result<RunRecord<D>, String> {
         if let RunRecord::Event(c) = &rec {
+            let moving = self.scene.moving_walls.len() as u32;
             let (mut n, w) = (
                 self.scene.bodies.len() as u32,
-                self.scene.walls.len() as u32,
+                self.scene.walls.len() as u32 + moving,
             );
             if self.version >= VERSION_SLOTS {
                 // Bodies added during the run fill slots past the scene's (see
@@ -338,8 +340,16 @@ impl<R: Read, const D: usize> RunReader<R, D> {
                             self.version
                         ));
                     }
+                    if crate::edit::Edit::moves_a_wall(c) && c.event.a >= moving {
+                        return Err(format!(
+                            "an edit of moving wall {} in a scene of {moving}",
+                            c.event.a
+                        ));
+                    }
                     if self.version < VERSION_SLOTS {
                         1
+                    } else if self.version < VERSION_MOVING_WALLS {
+                        crate::edit::EDIT_CODES_SLOTS
                     } else {
                         crate::edit::EDIT_CODES
                     }

@@ -65,7 +65,7 @@ impl<W: Write, const D: usize> RunWriter<W, D> {
     }
 
     /// A writer for a run a program steers: like [`RunWriter::new`], but the file is format
-    /// version 9 and takes edit records ([`crate::EventKind::Edit`], from
+    /// version 9 (10 with moving walls) and takes edit records ([`crate::EventKind::Edit`], from
     /// [`crate::Simulation::take_edits`]) between the collisions.
     pub fn new_steered(out: W, name: String, scene: &Scene<D>) -> Result<Self, RecordError> {
         Self::open(out, name, scene, true)
@@ -73,7 +73,7 @@ impl<W: Write, const D: usize> RunWriter<W, D> {
 
     fn open(out: W, name: String, scene: &Scene<D>, steered: bool) -> Result<Self, RecordError> {
         let version = if steered {
-            VERSION_SLOTS
+            version_for(scene).max(VERSION_SLOTS)
         } else {
             version_for(scene)
         };

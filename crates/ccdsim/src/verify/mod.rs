@@ -31,6 +31,7 @@
 
 mod closest;
 mod falling;
+mod moving_walls;
 mod proximity;
 mod slots;
 
@@ -82,6 +83,10 @@ pub struct VerifyReport {
     /// Energy the edits added (kinetic plus, under gravity, potential), joules: the run's
     /// energy drift, less this, is what its collisions changed.
     pub edit_energy: f64,
+    /// Work the moving walls did on the bodies at their collisions, joules (see
+    /// [`crate::moving_wall`]): the run's energy drift, less this and the edits' energy, is
+    /// what its other collisions changed.
+    pub wall_work: f64,
     /// Largest overlap seen (relative to the contact distance), at events or in between.
     pub max_overlap: f64,
     /// Kinetic energy at the start, joules.
@@ -117,6 +122,9 @@ pub struct Verifier<const D: usize> {
     radius: Vec<f64>,
     mass: Vec<f64>,
     walls: Vec<Wall<D>>,
+    /// The moving walls' geometry at the start, and how each moves now.
+    moving: Vec<Wall<D>>,
+    wall_motion: Vec<crate::moving_wall::WallMotion<D>>,
     period: Option<Vector<D>>,
     restitution: f64,
     /// Which bodies are kinematic (infinite mass, straight lines, no walls, no other
@@ -201,6 +209,16 @@ impl<const D: usize> Verifier<D> {
             radius,
             mass,
             walls: scene.walls.clone(),
+            moving: scene.moving_walls.iter().map(|m| m.wall).collect(),
+            wall_motion: scene
+                .moving_walls
+                .iter()
+                .map(|m| crate::moving_wall::WallMotion {
+                    offset: Vector::ZERO,
+                    velocity: m.velocity,
+                    time: scene.start_time,
+                })
+                .collect(),
             period: scene.periodic,
             restitution: scene.settings.restitution,
             kinematic,
@@ -270,6 +288,9 @@ impl<const D: usize> Verifier<D> {
         let t = c.event.time;
         if self.pending_add.is_some() || crate::edit::Edit::starts_add(c) {
             return self.check_add(c);
+        }
+        if crate::edit::Edit::moves_a_wall(c) {
+            return self.check_wall_motion(c);
         }
         if !t.is_finite() || t < self.last_time {
             return Err(self.fail(
@@ -467,8 +488,8 @@ impl<const D: usize> Verifier<D> {
             }
         }
         if !self.is_kinematic(i) {
-            for (w, wall) in self.walls.iter().enumerate() {
-                let clearance = wall_clearance(wall, pos);
+            for w in 0..self.wall_count() {
+                let clearance = wall_clearance(&self.wall_at(w, t).0, pos);
                 if (r - clearance) / r > OVERLAP_TOLERANCE {
                     return Err(self.fail(
                         t,
@@ -494,8 +515,12 @@ impl<const D: usize> Verifier<D> {
         if self.is_kinematic(i) {
             return Err(self.fail(t, format!("kinematic body {i} hits wall {w}")));
         }
+        if w >= self.wall_count() {
+            return Err(self.fail(t, format!("body {i} hits wall {w}, which does not exist")));
+        }
+        let (wall, wall_velocity) = self.wall_at(w, t);
         let r = self.radius_at(i, t);
-        let gap = (wall_clearance(&self.walls[w], c.pos[0]) - r) / r;
+        let gap = (wall_clearance(&wall, c.pos[0]) - r) / r;
         if gap > OVERLAP_TOLERANCE {
             return Err(self.fail(
                 t,
@@ -510,6 +535,16 @@ impl<const D: usize> Verifier<D> {
         let before = self.vel_of(i, t);
         let e0 = 0.5 * m * before.norm_sq();
         let e1 = 0.5 * m * c.vel[0].norm_sq();
+        if w >= self.walls.len() {
+            // In the moving wall's frame the collision is a static wall's.
+            let e0_there = 0.5 * m * (before - wall_velocity).norm_sq();
+            let e1_there = 0.5 * m * (c.vel[0] - wall_velocity).norm_sq();
+            self.check_energy(t, e0_there, e1_there, &format!("body {i} at wall {w}"))?;
+            self.report.wall_work += e1 - e0;
+            self.report.wall_collisions += 1;
+            self.report.kinetic_energy_end += e1 - e0;
+            return Ok(());
+        }
         match (self.growth, wall_normal(&self.walls[w], c.pos[0])) {
             (Some(law), Some(n)) => {
                 let grow = law.speed(self.radius[i]);
@@ -637,10 +672,10 @@ impl<const D: usize> Verifier<D> {
     /// The largest overlap of body `i` with wall `w` (relative to its radius) from its
     /// reference time to `t`, and when.
     fn wall_overlap(&self, i: usize, w: usize, t: f64) -> (f64, f64) {
-        let mi = self.motion[i];
+        let (mi, wall) = self.motion_against(i, w);
         let (d, at) = match &self.g(i) {
-            Some(g) => closest_to_wall_falling(&self.walls[w], &mi, t, g),
-            None => closest_to_wall(&self.walls[w], &mi, t, self.growth_speed(i)),
+            Some(g) => closest_to_wall_falling(&wall, &mi, t, g),
+            None => closest_to_wall(&wall, &mi, t, self.growth_speed(i)),
         };
         let r0 = self.radius_at(i, mi.time);
         (((r0 - d) / self.radius_at(i, at)), at)
@@ -664,7 +699,7 @@ impl<const D: usize> Verifier<D> {
             }
             self.report.max_overlap = self.report.max_overlap.max(overlap);
         }
-        for w in 0..self.walls.len() {
+        for w in 0..self.wall_count() {
             if self.is_kinematic(i) {
                 break;
             }
@@ -737,7 +772,7 @@ impl<const D: usize> Verifier<D> {
         if self.is_kinematic(i) {
             return Ok(());
         }
-        for w in 0..self.walls.len() {
+        for w in 0..self.wall_count() {
             let (overlap, at) = self.wall_overlap(i, w, t);
             if overlap > OVERLAP_TOLERANCE {
                 return Err(self.fail(

@@ -54,6 +54,7 @@ impl<const D: usize> Verifier<D> {
                 self.check_edit(c, i)
             }
             Edit::Add { .. } => unreachable!("added bodies go to check_add"),
+            Edit::WallMotion { .. } => unreachable!("wall edits go to check_wall_motion"),
         }
     }
 
