@@ -315,6 +315,24 @@ class Simulation:
         bodies collide."""
         self._sim.set_collision_filter(int(i), int(group), int(mask))
 
+    def set_wall_velocity(self, k: int, v: Sequence[float]) -> None:
+        """Gives moving wall ``k`` (the scene's ``moving_walls[k]``, wall ``len(walls) + k`` in
+        events) velocity ``v`` from the current time on: a paddle steered each frame, a piston
+        started or stopped. The wall stays where it is now; bodies bounce off it exactly.
+
+        >>> sim = Simulation({"dim": 2, "bodies": [{"pos": [0, 5], "vel": [0, 0], "radius": 0.5}],
+        ...                   "moving_walls": [{"point": [0, 0], "normal": [0, 1]}]})
+        >>> sim.set_wall_velocity(0, [0, 1])
+        >>> e = sim.step()
+        >>> float(e["t"]), int(e["b"]), sim.wall_offset(0)
+        (4.5, 0, [0.0, 4.5])
+        """
+        self._sim.set_wall_velocity(int(k), [float(x) for x in v])
+
+    def wall_offset(self, k: int) -> list:
+        """How far moving wall ``k`` has moved from where the scene put it, now (metres)."""
+        return self._sim.wall_offset(int(k))
+
     def add_body(
         self,
         pos: Sequence[float],

@@ -230,3 +230,26 @@ def test_sensors_report_enters_and_leaves():
     assert ev["enter"].tolist() == [True, False]
     assert ev["body"].tolist() == [0, 0] and ev["sensor"].tolist() == [0, 0]
     assert len(sim.take_sensor_events()) == 0
+
+
+def test_moving_walls_are_steered_and_met_exactly():
+    scene = {
+        "dim": 2,
+        "bodies": [{"pos": [0.0, 5.0], "vel": [0.0, 0.0], "radius": 0.5}],
+        "walls": [{"point": [0.0, 10.0], "normal": [0.0, -1.0]}],
+        "moving_walls": [{"point": [0.0, 0.0], "normal": [0.0, 1.0]}],
+    }
+    sim = ccdsim.Simulation(scene, finder="cells")
+    sim.set_wall_velocity(0, [0.0, 1.0])  # the floor rises at 1 m/s
+    ev = sim.step()
+    # Moving wall 0 is wall 1 in events: after the scene's one static wall.
+    assert (float(ev["t"]), int(ev["kind"]), int(ev["b"])) == (4.5, ccdsim.WALL, 1)
+    np.testing.assert_array_equal(ev["vel"][0], [0.0, 2.0])
+    assert sim.wall_offset(0) == [0.0, 4.5]
+    sim.set_wall_velocity(0, [0.0, 0.0])
+    sim.run_until(10.0)
+    assert sim.wall_offset(0) == [0.0, 4.5]
+    with pytest.raises(ValueError, match="moving wall 3 does not exist"):
+        sim.set_wall_velocity(3, [0.0, 0.0])
+    with pytest.raises(ValueError, match="a vector of 2 numbers"):
+        sim.set_wall_velocity(0, [0.0])

@@ -472,3 +472,30 @@ fn gravity_scenes_from_gen_run_and_verify_alike_with_every_finder() {
         assert!(err.contains(culprit), "{args:?}: {err}");
     }
 }
+
+#[test]
+fn a_piston_heats_the_gas_by_the_work_it_does_and_verify_agrees() {
+    let scene = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/piston.json");
+    let rec = tmp("piston.ccd");
+    let out = run_ok(
+        ccdsim()
+            .arg("run")
+            .arg(&scene)
+            .args(["--until", "20", "--json", "--record"])
+            .arg(&rec),
+    );
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let (k0, k1) = (
+        v["kinetic_energy_start"].as_f64().unwrap(),
+        v["kinetic_energy_end"].as_f64().unwrap(),
+    );
+    let work = v["wall_work"].as_f64().unwrap();
+    assert!(work > k0, "a piston closing at 0.5 m/s heats the gas: {v}");
+    assert!((k1 - k0 - work).abs() < 1e-9 * k1, "{v}");
+    let out = run_ok(ccdsim().arg("verify").arg(&rec));
+    let text = String::from_utf8(out.stdout).unwrap();
+    assert!(
+        text.starts_with("OK ") && text.contains("moving walls' work"),
+        "{text}"
+    );
+}

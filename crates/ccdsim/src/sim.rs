@@ -58,6 +58,9 @@ pub struct Stats {
     pub virial: f64,
     /// Thermostat resets applied (see [`crate::thermostat`]); counted in `events` too.
     pub resets: u64,
+    /// Work the moving walls did on the bodies at their collisions, joules (see
+    /// [`crate::moving_wall`]); 0 without moving walls.
+    pub wall_work: f64,
     /// Periodic worlds: box exits applied (a body leaving through a face and re-entering
     /// through the opposite one). Not events: never returned, recorded or counted above.
     pub exits: u64,
@@ -430,7 +433,13 @@ impl<const D: usize> Simulation<D> {
                         self.world.velocity_at(a, e.time),
                     )
                 });
+                let moving = b >= self.world.walls().len();
+                let speed_before = moving.then(|| self.world.velocity_at(a, e.time).norm_sq());
                 overlap = resolve_body_wall(&mut self.world, a, b, e.time);
+                if let Some(v2) = speed_before {
+                    let w = &self.world;
+                    self.stats.wall_work += 0.5 * w.mass(a) * (w.velocity(a).norm_sq() - v2);
+                }
                 if before == Some((self.world.position(a), self.world.velocity(a))) {
                     // Nothing changed: the same event would come again (see `Halt::Resting`).
                     self.idle = Some(e);

@@ -106,6 +106,9 @@ struct Summary {
     sensors: Vec<SensorSummary>,
     /// The sensor log written with --sensor-log, or null.
     sensor_log: Option<String>,
+    /// Work the moving walls did on the bodies, joules (0 without moving walls): with
+    /// elastic collisions, the energy at the end less this is the energy at the start.
+    wall_work: f64,
 }
 
 /// One sensor's counts in the `--json` summary.
@@ -377,6 +380,7 @@ fn simulate<const D: usize>(scene: &Scene<D>, args: &Args) -> Result<Summary> {
                 .collect()
         }),
         sensor_log: args.sensor_log.as_ref().map(|p| p.display().to_string()),
+        wall_work: stats.wall_work,
     })
 }
 
@@ -414,6 +418,12 @@ fn print_summary(s: &Summary, builtin: bool) {
         "kinetic energy {:.9e} -> {:.9e} J (relative drift {:.2e}); largest overlap {:.2e} of a contact distance",
         s.kinetic_energy_start, s.kinetic_energy_end, s.kinetic_energy_drift, s.max_overlap
     );
+    if s.wall_work != 0.0 {
+        println!(
+            "moving walls did {:.9e} J of work on the bodies (the drift above includes it)",
+            s.wall_work
+        );
+    }
     if s.potential_energy_start != 0.0 || s.potential_energy_end != 0.0 {
         println!(
             "under gravity: kinetic + potential energy {:.9e} -> {:.9e} J (relative drift {:.2e})",

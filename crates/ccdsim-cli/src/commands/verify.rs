@@ -76,9 +76,10 @@ fn check<R: Read, const D: usize>(
                     report.kinetic_energy_start,
                 )
             };
-            // A steered run's edits add energy of their own: the drift is the collisions'.
+            // A steered run's edits add energy of their own, and moving walls do work: the
+            // drift is the other collisions'.
             let drift = if scale > 0.0 {
-                (end_energy - start - report.edit_energy) / scale
+                (end_energy - start - report.edit_energy - report.wall_work) / scale
             } else {
                 0.0
             };
@@ -92,6 +93,9 @@ fn check<R: Read, const D: usize>(
                     ", {} edits adding {:.6e} J",
                     report.edits, report.edit_energy
                 );
+            }
+            if report.wall_work != 0.0 {
+                resets += &format!(", moving walls' work {:.6e} J", report.wall_work);
             }
             println!(
                 "OK {}: {} events ({} body-body, {} body-wall{resets}) up to t = {end}; largest overlap {:.2e}; {label} {:.2e}",
