@@ -280,11 +280,10 @@ impl<const D: usize> Simulation<D> {
         if self.pending.is_none() {
             // Finders return finite events only (`finite_event`); the two halts are the cold
             // paths.
-            let found = self.finder.next_event(&self.world);
-            let found = match &mut self.moving {
-                Some(m) => Event::earliest(found, m.next_event()),
-                None => found,
-            };
+            let mut found = self.finder.next_event(&self.world);
+            if self.moving.is_some() {
+                found = self.with_moving_walls(found);
+            }
             let answer = match found {
                 Some(e) if self.idle.is_some_and(|idle| idle == e) => {
                     self.halt = Some(Halt::Resting {
@@ -332,6 +331,16 @@ impl<const D: usize> Simulation<D> {
         }
     }
 
+    /// The earlier of the finder's event `found` and the first contact with a moving wall.
+    /// Out of line: most worlds have no moving walls, and the event loop stays as tight as
+    /// it was without them.
+    #[cold]
+    #[inline(never)]
+    fn with_moving_walls(&mut self, found: Option<Event>) -> Option<Event> {
+        let moving = self.moving.as_mut().and_then(MovingWallTracker::next_event);
+        Event::earliest(found, moving)
+    }
+
     /// True for a box exit (a wall event naming a face after the walls, static and moving).
     fn is_exit(&self, e: &Event) -> bool {
         e.kind == EventKind::Wall
@@ -340,8 +349,19 @@ impl<const D: usize> Simulation<D> {
 
     /// The stored states of `bodies` changed: the finder and the moving walls' queue take
     /// them in.
+    #[inline]
     fn bodies_changed(&mut self, bodies: &[usize]) {
         self.finder.update(&self.world, bodies);
+        if self.moving.is_some() {
+            self.moving_walls_see(bodies);
+        }
+    }
+
+    /// The moving walls' queue takes in the new states of `bodies` (out of line, as
+    /// [`Simulation::with_moving_walls`]).
+    #[cold]
+    #[inline(never)]
+    fn moving_walls_see(&mut self, bodies: &[usize]) {
         if let Some(m) = &mut self.moving {
             for &i in bodies {
                 m.body_changed(&self.world, i);
