@@ -349,3 +349,28 @@ fn bad_moving_walls_and_bad_steering_are_refused() {
     let hit = Simulation::new(&s, "bvh").unwrap().step_event().unwrap();
     assert_eq!((hit.event.time, hit.event.b), (1.5, 0));
 }
+
+#[test]
+fn a_ball_squeezed_by_a_piston_stops_the_run_with_a_reason_instead_of_hanging() {
+    // The gap closes to less than the ball's diameter: its bounces come ever faster, with
+    // ever more speed, until f64 no longer resolves them.
+    let scene = Scene::<2> {
+        bodies: vec![BodySpec::new(Vector([1.0, 0.0]), Vector([1.0, 0.0]), 0.5)],
+        walls: vec![Wall::Plane {
+            point: Vector([0.0, 0.0]),
+            normal: Vector([1.0, 0.0]),
+        }],
+        moving_walls: vec![plane([3.0, 0.0], [-1.0, 0.0], [-1.0, 0.0])],
+        ..Scene::default()
+    };
+    for finder in FINDERS {
+        let mut sim = Simulation::new(&scene, finder).unwrap();
+        let events = sim.run_until(10.0);
+        let halt = sim.halt().unwrap_or_else(|| panic!("[{finder}] no halt"));
+        assert!(sim.time() < 2.0, "[{finder}] {halt}: at {}", sim.time());
+        assert!(events > 100, "[{finder}] {events} events, {halt}");
+        // Opening the piston again lets the game go on.
+        sim.set_wall_velocity(0, Vector([1.0, 0.0])).unwrap();
+        assert!(sim.halt().is_none());
+    }
+}
