@@ -275,6 +275,16 @@ fn exports_name_moving_walls_as_wall_events_do() {
     let mut out = Vec::new();
     ccdsim::record::export_jsonl(&mut r, &mut out).unwrap();
     let text = String::from_utf8(out).unwrap();
+    let header: serde_json::Value = serde_json::from_str(text.lines().next().unwrap()).unwrap();
+    assert_eq!(header["version"], 10);
+    assert_eq!(
+        header["moving_walls"][1]["a"],
+        serde_json::json!([5.0, 2.0])
+    );
+    assert_eq!(
+        header["moving_walls"][0]["velocity"],
+        serde_json::json!([0.0, 0.0])
+    );
     let steer: Vec<serde_json::Value> = text
         .lines()
         .map(|l| serde_json::from_str::<serde_json::Value>(l).unwrap())

@@ -39,6 +39,10 @@ struct Header<'a, const D: usize> {
     /// Sensor regions, for scenes with sensors only.
     #[serde(skip_serializing_if = "<[_]>::is_empty")]
     sensors: &'a [crate::sensor::Sensor<D>],
+    /// Moving walls as the scene gives them (where they start, their velocity), for scenes
+    /// with moving walls only; wall events name moving wall `k` as `walls.len() + k`.
+    #[serde(skip_serializing_if = "<[_]>::is_empty")]
+    moving_walls: &'a [crate::moving_wall::MovingWall<D>],
 }
 
 #[derive(Serialize)]
@@ -124,6 +128,7 @@ pub fn export_jsonl<R: Read, W: Write, const D: usize>(
         thermostat: scene.settings.thermostat,
         gravity: scene.settings.gravity,
         sensors: &scene.sensors,
+        moving_walls: &scene.moving_walls,
     };
     serde_json::to_writer(&mut *out, &header).map_err(std::io::Error::from)?;
     out.write_all(b"\n")?;
