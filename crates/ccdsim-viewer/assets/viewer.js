@@ -10,6 +10,11 @@
 // (meta.slot_edits) fills slots past the scene's and leaves removed bodies' slots vacant.
 // A vacant slot has radius 0 and is not drawn. Snapshots of such a run carry every slot's
 // radius, id and kinematic flag (src/wire.rs), and edit events update them as they play.
+//
+// Moving walls (meta.moving_walls) are kept the same way: wall k is its scene geometry
+// translated by WM's offset + velocity·(t − time); snapshots carry every wall's (time,
+// offset, velocity) and edit events of code 5 restate one wall's (their `a` names the wall,
+// not a body).
 'use strict';
 
 (() => {
@@ -25,13 +30,15 @@
   const SLOWMO_WALL = 0.4; // slow motion starts this many wall seconds from an event
   const STATE_HEADER = 8; // f64 values before a snapshot's arrays (src/wire.rs)
   const SLOT_SECTION = 1; // opens a snapshot's slot section (src/wire.rs)
+  const WALL_SECTION = 2; // opens a snapshot's wall section (src/wire.rs)
   const EDIT = 3; // event kind of edits; their codes (b) as in crates/ccdsim/src/edit.rs:
-  const ADD = 1, ADD_ID = 2, REMOVE = 3;
+  const ADD = 1, ADD_ID = 2, REMOVE = 3, WALL_MOTION = 5;
 
   const S = {
     meta: null, D: 2, n: 0, stride: 12,
     radius: null, ids: null, idBucket: null, kin: null, scene: null,
     P: null, V: null, T0: null, G: null, flash: null, evTime: null,
+    walls: [], WM: new Float64Array(0), // moving walls: scene geometry; per wall time, offset, velocity
     time: 0, applied: 0, lastEvent: null,
     buf: { start: 0, count: 0, data: new Float64Array(0) },
     fetching: false, seekToken: 0, seekBusy: false, seekWanted: null,
@@ -79,7 +86,7 @@
     S.P.set(pos.subarray(0, m * D));
     S.V.set(vel.subarray(0, m * D));
     S.T0.fill(S.time);
-    loadSlots(ab, 8 * STATE_HEADER + 8 * n * D, n, m);
+    loadWalls(ab, loadSlots(ab, 8 * STATE_HEADER + 8 * n * D, n, m));
     S.lastEvent = h[4] >= 0 ? { t: h[5], kind: h[4], a: h[6], b: h[7] } : null;
     // Flashes of the events played before a jump mean nothing after it.
     S.flash.fill(-Infinity);
@@ -93,9 +100,10 @@
 
   // The slots' radii, ids and kinematic flags: the snapshot's slot section from byte `off`
   // when it has one (bodies were added or removed by then), the scene's otherwise. Slots past
-  // the snapshot's `n` hold no body yet.
+  // the snapshot's `n` hold no body yet. Returns the offset after the slot section.
   function loadSlots(ab, off, n, m) {
-    if (ab.byteLength >= off + 8 && new Float64Array(ab, off, 1)[0] === SLOT_SECTION) {
+    const has = ab.byteLength >= off + 8 && new Float64Array(ab, off, 1)[0] === SLOT_SECTION;
+    if (has) {
       const radius = new Float64Array(ab, off + 8, n);
       const ids = new Float64Array(ab, off + 8 + 8 * n, n);
       const flags = new Uint8Array(ab, off + 8 + 16 * n, n);
@@ -113,16 +121,30 @@
     }
     S.radius.fill(0, m);
     S.kin.fill(1, m);
+    return has ? off + 8 + 17 * n : off;
   }
+
+  // The moving walls' motions: the snapshot's wall section, which follows the slot section
+  // from the next multiple of 8 bytes on (a run with moving walls always has one).
+  function loadWalls(ab, off) {
+    off = Math.ceil(off / 8) * 8;
+    if (S.walls.length === 0 || ab.byteLength < off + 8 || new Float64Array(ab, off, 1)[0] !== WALL_SECTION) return;
+    S.WM.set(new Float64Array(ab, off + 8, S.WM.length));
+  }
+
+  // A moving wall's edit names a wall, not a body: nothing to highlight.
+  const namesBody = (e) => !(e.kind === EDIT && e.b === WALL_MOTION);
 
   // Remembers when each body last collided, so that a view paused at an event shows its pair
   // highlighted for as long as it stays there.
   function markEvent(e) {
+    if (!namesBody(e)) return;
     S.evTime[e.a] = e.t;
     if (e.kind === 0) S.evTime[e.b] = e.t;
   }
 
   function flashEvent(e) {
+    if (!namesBody(e)) return;
     const now = performance.now();
     S.flash[e.a] = now;
     if (e.kind === 0) S.flash[e.b] = now;
@@ -203,6 +225,13 @@
       const bits = new DataView(d.buffer, d.byteOffset).getBigUint64(8 * (o + 4 + 2 * D), true);
       S.ids[a] = Number(bits);
       S.idBucket[a] = Raster.idBucket(S.ids[a]);
+      return;
+    }
+    if (kind === EDIT && b === WALL_MOTION) {
+      // Moving wall a from t on: slot 0 holds its offset then and its new velocity.
+      const w = a * (1 + 2 * D);
+      S.WM[w] = t;
+      for (let k = 0; k < 2 * D; k++) S.WM[w + 1 + k] = d[o + 4 + k];
       return;
     }
     set(a, o + 4);
@@ -346,7 +375,24 @@
     return [w & 255, (w >>> 8) & 255, (w >>> 16) & 255];
   }
 
-  function drawWalls(cam, surf) {
+  // Moving wall k's displacement from its scene geometry at time t, into `out`.
+  function wallOffset(k, t, out) {
+    const D = S.D, w = k * (1 + 2 * D), dt = t - S.WM[w];
+    for (let j = 0; j < D; j++) out[j] = S.WM[w + 1 + j] + S.WM[w + 1 + D + j] * dt;
+    return out;
+  }
+
+  // Moving wall k where it is at time t: its scene geometry, translated.
+  function movingWallAt(k, t) {
+    const w = S.walls[k], off = wallOffset(k, t, [0, 0, 0]);
+    const at = (p) => p.map((x, j) => x + off[j]);
+    return w.a ? { a: at(w.a), b: at(w.b) } : { point: at(w.point), normal: w.normal };
+  }
+
+  // The static walls, and the moving walls where they are at time t. A 3D plane has no
+  // edges: static ones are shown by the wire box of the run's bounds, and a moving one also
+  // by the polygon where it cuts that box, so that it is seen to move.
+  function drawWalls(cam, surf, t) {
     const D = S.D, { bounds } = S.meta;
     const span = Math.hypot(...bounds.max.map((x, k) => x - bounds.min[k])) || 1;
     let planes = false;
@@ -354,15 +400,51 @@
       const p = cam.project(a[0], a[1], a[2]), q = cam.project(b[0], b[1], b[2]);
       surf.line(p[0], p[1], q[0], q[1], Raster.WALL_WORD, 2);
     };
-    for (const w of S.meta.walls) {
+    const draw = (w, moves) => {
       if (w.a) seg(w.a, w.b);
       else if (D === 2) {
         const len = Math.hypot(w.normal[0], w.normal[1]);
         const d = [(-w.normal[1] / len) * 10 * span, (w.normal[0] / len) * 10 * span];
         seg([w.point[0] - d[0], w.point[1] - d[1]], [w.point[0] + d[0], w.point[1] + d[1]]);
-      } else planes = true;
-    }
+      } else {
+        planes = true;
+        if (moves) {
+          const poly = planeSection(bounds, w.point, w.normal);
+          for (let j = 0; j < poly.length; j++) seg(poly[j], poly[(j + 1) % poly.length]);
+        }
+      }
+    };
+    for (const w of S.meta.walls) draw(w, false);
+    for (let k = 0; k < S.walls.length; k++) draw(movingWallAt(k, t), true);
     if (planes || (D === 3 && S.meta.walls.length === 0)) boxEdges(cam, surf, bounds.min, bounds.max, Raster.WALL_WORD);
+  }
+
+  // The corners of the polygon where a 3D plane cuts the box [min, max], in order around it
+  // (as src/render/draw.rs's plane_section); none when it misses the box or only touches it.
+  function planeSection({ min, max }, point, normal) {
+    const side = (p) => normal[0] * (p[0] - point[0]) + normal[1] * (p[1] - point[1]) + normal[2] * (p[2] - point[2]);
+    const corner = (c) => [0, 1, 2].map((k) => ((c >> k) & 1 ? max[k] : min[k]));
+    const pts = [];
+    for (let c = 0; c < 8; c++) {
+      for (let k = 0; k < 3; k++) {
+        if ((c >> k) & 1) continue;
+        const p = corner(c), q = corner(c | (1 << k)), sp = side(p), sq = side(q);
+        if (!((sp <= 0 && sq >= 0) || (sp >= 0 && sq <= 0))) continue;
+        const f = sp === sq ? 0 : sp / (sp - sq);
+        const x = p.map((v, j) => v + (q[j] - v) * f);
+        // A plane through a corner meets its three edges there: one point.
+        const tol = 1e-12 * (1 + Math.hypot(...x));
+        if (!pts.some((y) => Math.hypot(y[0] - x[0], y[1] - x[1], y[2] - x[2]) <= tol)) pts.push(x);
+      }
+    }
+    if (pts.length < 3) return [];
+    const c = [0, 1, 2].map((j) => pts.reduce((s, p) => s + p[j], 0) / pts.length);
+    const rel = (p) => p.map((v, j) => v - c[j]);
+    const dot = (a, b) => a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+    const u = pts.map(rel).reduce((a, b) => (Math.hypot(...b) > Math.hypot(...a) ? b : a));
+    const n = normal, v = [n[1] * u[2] - n[2] * u[1], n[2] * u[0] - n[0] * u[2], n[0] * u[1] - n[1] * u[0]];
+    const angle = (p) => Math.atan2(dot(rel(p), v), dot(rel(p), u));
+    return pts.sort((p, q) => angle(p) - angle(q));
   }
 
   // The scene's sensor regions as outlines, brighter while a body overlaps one (its centre
@@ -437,7 +519,7 @@
     const { n, D } = S, t = S.time, now = performance.now();
     const p = [0, 0, 0];
     surf.clear();
-    drawWalls(cam, surf);
+    drawWalls(cam, surf, t);
     drawSensors(cam, surf, t);
     const flashing = [];
     const lit = (i) => now - S.flash[i] < S.flashMs || (!S.playing && S.evTime[i] === t);
@@ -649,6 +731,13 @@
       S.n = meta.bodies;
       S.stride = 4 + 4 * meta.dim;
       S.G = meta.gravity || null;
+      // Before the first snapshot's wall section: at their scene geometry and velocity.
+      S.walls = meta.moving_walls || [];
+      S.WM = new Float64Array(S.walls.length * (1 + 2 * S.D));
+      S.walls.forEach((w, k) => {
+        S.WM[k * (1 + 2 * S.D)] = meta.start_time;
+        for (let j = 0; j < S.D; j++) S.WM[k * (1 + 2 * S.D) + 1 + S.D + j] = w.velocity[j];
+      });
       // Kinematic bodies (by slot) move in straight lines: gravity does not move them.
       const kin = new Uint8Array(S.n);
       for (const i of meta.kinematic || []) kin[i] = 1;
@@ -698,6 +787,20 @@
       const s = S.meta.sensors[k];
       const [x, y] = S.camera.project(s.center[0], s.center[1], S.D === 3 ? s.center[2] : 0);
       return { x: x / dpr(), y: y / dpr(), r: (s.radius * S.camera.scale) / dpr() };
+    },
+    // The world point p ([x, y] or [x, y, z], metres) in CSS pixels from the canvas's
+    // top-left corner.
+    onScreen(p) {
+      const [x, y] = S.camera.project(p[0], p[1], S.D === 3 ? p[2] : 0);
+      return { x: x / dpr(), y: y / dpr() };
+    },
+    // Moving wall k at the current time: its displacement from its scene geometry (metres),
+    // and its end points (a segment) or its point (a plane) in CSS pixels.
+    movingWall(k) {
+      const w = movingWallAt(k, S.time);
+      const offset = wallOffset(k, S.time, [0, 0, 0]).slice(0, S.D);
+      const on = window.ccdsim.onScreen;
+      return w.a ? { offset, a: on(w.a), b: on(w.b) } : { offset, point: on(w.point) };
     },
     // Body i at the current time, in CSS pixels from the canvas's top-left corner (r is 0 for
     // a vacant slot, which is not drawn).

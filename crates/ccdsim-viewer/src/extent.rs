@@ -1,5 +1,6 @@
 //! Where and how fast things go over a whole run, for framing views and colouring by speed.
 
+use ccdsim::moving_wall::translated;
 use ccdsim::{Aabb, Collision, EventKind, Scene, Vector, Wall};
 
 use crate::states::{edit_code, BodyStates};
@@ -10,7 +11,9 @@ pub struct Extent<const D: usize> {
     /// A box holding every body over the whole run (at the start or when added, at each of
     /// its collisions and edits, and at the end or when removed: motion is straight in
     /// between; under gravity, also at the vertices of the parabolas in between, per axis),
-    /// the segment walls and the offsets of axis-aligned planes, metres.
+    /// the segment walls and the offsets of axis-aligned planes, and the moving walls
+    /// likewise wherever they are at the start, at each of their edits and at the end
+    /// (they move straight in between), metres.
     pub bounds: Aabb<D>,
     /// The largest body speed at the start or after any collision or edit (under gravity, also just
     /// before each collision and at the end: a falling body's speed is largest at an end of
@@ -23,6 +26,14 @@ pub struct Extent<const D: usize> {
 pub(crate) struct ExtentBuilder<const D: usize> {
     extent: Extent<D>,
     gravity: Option<Vector<D>>,
+    /// The moving walls' scene geometry.
+    moving: Vec<Wall<D>>,
+    /// The box of the moving segments' places so far.
+    moving_segments: Aabb<D>,
+    /// Per axis, the span of the offsets of the moving planes normal to it so far (a box
+    /// that is empty along an axis no such plane is normal to). Kept apart from the bounds
+    /// because, like the static planes', they count only once there are bodies or segments.
+    moving_planes: Aabb<D>,
 }
 
 impl<const D: usize> ExtentBuilder<D> {
@@ -36,9 +47,35 @@ impl<const D: usize> ExtentBuilder<D> {
             extent.bounds = extent.bounds.union(Aabb::of_ball(b.pos, b.radius));
             extent.max_speed = extent.max_speed.max(b.vel.norm());
         }
-        ExtentBuilder {
+        let mut builder = ExtentBuilder {
             extent,
             gravity: scene.gravity(),
+            moving: scene.moving_walls.iter().map(|m| m.wall).collect(),
+            moving_segments: Aabb::EMPTY,
+            moving_planes: Aabb::EMPTY,
+        };
+        for k in 0..builder.moving.len() {
+            builder.add_moving_wall(k, Vector::ZERO);
+        }
+        builder
+    }
+
+    /// Takes in moving wall `k` displaced by `offset` from its scene geometry.
+    fn add_moving_wall(&mut self, k: usize, offset: Vector<D>) {
+        match translated(&self.moving[k], offset) {
+            Wall::Segment { a, b } => {
+                self.moving_segments = self.moving_segments.union(Aabb {
+                    min: a.min(b),
+                    max: a.max(b),
+                });
+            }
+            Wall::Plane { point, normal } => {
+                if let Some(k) = single_axis(&normal) {
+                    let span = &mut self.moving_planes;
+                    span.min[k] = span.min[k].min(point[k]);
+                    span.max[k] = span.max[k].max(point[k]);
+                }
+            }
         }
     }
 
@@ -87,6 +124,12 @@ impl<const D: usize> ExtentBuilder<D> {
                 self.add_ball(c.pos[0], c.pos[1][0], c.vel[0]);
             }
             EventKind::Edit if c.event.b == edit_code::ADD_ID => {}
+            // A moving wall's edit names no body: the wall is where the record says (its
+            // motion is straight before and after, so its places at the edits, the start
+            // and the end hold its whole sweep).
+            EventKind::Edit if c.event.b == edit_code::WALL_MOTION => {
+                self.add_moving_wall(a, c.pos[0]);
+            }
             // Walls, resets, and edits of a body present (a motion, a filter, a removal).
             _ => {
                 self.add_arc(before, a, t);
@@ -114,11 +157,25 @@ impl<const D: usize> ExtentBuilder<D> {
                     })
                 }
                 Wall::Plane { point, normal } => {
-                    let axes: Vec<usize> = (0..D).filter(|&k| normal[k] != 0.0).collect();
-                    if let (&[k], true) = (&axes[..], b.min[0] <= b.max[0]) {
+                    if let (Some(k), true) = (single_axis(&normal), b.min[0] <= b.max[0]) {
                         b.min[k] = b.min[k].min(point[k]);
                         b.max[k] = b.max[k].max(point[k]);
                     }
+                }
+            }
+        }
+        // The moving walls where they end, then all their places (after the static walls, so
+        // that runs without moving walls keep their bounds exactly).
+        for k in 0..self.moving.len() {
+            self.add_moving_wall(k, last.wall_motion(k).offset_at(end));
+        }
+        let b = &mut self.extent.bounds;
+        *b = b.union(self.moving_segments);
+        if b.min[0] <= b.max[0] {
+            for k in 0..D {
+                if self.moving_planes.min[k] <= self.moving_planes.max[k] {
+                    b.min[k] = b.min[k].min(self.moving_planes.min[k]);
+                    b.max[k] = b.max[k].max(self.moving_planes.max[k]);
                 }
             }
         }
@@ -130,5 +187,14 @@ impl<const D: usize> ExtentBuilder<D> {
             };
         }
         self.extent
+    }
+}
+
+/// The axis a plane's `normal` lies along, if it lies along one.
+fn single_axis<const D: usize>(normal: &Vector<D>) -> Option<usize> {
+    let mut axes = (0..D).filter(|&k| normal[k] != 0.0);
+    match (axes.next(), axes.next()) {
+        (Some(k), None) => Some(k),
+        _ => None,
     }
 }

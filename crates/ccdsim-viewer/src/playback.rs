@@ -278,7 +278,8 @@ impl<const D: usize> Playback<D> {
     /// The run's world rebuilt to `snap`, with the clock at the snapshot's time.
     ///
     /// Until a body is added or removed, this is the scene's world with every body's stored
-    /// state as the simulation had it. After that (the snapshot's states have slot edits),
+    /// state as the simulation had it (its moving walls move as the scene started them, not
+    /// as the run steered them: no finder sees moving walls). After that (the snapshot's states have slot edits),
     /// the world holds the snapshot's bodies only, vacant slots left out (so its indices are
     /// not the run's slots), each with its stored state, radius and kinematic flag, and the
     /// scene's settings; it has no walls or sensors, its bodies collide with nothing (group

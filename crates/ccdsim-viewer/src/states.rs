@@ -1,7 +1,8 @@
-//! Every body's lazy state, as replayed from a run file.
+//! Every body's lazy state, and every moving wall's motion, as replayed from a run file.
 
+use ccdsim::moving_wall::{translated, WallMotion};
 use ccdsim::narrow::Motion;
-use ccdsim::{Collision, EventKind, Scene, Vector};
+use ccdsim::{Collision, EventKind, Scene, Vector, Wall};
 use std::sync::Arc;
 
 /// The edit codes of a run file's edit records (the `b` field), as [`ccdsim::edit`] writes
@@ -19,9 +20,13 @@ pub mod edit_code {
     pub const REMOVE: u32 = 3;
     /// A new collision filter: the first slot restates the body's state.
     pub const FILTER: u32 = 4;
+    /// A moving wall's new velocity: `a` names the wall among the scene's moving walls (not
+    /// a body); the first slot holds its displacement from the scene's geometry at the
+    /// record's time and its velocity from then on.
+    pub const WALL_MOTION: u32 = 5;
 }
 
-use edit_code::{ADD, ADD_ID, FILTER, MOTION, REMOVE};
+use edit_code::{ADD, ADD_ID, FILTER, MOTION, REMOVE, WALL_MOTION};
 
 /// The slots' radii, ids, kinematic flags and vacancies.
 ///
@@ -62,9 +67,14 @@ impl SlotTable {
 /// no one) until a body is added there. Slots the simulation reserved but the run never
 /// filled are not known here: [`BodyStates::len`] counts the slots up to the last one used.
 ///
+/// The moving walls of a run (a scene's `moving_walls`, see [`ccdsim::moving_wall`]) are kept
+/// here too, since the same records move them: moving wall `k` is its scene geometry
+/// displaced by [`BodyStates::wall_motion`]`(k)`, which each of its edit records
+/// ([`edit_code::WALL_MOTION`]) restates ([`BodyStates::moving_wall_at`]).
+///
 /// Replaying a run's records with [`BodyStates::apply`] reproduces the simulation's stored
-/// states of its bodies bit for bit, since a run file records exactly the states a collision
-/// or edit stored.
+/// states of its bodies and its moving walls' motions bit for bit, since a run file records
+/// exactly the states a collision or edit stored.
 #[derive(Clone, Debug, PartialEq)]
 pub struct BodyStates<const D: usize> {
     /// Reference positions, metres.
@@ -77,6 +87,10 @@ pub struct BodyStates<const D: usize> {
     /// the run has gravity, metres per second squared.
     pub gravity: Option<Vector<D>>,
     slots: Arc<SlotTable>,
+    /// The moving walls' scene geometry, which never changes: shared by every copy.
+    wall_bases: Arc<[Wall<D>]>,
+    /// How each moving wall moves since its last edit (or since the start).
+    wall_motions: Vec<WallMotion<D>>,
 }
 
 impl<const D: usize> BodyStates<D> {
@@ -96,6 +110,17 @@ impl<const D: usize> BodyStates<D> {
                 vacant: vec![false; n],
                 edited: false,
             }),
+            wall_bases: scene.moving_walls.iter().map(|m| m.wall).collect(),
+            // As the simulation starts them: at their scene geometry, at the scene's velocity.
+            wall_motions: scene
+                .moving_walls
+                .iter()
+                .map(|m| WallMotion {
+                    offset: Vector::ZERO,
+                    velocity: m.velocity,
+                    time: scene.start_time,
+                })
+                .collect(),
         }
     }
 
@@ -145,11 +170,32 @@ impl<const D: usize> BodyStates<D> {
         self.slots.edited
     }
 
+    /// Number of moving walls.
+    #[must_use]
+    pub fn wall_count(&self) -> usize {
+        self.wall_motions.len()
+    }
+
+    /// How moving wall `k` moves: its displacement from the scene's geometry at a reference
+    /// time, and its velocity since then.
+    #[must_use]
+    pub fn wall_motion(&self, k: usize) -> WallMotion<D> {
+        self.wall_motions[k]
+    }
+
+    /// Moving wall `k` where it is at time `t` (its scene geometry translated by its
+    /// displacement then), as the simulation's [`ccdsim::World::wall_at`] has it.
+    #[must_use]
+    pub fn moving_wall_at(&self, k: usize, t: f64) -> Wall<D> {
+        translated(&self.wall_bases[k], self.wall_motions[k].offset_at(t))
+    }
+
     /// Checks that record `c` can be applied: every slot it names holds a body, except an
     /// added body's, which must be vacant or past the last slot (by at most
     /// `len().max(1024)`: the simulation reserves a quarter more slots at a time and fills
-    /// the lowest first). An added body's id record ([`edit_code::ADD_ID`]) is checked by
-    /// the caller, which knows the record before.
+    /// the lowest first), and a moving wall's edit, which names one of the moving walls. An
+    /// added body's id record ([`edit_code::ADD_ID`]) is checked by the caller, which knows
+    /// the record before.
     pub fn check(&self, c: &Collision<D>) -> Result<(), String> {
         let a = c.event.a as usize;
         let present = |i: usize| -> Result<(), String> {
@@ -186,6 +232,11 @@ impl<const D: usize> BodyStates<D> {
                     Ok(())
                 }
                 ADD_ID => Ok(()),
+                WALL_MOTION if a < self.wall_count() => Ok(()),
+                WALL_MOTION => Err(format!(
+                    "moves wall {a}, but the run has {} moving walls",
+                    self.wall_count()
+                )),
                 code => Err(format!("an edit of unknown code {code}")),
             },
         }
@@ -193,7 +244,8 @@ impl<const D: usize> BodyStates<D> {
 
     /// Stores the states a recorded collision or edit left its bodies in: a body added fills
     /// its slot (the slots up to it grow, vacant), a body removed stops and leaves its slot
-    /// vacant, an id record sets the added body's id. Assumes [`BodyStates::check`] passed.
+    /// vacant, an id record sets the added body's id, a moving wall's edit gives that wall
+    /// its new motion (and touches no body). Assumes [`BodyStates::check`] passed.
     pub fn apply(&mut self, c: &Collision<D>) {
         let t = c.event.time;
         let a = c.event.a as usize;
@@ -224,6 +276,13 @@ impl<const D: usize> BodyStates<D> {
                     s.id[a] = u64::MAX;
                     s.kinematic[a] = true;
                     s.vacant[a] = true;
+                }
+                WALL_MOTION => {
+                    self.wall_motions[a] = WallMotion {
+                        offset: c.pos[0],
+                        velocity: c.vel[0],
+                        time: t,
+                    };
                 }
                 // A new motion or filter: the body's state restated. (Unknown codes are
                 // refused by `check`.)
@@ -287,10 +346,13 @@ impl<const D: usize> BodyStates<D> {
         }
     }
 
-    /// Heap bytes held: the motions, and the slot table as if this were its only holder.
+    /// Heap bytes held: the motions (the bodies' and the moving walls'), and the slot table
+    /// as if this were its only holder.
     #[must_use]
     pub fn heap_bytes(&self) -> usize {
-        Self::bytes_per_body() * self.len() + self.slot_table_bytes()
+        Self::bytes_per_body() * self.len()
+            + std::mem::size_of::<WallMotion<D>>() * self.wall_count()
+            + self.slot_table_bytes()
     }
 
     /// Heap bytes of the slot table (radii, ids, kinematic flags, vacancies), which copies
@@ -354,6 +416,14 @@ mod tests {
             }),
             [FILTER]
         );
+        assert_eq!(
+            code(Edit::WallMotion {
+                wall: 1,
+                offset: p,
+                vel: v
+            }),
+            [WALL_MOTION]
+        );
         // And the fields read here are the ones the library decodes.
         let rs = add.records(0.5);
         let Ok(Edit::Add {
@@ -364,6 +434,58 @@ mod tests {
         };
         assert_eq!((rs[0].pos[1][0], rs[0].pos[1][1]), (radius, mass));
         assert_eq!(rs[1].pos[1][0].to_bits(), id);
+    }
+
+    #[test]
+    fn a_wall_edit_moves_its_wall_and_no_body() {
+        use ccdsim::MovingWall;
+        let scene = Scene::<2> {
+            bodies: vec![
+                BodySpec::new(Vector([0.0, 0.0]), Vector([1.0, 0.0]), 0.5),
+                BodySpec::new(Vector([3.0, 0.0]), Vector([0.0, 1.0]), 0.5),
+            ],
+            moving_walls: vec![MovingWall {
+                wall: Wall::Segment {
+                    a: Vector([5.0, -1.0]),
+                    b: Vector([5.0, 1.0]),
+                },
+                velocity: Vector([0.5, 0.0]),
+            }],
+            ..Scene::default()
+        };
+        let mut s = BodyStates::from_scene(&scene);
+        assert_eq!(s.wall_count(), 1);
+        // Without an edit, the wall moves at the scene's velocity from the start.
+        assert_eq!(
+            s.moving_wall_at(0, 2.0),
+            Wall::Segment {
+                a: Vector([6.0, -1.0]),
+                b: Vector([6.0, 1.0]),
+            }
+        );
+        let bodies = (s.pos.clone(), s.vel.clone(), s.time.clone());
+        // At t = 2 the wall (displaced by 1 m) turns up at 2 m/s. The record names wall 0,
+        // which is also a body's slot: that body must not move.
+        let edit = Edit::<2>::WallMotion {
+            wall: 0,
+            offset: Vector([1.0, 0.0]),
+            vel: Vector([0.0, 2.0]),
+        }
+        .records(2.0)[0];
+        s.check(&edit).unwrap();
+        s.apply(&edit);
+        assert_eq!((s.pos.clone(), s.vel.clone(), s.time.clone()), bodies);
+        assert!(!s.has_slot_edits());
+        assert_eq!(
+            s.moving_wall_at(0, 3.0),
+            Wall::Segment {
+                a: Vector([6.0, 1.0]),
+                b: Vector([6.0, 3.0]),
+            }
+        );
+        let mut far = edit;
+        far.event.a = 1;
+        assert!(s.check(&far).unwrap_err().contains("1 moving walls"));
     }
 
     #[test]

@@ -4,7 +4,7 @@
 //! | endpoint | layout |
 //! |---|---|
 //! | `/api/bodies` | the scene's `f64` radii, then its `f64` ids, each padded to the run's slot count `n` (meta's `bodies`) with radius 0 and id 0 for slots the scene does not have |
-//! | `/api/state` | `f64` header of [`STATE_HEADER`] values (its `n` is the snapshot's slot count, at most meta's `bodies`), then `f32` positions at the snapshot time (`n·D`), then `f32` velocities at the snapshot time (`n·D`), then, only when bodies were added or removed by then, the slot section: one `f64` [`SLOT_SECTION`], `f64` radii (`n`, 0 for a vacant slot), `f64` ids (`n`), `u8` flags (`n`: bit 0 kinematic, bit 1 vacant) |
+//! | `/api/state` | `f64` header of [`STATE_HEADER`] values (its `n` is the snapshot's slot count, at most meta's `bodies`), then `f32` positions at the snapshot time (`n·D`), then `f32` velocities at the snapshot time (`n·D`), then, only when bodies were added or removed by then, the slot section: one `f64` [`SLOT_SECTION`], `f64` radii (`n`, 0 for a vacant slot), `f64` ids (`n`), `u8` flags (`n`: bit 0 kinematic, bit 1 vacant); then, only in a run with moving walls, zero bytes up to a multiple of 8 and the wall section: one `f64` [`WALL_SECTION`], then per moving wall `1 + 2·D` `f64`s: the time of its last edit (the scene's start time before any), its displacement from its scene geometry then, its velocity since |
 //! | `/api/events` | per event `4 + 4·D` `f64`s: `t`, kind (0 body, 1 wall, 2 thermostat reset, 3 edit), `a`, `b`, position and velocity of slot 0, then of slot 1 |
 //! | `/api/boxes` | per box `2 + 2·D` `f32`s: depth, leaf (0/1), min corner, max corner |
 //!
@@ -14,7 +14,15 @@
 //! filter restate body `a`'s state in slot 0; 1 adds body `a` (slot 0 its state, slot 1's
 //! position its radius and mass, ∞ for a kinematic body); 2, which follows each 1, holds the
 //! bits of its id in slot 1's first position component and no state; 3 removes body `a`,
-//! which stops at slot 0's position and leaves its slot vacant.
+//! which stops at slot 0's position and leaves its slot vacant; 5 gives moving wall `a`
+//! (`a` counts among meta's `moving_walls`, and names no body) a new motion: slot 0's
+//! position is its displacement from its scene geometry at `t`, slot 0's velocity its
+//! velocity from then on. Moving wall `a` is where meta's `moving_walls[a]` is, translated
+//! by that displacement plus the velocity times the time since. Wall events (kind 1) name a
+//! moving wall in `b` from the number of meta's `walls` on.
+//!
+//! Answers of runs without moving walls have neither meta's `moving_walls` nor the state's
+//! wall section: they are what they were before moving walls existed, byte for byte.
 
 use crate::playback::{Playback, Snapshot};
 use ccdsim::finder::DebugBox;
@@ -27,6 +35,9 @@ pub const STATE_HEADER: usize = 8;
 
 /// The `f64` that opens the slot section of a `/api/state` answer (see the module docs).
 pub const SLOT_SECTION: f64 = 1.0;
+
+/// The `f64` that opens the wall section of a `/api/state` answer (see the module docs).
+pub const WALL_SECTION: f64 = 2.0;
 
 /// Bit of a slot's flags in the slot section: the body is kinematic.
 pub const SLOT_KINEMATIC: u8 = 1;
@@ -69,8 +80,8 @@ pub fn encode_bodies<const D: usize>(p: &Playback<D>) -> Vec<u8> {
 }
 
 /// A snapshot: header, positions at its time, velocities at its time (under gravity the
-/// stored velocities hold only at each body's last event), and the slot section when bodies
-/// were added or removed by then.
+/// stored velocities hold only at each body's last event), the slot section when bodies
+/// were added or removed by then, and the wall section in a run with moving walls.
 #[must_use]
 pub fn encode_snapshot<const D: usize>(s: &Snapshot<D>) -> Vec<u8> {
     let n = s.states.len();
@@ -123,6 +134,20 @@ pub fn encode_snapshot<const D: usize>(s: &Snapshot<D>) -> Vec<u8> {
             out.push(flags);
         }
     }
+    if s.states.wall_count() > 0 {
+        // Aligned, so that a page can read the section as a Float64Array.
+        out.resize(out.len().next_multiple_of(8), 0);
+        put_f64(&mut out, WALL_SECTION);
+        for k in 0..s.states.wall_count() {
+            let m = s.states.wall_motion(k);
+            put_f64(&mut out, m.time);
+            for v in [m.offset, m.velocity] {
+                for d in 0..D {
+                    put_f64(&mut out, v[d]);
+                }
+            }
+        }
+    }
     out
 }
 
@@ -171,10 +196,12 @@ pub fn encode_boxes<const D: usize>(boxes: &[DebugBox<D>]) -> Vec<u8> {
 /// the scene's kinematic bodies by index. `bodies` is the largest number of body slots over
 /// the run (the scene's bodies, or more in a run that adds bodies past them),
 /// `scene_bodies` the scene's, and `slot_edits` says whether bodies are added or removed.
+/// A run with moving walls also has `moving_walls`: the scene's, each a wall (segment or
+/// plane fields, where it is at the start) with its `velocity` from the start on.
 #[must_use]
 pub fn meta_json<const D: usize>(p: &Playback<D>, finder: &str) -> serde_json::Value {
     let e = p.extent();
-    serde_json::json!({
+    let mut meta = serde_json::json!({
         "file": p.path(),
         "dim": D,
         "bodies": p.slots(),
@@ -205,5 +232,10 @@ pub fn meta_json<const D: usize>(p: &Playback<D>, finder: &str) -> serde_json::V
             .filter(|(_, b)| b.kinematic)
             .map(|(i, _)| i)
             .collect::<Vec<_>>(),
-    })
+    });
+    // Only when there are some: the description of every other run stays as it was.
+    if !p.scene().moving_walls.is_empty() {
+        meta["moving_walls"] = serde_json::json!(p.scene().moving_walls);
+    }
+    meta
 }

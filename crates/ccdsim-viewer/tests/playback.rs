@@ -541,3 +541,133 @@ fn records_naming_slots_without_a_body_are_refused() {
     assert_eq!((s.len(), s.radius(2), s.id(2)), (3, 0.5, 7));
     assert!(s.is_vacant(1) && !s.is_vacant(2));
 }
+
+// ---- runs with moving walls -----------------------------------------------------------------
+
+#[test]
+fn a_run_with_moving_walls_plays_the_simulations_walls_and_bodies() {
+    use ccdsim::moving_wall::translated;
+    use common::walls::{record_wall_run, DT, FRAMES};
+    let dir = common::temp_dir("playback-walls");
+    let path = dir.join("walls.ccd");
+    let run = record_wall_run(&path);
+    // The run does what it is meant to: both walls steered many times, balls meet them.
+    assert!(
+        run.pieces.iter().all(|p| p.len() > 30),
+        "{:?}",
+        run.pieces.iter().map(Vec::len).collect::<Vec<_>>()
+    );
+    assert!(
+        run.moving_wall_hits >= 5,
+        "{} moving-wall events",
+        run.moving_wall_hits
+    );
+    let mut p = Playback::<2>::open(&path, &DENSE).unwrap();
+    assert_eq!(p.events(), run.events);
+    assert!(p.has_slot_edits(), "a body is removed and one added");
+    assert!(p.index().keyframes.len() > 20);
+    // After every frame's edits: every body's stored state and every wall's motion, bit for
+    // bit. (Edit records of code 5 name walls 0 and 1, which are bodies' slots too: those
+    // bodies must not take the walls' offsets.)
+    for cp in &run.checkpoints {
+        let snap = p.snapshot_after(cp.applied).unwrap();
+        let s = &snap.states;
+        assert!(s.len() <= cp.bodies.len());
+        for (i, body) in cp.bodies.iter().enumerate().take(s.len()) {
+            match body {
+                Some(m) => assert_eq!(s.motion(i), *m, "body {i} at t = {}", cp.time),
+                None => assert!(s.is_vacant(i), "slot {i} at t = {}", cp.time),
+            }
+        }
+        assert_eq!(s.wall_count(), 2);
+        for (k, m) in cp.walls.iter().enumerate() {
+            assert_eq!(s.wall_motion(k), *m, "wall {k} at t = {}", cp.time);
+        }
+    }
+    // At any instant, sought by time: each wall where its motion of that frame puts it.
+    for cp in run.checkpoints.iter().take(FRAMES).step_by(3) {
+        for frac in [0.0, 0.37, 0.999] {
+            let t = cp.time + frac * DT;
+            let snap = p.snapshot_at(t).unwrap();
+            for (k, m) in cp.walls.iter().enumerate() {
+                let want = translated(&run.scene.moving_walls[k].wall, m.offset_at(t));
+                assert_eq!(
+                    snap.states.moving_wall_at(k, t),
+                    want,
+                    "wall {k} at t = {t}"
+                );
+                // The pieces the browser tests check the page against say the same.
+                assert_eq!(run.offset_at(k, t), m.offset_at(t), "wall {k} at t = {t}");
+            }
+        }
+    }
+}
+
+#[test]
+fn an_unsteered_run_moves_its_walls_at_the_scenes_velocities() {
+    let scene = common::walls::wall_scene();
+    let dir = common::temp_dir("playback-walls-unsteered");
+    let path = dir.join("walls.ccd");
+    let end = 3.0;
+    let events = common::record(&scene, end, &path);
+    let mut p = Playback::<2>::open(&path, &DENSE).unwrap();
+    assert_eq!(p.events(), events);
+    let times = [0.0, 0.3, 1.1, 2.9, 3.0];
+    assert_matches_simulation(&scene, &mut p, end, &times);
+    for t in times {
+        let mut sim = Simulation::new(&scene, "all-pairs").unwrap();
+        sim.run_until(t);
+        let snap = p.snapshot_at(t).unwrap();
+        for k in 0..2 {
+            let w = scene.walls.len() + k;
+            assert_eq!(
+                snap.states.moving_wall_at(k, t),
+                sim.world().wall_at(w, t),
+                "wall {k} at t = {t}"
+            );
+        }
+    }
+}
+
+#[test]
+fn the_extent_holds_the_moving_walls_wherever_they_went() {
+    use ccdsim::record::RunWriter;
+    use ccdsim::{BodySpec, MovingWall, Vector, Wall};
+    // One ball at rest, no static walls; a segment sliding right at 5 m/s and turned back at
+    // t = 2 (its farthest, x = 11, is neither where it starts nor where it ends), and a floor
+    // sinking at 1 m/s from y = −1.
+    let scene = Scene::<2> {
+        bodies: vec![BodySpec::new(Vector([0.0, 0.0]), Vector::ZERO, 0.5)],
+        moving_walls: vec![
+            MovingWall {
+                wall: Wall::Segment {
+                    a: Vector([1.0, -1.0]),
+                    b: Vector([1.0, 1.0]),
+                },
+                velocity: Vector([5.0, 0.0]),
+            },
+            MovingWall {
+                wall: Wall::Plane {
+                    point: Vector([0.0, -1.0]),
+                    normal: Vector([0.0, 1.0]),
+                },
+                velocity: Vector([0.0, -1.0]),
+            },
+        ],
+        ..Scene::default()
+    };
+    let dir = common::temp_dir("playback-walls-extent");
+    let path = dir.join("walls.ccd");
+    let mut sim = Simulation::new(&scene, "all-pairs").unwrap();
+    let mut w = RunWriter::record_steered(&mut sim, &path, &scene).unwrap();
+    assert!(sim.advance(2.0).is_empty());
+    sim.set_wall_velocity(0, Vector([-2.0, 0.0])).unwrap();
+    for r in sim.take_edits() {
+        w.write_event(&r).unwrap();
+    }
+    assert!(sim.advance(2.0).is_empty());
+    w.finish(sim.time()).unwrap();
+    let p = Playback::<2>::open(&path, &DENSE).unwrap();
+    let b = p.extent().bounds;
+    assert_eq!((b.min.0, b.max.0), ([-0.5, -5.0], [11.0, 1.0]), "{b:?}");
+}

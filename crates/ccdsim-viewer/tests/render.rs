@@ -498,3 +498,181 @@ fn sensors_are_outlined_and_light_up_while_a_body_is_in_them() {
     let (outline, _) = ring(0.5);
     assert!(near(outline, colour::SENSOR_HELD), "{outline:?}");
 }
+
+/// The two discs with two moving walls: a segment from (0.2, 0.9) to (0.6, 0.9) sliding right
+/// at 1 m/s and, from t = 0.5, steered to (0.4, −0.3) m/s (it stays above the discs, whose
+/// tops are at y = 0.6); and the line x = 1.9 facing left, coming in at 0.1 m/s (never
+/// steered), which body 9 meets at t = 1. Recorded until t = 1.2.
+fn two_discs_with_moving_walls(path: &std::path::Path) {
+    use ccdsim::record::RunWriter;
+    use ccdsim::{MovingWall, Simulation, Wall};
+    let scene = Scene {
+        moving_walls: vec![
+            MovingWall {
+                wall: Wall::Segment {
+                    a: Vector([0.2, 0.9]),
+                    b: Vector([0.6, 0.9]),
+                },
+                velocity: Vector([1.0, 0.0]),
+            },
+            MovingWall {
+                wall: Wall::Plane {
+                    point: Vector([1.9, 0.0]),
+                    normal: Vector([-1.0, 0.0]),
+                },
+                velocity: Vector([-0.1, 0.0]),
+            },
+        ],
+        ..two_discs()
+    };
+    let mut sim = Simulation::new(&scene, "all-pairs").unwrap();
+    let mut w = RunWriter::record_steered(&mut sim, path, &scene).unwrap();
+    let mut write = |records: Vec<ccdsim::Collision<2>>| {
+        for r in &records {
+            w.write_event(r).unwrap();
+        }
+    };
+    write(sim.advance(0.5));
+    sim.set_wall_velocity(0, Vector([0.4, -0.3])).unwrap();
+    write(sim.take_edits());
+    let rest = sim.advance(0.7);
+    assert!(
+        rest.iter()
+            .any(|c| c.event.kind == ccdsim::EventKind::Wall && c.event.b == 5),
+        "body 9 meets the moving line"
+    );
+    write(rest);
+    w.finish(sim.time()).unwrap();
+}
+
+#[test]
+fn moving_walls_are_drawn_where_they_are_at_the_frames_time() {
+    let dir = common::temp_dir("render-walls");
+    let run = dir.join("walls.ccd");
+    two_discs_with_moving_walls(&run);
+    let out = dir.join("frame.png");
+    // A 1.5 px anti-aliased line along a pixel boundary: mostly wall colour.
+    let wall = |c: Rgb| c.iter().all(|&x| x > 120);
+    // At t = 0.3 the segment spans x = 0.5 … 0.9 at y = 0.9, and the line is at x = 1.87.
+    render_png(&run, 0.3, &out, &options()).unwrap();
+    let pm = Pixmap::load_png(&out).unwrap();
+    for x in [0.55, 0.7, 0.85] {
+        assert!(
+            wall(pixel(&pm, x, 0.9)),
+            "segment at x = {x}: {:?}",
+            pixel(&pm, x, 0.9)
+        );
+    }
+    assert_eq!(pixel(&pm, 0.3, 0.9), colour::BACKGROUND, "where it started");
+    assert!(wall(pixel(&pm, 1.87, 0.8)), "{:?}", pixel(&pm, 1.87, 0.8));
+    assert_eq!(
+        pixel(&pm, 1.9, 0.8),
+        colour::BACKGROUND,
+        "where the line started"
+    );
+    // At t = 1, steered since t = 0.5: displaced by (0.5 + 0.2, −0.15), so from x = 0.9 to
+    // 1.3 at y = 0.75; the line at x = 1.8.
+    render_png(&run, 1.0, &out, &options()).unwrap();
+    let pm = Pixmap::load_png(&out).unwrap();
+    for x in [0.95, 1.1, 1.25] {
+        assert!(
+            wall(pixel(&pm, x, 0.75)),
+            "segment at x = {x}: {:?}",
+            pixel(&pm, x, 0.75)
+        );
+    }
+    assert_eq!(
+        pixel(&pm, 0.7, 0.9),
+        colour::BACKGROUND,
+        "where it was at t = 0.3"
+    );
+    assert_eq!(
+        pixel(&pm, 1.1, 0.9),
+        colour::BACKGROUND,
+        "where it would be unsteered"
+    );
+    assert!(wall(pixel(&pm, 1.8, 0.8)), "{:?}", pixel(&pm, 1.8, 0.8));
+    assert_eq!(pixel(&pm, 1.87, 0.8), colour::BACKGROUND);
+    // A GIF plays the wall's edit forward to the same picture (at t = 0.7, when no body
+    // flashes: the GIF's flashes last 0.15 s, the PNG's only the instant of their event).
+    render_png(&run, 0.7, &out, &options()).unwrap();
+    let pm = Pixmap::load_png(&out).unwrap();
+    let gif_path = dir.join("anim.gif");
+    let o = GifOptions {
+        fps: 10.0,
+        speed: 1.0,
+        from: Some(0.0),
+        to: Some(0.7),
+        render: options(),
+    };
+    assert_eq!(render_gif(&run, &gif_path, &o).unwrap().frames, 8);
+    let (canvas, w) = gif_canvas(&gif_path);
+    for (k, px) in pm.pixels().iter().enumerate() {
+        let c = px.demultiply();
+        for (a, b) in canvas[k].iter().zip([c.red(), c.green(), c.blue()]) {
+            // The palette cube's coarsest step is 51: a colour is at most half of it away.
+            assert!(
+                (i32::from(*a) - i32::from(b)).abs() <= 26,
+                "pixel ({}, {}): {:?} vs {c:?}",
+                k % w,
+                k / w,
+                canvas[k]
+            );
+        }
+    }
+}
+
+#[test]
+fn a_moving_plane_in_3d_is_drawn_where_it_cuts_the_room() {
+    use ccdsim::{MovingWall, Wall};
+    // A 2 m room and a ceiling coming down at 0.4 m/s from y = 1.8, seen straight along z
+    // (yaw = pitch = 0: the x–y view at 100 px/m, as in 2D): its section is a line across
+    // the room at its height.
+    let scene = Scene::<3> {
+        bodies: vec![BodySpec::new(
+            Vector([1.0, 0.5, 1.0]),
+            Vector([0.0; 3]),
+            0.1,
+        )],
+        walls: box_walls(Vector([2.0, 2.0, 2.0])),
+        moving_walls: vec![MovingWall {
+            wall: Wall::Plane {
+                point: Vector([0.0, 1.8, 0.0]),
+                normal: Vector([0.0, -1.0, 0.0]),
+            },
+            velocity: Vector([0.0, -0.4, 0.0]),
+        }],
+        ..Scene::default()
+    };
+    let dir = common::temp_dir("render-walls-3d");
+    let run = dir.join("room.ccd");
+    common::record(&scene, 1.0, &run);
+    let o = RenderOptions {
+        yaw_deg: 0.0,
+        pitch_deg: 0.0,
+        height: Some(216),
+        ..options()
+    };
+    let out = dir.join("frame.png");
+    let at = |t: f64, x: f64, y: f64| {
+        render_png(&run, t, &out, &o).unwrap();
+        let pm = Pixmap::load_png(&out).unwrap();
+        let c = pm
+            .pixel(
+                (8.0 + 100.0 * x).floor() as u32,
+                (208.0 - 100.0 * y).floor() as u32,
+            )
+            .unwrap()
+            .demultiply();
+        [c.red(), c.green(), c.blue()]
+    };
+    let wall = |c: Rgb| c.iter().all(|&x| x > 120);
+    assert!(wall(at(0.0, 1.0, 1.8)), "{:?}", at(0.0, 1.0, 1.8));
+    assert!(wall(at(1.0, 1.0, 1.4)), "{:?}", at(1.0, 1.0, 1.4));
+    assert!(wall(at(1.0, 0.3, 1.4)), "across the room");
+    assert_eq!(
+        at(1.0, 1.0, 1.8),
+        colour::BACKGROUND,
+        "no longer where it started"
+    );
+}

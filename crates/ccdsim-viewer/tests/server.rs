@@ -94,6 +94,10 @@ fn meta_and_bodies_describe_the_run() {
     assert_eq!(meta["end_time"], 3.0);
     assert_eq!(meta["complete"], true);
     assert_eq!(meta["walls"].as_array().unwrap().len(), 4);
+    assert!(
+        meta.get("moving_walls").is_none(),
+        "no moving walls, no key"
+    );
     assert_eq!(meta["keyframe_interval"], 7);
     assert_eq!(meta["finder"], "bvh");
     // The table, up to the rounding of balls touching the cushions.
@@ -328,4 +332,74 @@ fn a_run_that_adds_and_removes_bodies_is_served_with_its_slots() {
         "the id's bits"
     );
     assert_eq!(e[12 + 4..12 + 8], [0.0; 4], "no state in the id record");
+}
+
+#[test]
+fn a_run_with_moving_walls_is_served_with_them() {
+    use ccdsim_viewer::wire::{SLOT_SECTION, WALL_SECTION};
+    let dir = common::temp_dir("server-walls");
+    let path = dir.join("walls.ccd");
+    let run = common::walls::record_wall_run(&path);
+    let s = start(&path);
+    let meta: serde_json::Value = serde_json::from_slice(&get(s.port, "/api/meta").body).unwrap();
+    assert_eq!(meta["walls"], serde_json::json!(run.scene.walls));
+    assert_eq!(
+        meta["moving_walls"],
+        serde_json::json!(run.scene.moving_walls)
+    );
+    // Each as a static wall is written, with its velocity.
+    assert_eq!(
+        meta["moving_walls"][0],
+        serde_json::json!({"a": [2.0, 1.0], "b": [2.0, 3.0], "velocity": [0.5, 0.0]})
+    );
+    assert_eq!(
+        meta["moving_walls"][1],
+        serde_json::json!({"point": [0.0, 7.0], "normal": [0.0, -1.0], "velocity": [0.0, -0.4]})
+    );
+    // Every state answer ends with the wall section: each wall's motion, bit for bit the
+    // simulation's; after the slot section (zero-padded to 8 bytes) once a body was removed.
+    let (mut plain, mut slotted) = (0, 0);
+    for cp in run.checkpoints.iter().step_by(4) {
+        let body = get(s.port, &format!("/api/state?t={}", cp.time)).body;
+        let head = f64s(&body[..8 * STATE_HEADER]);
+        let n = head[2] as usize;
+        let mut off = 8 * STATE_HEADER + 2 * 4 * 2 * n;
+        if f64s(&body[off..off + 8])[0] == SLOT_SECTION {
+            off += 8 + 17 * n;
+            let padded = off.next_multiple_of(8);
+            assert!(body[off..padded].iter().all(|&b| b == 0), "zero padding");
+            off = padded;
+            slotted += 1;
+        } else {
+            plain += 1;
+        }
+        let walls = f64s(&body[off..]);
+        assert_eq!(walls.len(), 1 + 2 * 5, "t = {}", cp.time);
+        assert_eq!(walls[0], WALL_SECTION);
+        for (k, m) in cp.walls.iter().enumerate() {
+            let w = &walls[1 + 5 * k..1 + 5 * (k + 1)];
+            assert_eq!(w[0], m.time, "wall {k} at t = {}", cp.time);
+            assert_eq!(w[1..3], m.offset.0, "wall {k} at t = {}", cp.time);
+            assert_eq!(w[3..5], m.velocity.0, "wall {k} at t = {}", cp.time);
+        }
+    }
+    assert!(
+        plain > 3 && slotted > 3,
+        "{plain} without slots, {slotted} with"
+    );
+    // A wall's edit in the events stream: kind 3, the wall in a, code 5 in b, its offset and
+    // velocity in slot 0.
+    let mut p = Playback::<2>::open(&path, &KeyframeOptions::default()).unwrap();
+    let all = p.events_window(0, u64::MAX).unwrap();
+    let k = all
+        .iter()
+        .position(|c| c.event.kind == ccdsim::EventKind::Edit && c.event.b == 5 && c.event.a == 1)
+        .unwrap();
+    let e = f64s(&get(s.port, &format!("/api/events?from={k}&count=1")).body);
+    assert_eq!(e[..4], [all[k].event.time, 3.0, 1.0, 5.0]);
+    let piece = run.pieces[1][1];
+    assert_eq!(
+        (e[0], &e[4..6], &e[6..8]),
+        (piece.time, &piece.offset.0[..], &piece.velocity.0[..])
+    );
 }

@@ -97,12 +97,18 @@ fn box_edges<const D: usize>(pb: &mut PathBuilder, cam: &Camera, b: &Aabb<D>) {
     }
 }
 
+/// The static walls, and the moving walls where they are at the frame's time. A 3D plane
+/// has no edges: static ones are shown by the wire box of the run's bounds, and a moving one
+/// also by the polygon where it cuts that box, so that it is seen to move.
 fn draw_walls<const D: usize>(pm: &mut Pixmap, cam: &Camera, f: &FrameInput<'_, D>) {
     let mut pb = PathBuilder::new();
     let span = (f.bounds.max - f.bounds.min).norm().max(1e-9);
     let mut planes = false;
-    for w in &f.scene.walls {
-        match *w {
+    let s = &f.snap.states;
+    let fixed = f.scene.walls.iter().map(|&w| (w, false));
+    let moving = (0..s.wall_count()).map(|k| (s.moving_wall_at(k, f.snap.time), true));
+    for (w, moves) in fixed.chain(moving) {
+        match w {
             Wall::Segment { a, b } => segment(&mut pb, cam, a, b),
             Wall::Plane { point, normal } if D == 2 => {
                 // A line in 2D: draw it across the whole view.
@@ -112,7 +118,15 @@ fn draw_walls<const D: usize>(pm: &mut Pixmap, cam: &Camera, f: &FrameInput<'_, 
                 let dir = dir * (10.0 * span / dir.norm());
                 segment(&mut pb, cam, point - dir, point + dir);
             }
-            Wall::Plane { .. } => planes = true,
+            Wall::Plane { point, normal } => {
+                planes = true;
+                if moves {
+                    let section = plane_section(&f.bounds, point, normal);
+                    for (j, &p) in section.iter().enumerate() {
+                        segment(&mut pb, cam, p, section[(j + 1) % section.len()]);
+                    }
+                }
+            }
         }
     }
     if planes || (D == 3 && f.scene.walls.is_empty()) {
@@ -128,6 +142,80 @@ fn draw_walls<const D: usize>(pm: &mut Pixmap, cam: &Camera, f: &FrameInput<'_, 
             None,
         );
     }
+}
+
+/// The corners of the polygon where the plane through `point` with normal `normal` cuts the
+/// box `b`, in order around it; fewer than three (nothing to draw) when it misses the box or
+/// only touches it. For 3D (in 2D a plane is a line, drawn across the view instead).
+#[must_use]
+pub(crate) fn plane_section<const D: usize>(
+    b: &Aabb<D>,
+    point: Vector<D>,
+    normal: Vector<D>,
+) -> Vec<Vector<D>> {
+    let corner = |bits: usize| {
+        let mut p = Vector::<D>::ZERO;
+        for k in 0..D {
+            p[k] = if bits >> k & 1 == 1 {
+                b.max[k]
+            } else {
+                b.min[k]
+            };
+        }
+        p
+    };
+    let side = |p: Vector<D>| normal.dot(p - point);
+    let mut pts: Vec<Vector<D>> = Vec::new();
+    for c in 0..(1usize << D) {
+        for k in 0..D {
+            if c >> k & 1 == 1 {
+                continue;
+            }
+            let (p, q) = (corner(c), corner(c | 1 << k));
+            let (sp, sq) = (side(p), side(q));
+            if (sp <= 0.0 && sq >= 0.0) || (sp >= 0.0 && sq <= 0.0) {
+                let x = if sp == sq {
+                    p
+                } else {
+                    p + (q - p) * (sp / (sp - sq))
+                };
+                // A plane through a corner meets its three edges there: one point.
+                if !pts
+                    .iter()
+                    .any(|y| (*y - x).norm() <= 1e-12 * (1.0 + x.norm()))
+                {
+                    pts.push(x);
+                }
+            }
+        }
+    }
+    if pts.len() < 3 {
+        return Vec::new();
+    }
+    // Around the centroid, by angle in two directions across the normal.
+    let c = pts.iter().fold(Vector::ZERO, |s, &p| s + p) * (1.0 / pts.len() as f64);
+    let u = pts
+        .iter()
+        .map(|&p| p - c)
+        .max_by(|a, b| a.norm().total_cmp(&b.norm()))
+        .expect("three points");
+    let v = cross_in_plane(normal, u);
+    pts.sort_by(|&p, &q| {
+        let angle = |p: Vector<D>| (p - c).dot(v).atan2((p - c).dot(u));
+        angle(p).total_cmp(&angle(q))
+    });
+    pts
+}
+
+/// `n × u` in 3D (a direction across `n`, at right angles to `u`); zero otherwise.
+fn cross_in_plane<const D: usize>(n: Vector<D>, u: Vector<D>) -> Vector<D> {
+    let mut v = Vector::<D>::ZERO;
+    if D == 3 {
+        v[0] = n[1] * u[2] - n[2] * u[1];
+        v[1] = n[2] * u[0] - n[0] * u[2];
+        v[2] = n[0] * u[1] - n[1] * u[0];
+    }
+    v
 }
 
 /// The scene's sensor regions as outlines, brighter while a body overlaps one (its centre
@@ -283,5 +371,50 @@ fn fill_circle(pm: &mut Pixmap, x: f32, y: f32, r: f32, c: Rgb) {
             Transform::identity(),
             None,
         );
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn cube() -> Aabb<3> {
+        Aabb {
+            min: Vector([0.0; 3]),
+            max: Vector([2.0; 3]),
+        }
+    }
+
+    #[test]
+    fn a_plane_cuts_the_box_in_a_polygon_in_order() {
+        // y = 0.5 across the cube: a square, each corner next to the one before.
+        let sq = plane_section(&cube(), Vector([7.0, 0.5, -3.0]), Vector([0.0, -2.0, 0.0]));
+        assert_eq!(sq.len(), 4);
+        for (j, p) in sq.iter().enumerate() {
+            assert_eq!(p[1], 0.5);
+            assert!(
+                [0.0, 2.0].contains(&p[0]) && [0.0, 2.0].contains(&p[2]),
+                "{p:?}"
+            );
+            // Neighbours share a side of the square: they differ in x or in z, not both.
+            let q = sq[(j + 1) % 4];
+            assert!((p[0] == q[0]) != (p[2] == q[2]), "{p:?} {q:?}");
+        }
+        // Through three corners (x + y + z = 2): a triangle, each corner once.
+        let tri = plane_section(&cube(), Vector([2.0, 0.0, 0.0]), Vector([1.0, 1.0, 1.0]));
+        assert_eq!(tri.len(), 3, "{tri:?}");
+        // Across the middle (x + y + z = 3): a hexagon.
+        let hex = plane_section(&cube(), Vector([1.0, 1.0, 1.0]), Vector([1.0, 1.0, 1.0]));
+        assert_eq!(hex.len(), 6, "{hex:?}");
+        for (j, p) in hex.iter().enumerate() {
+            // In order around it: neighbours are one edge of the hexagon (√2) apart.
+            let d = (*p - hex[(j + 1) % 6]).norm();
+            assert!((d - 2f64.sqrt()).abs() < 1e-12, "{d}");
+        }
+        // Past the box, or touching it at one corner: nothing to draw.
+        assert!(
+            plane_section(&cube(), Vector([0.0, 3.0, 0.0]), Vector([0.0, 1.0, 0.0])).is_empty()
+        );
+        assert!(plane_section(&cube(), Vector([0.0; 3]), Vector([1.0, 1.0, 1.0])).is_empty());
     }
 }

@@ -3,6 +3,7 @@
 #![allow(dead_code)]
 
 pub mod slots;
+pub mod walls;
 
 use ccdsim::record::RunWriter;
 use ccdsim::{Scene, Simulation};
