@@ -384,3 +384,69 @@ fn a_ball_squeezed_by_a_piston_stops_the_run_with_a_reason_instead_of_hanging() 
         assert!(sim.halt().is_none());
     }
 }
+
+mod properties {
+    use super::*;
+    use ccdsim::moving_wall::toi_body_moving_wall;
+    use ccdsim::wall::wall_clearance;
+    use proptest::prelude::*;
+
+    fn vec2(range: f64) -> impl Strategy<Value = Vector<2>> {
+        (-range..range, -range..range).prop_map(|(x, y)| Vector([x, y]))
+    }
+
+    /// Body 0's clearance from moving wall 0 at `t` (its distance less its radius), metres.
+    fn gap(sim: &Simulation<2>, t: f64) -> f64 {
+        let w = sim.world();
+        wall_clearance(&w.wall_at(w.walls().len(), t), w.position_at(0, t)) - w.radius(0)
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(600))]
+
+        /// The contact found in the wall's frame is a contact in the lab frame: the body
+        /// touches the wall where the wall has moved to then, and clears it at every sampled
+        /// time before, whatever the two motions, gravity, and which reference time is later.
+        #[test]
+        fn a_moving_wall_contact_is_the_first_touch_in_the_lab_frame(
+            segment in any::<bool>(), a in vec2(4.0), b in vec2(4.0), pos in vec2(8.0),
+            vel in vec2(3.0), w0 in vec2(2.0), w1 in vec2(2.0), r in 0.05..1.0f64,
+            falling in any::<bool>(), g in vec2(10.0), t1 in 0.0..1.5f64,
+        ) {
+            let wall = if segment {
+                prop_assume!((b - a).norm() > 0.1);
+                Wall::Segment { a, b }
+            } else {
+                prop_assume!(b.norm() > 0.1);
+                Wall::Plane { point: a, normal: b }
+            };
+            let scene = Scene::<2> {
+                bodies: vec![BodySpec::new(pos, vel, r)],
+                moving_walls: vec![MovingWall { wall, velocity: w0 }],
+                settings: Settings {
+                    gravity: falling.then(|| ccdsim::gravity::Gravity::new(&g.0).unwrap()),
+                    ..Settings::default()
+                },
+                ..Scene::default()
+            };
+            prop_assume!(scene.validate().is_ok());
+            let mut sim = Simulation::new(&scene, "cells").unwrap();
+            // Events before t1 restate the body; then the wall turns: the later reference
+            // time is either one's.
+            sim.run_until(t1);
+            sim.set_wall_velocity(0, w1).unwrap();
+            let now = sim.time();
+            let found = toi_body_moving_wall(sim.world(), 0, 0).filter(|t| *t >= now);
+            let horizon = found.unwrap_or(now + 10.0);
+            let speed = 1.0 + vel.norm() + w0.norm() + w1.norm() + g.norm() * (horizon + 1.0);
+            let tol = 1e-9 * (1.0 + pos.norm() + speed * (horizon + 1.0));
+            for k in 0..200 {
+                let t = now + (horizon - now) * f64::from(k) / 200.0;
+                prop_assert!(gap(&sim, t) > -tol, "overlap {} at {t} before the contact {found:?}", gap(&sim, t));
+            }
+            if let Some(t) = found {
+                prop_assert!(gap(&sim, t).abs() <= tol.max(1e-9), "gap {} at the contact {t}", gap(&sim, t));
+            }
+        }
+    }
+}
