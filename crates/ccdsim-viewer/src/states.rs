@@ -1,6 +1,6 @@
 //! Every body's lazy state, and every moving wall's motion, as replayed from a run file.
 
-use ccdsim::moving_wall::{translated, WallMotion};
+use ccdsim::moving_wall::{start_motions, translated, WallMotion};
 use ccdsim::narrow::Motion;
 use ccdsim::{Collision, EventKind, Scene, Vector, Wall};
 use std::sync::Arc;
@@ -112,15 +112,7 @@ impl<const D: usize> BodyStates<D> {
             }),
             wall_bases: scene.moving_walls.iter().map(|m| m.wall).collect(),
             // As the simulation starts them: at their scene geometry, at the scene's velocity.
-            wall_motions: scene
-                .moving_walls
-                .iter()
-                .map(|m| WallMotion {
-                    offset: Vector::ZERO,
-                    velocity: m.velocity,
-                    time: scene.start_time,
-                })
-                .collect(),
+            wall_motions: start_motions(&scene.moving_walls, scene.start_time),
         }
     }
 

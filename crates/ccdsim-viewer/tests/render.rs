@@ -391,6 +391,24 @@ fn two_discs_edited(path: &std::path::Path) {
     w.finish(sim.time()).unwrap();
 }
 
+/// The GIF at `gif_path` ends on the picture `pm`, up to its palette's rounding.
+fn assert_gif_ends_as(gif_path: &std::path::Path, pm: &Pixmap) {
+    let (canvas, w) = gif_canvas(gif_path);
+    for (k, px) in pm.pixels().iter().enumerate() {
+        let c = px.demultiply();
+        for (a, b) in canvas[k].iter().zip([c.red(), c.green(), c.blue()]) {
+            // The palette cube's coarsest step is 51: a colour is at most half of it away.
+            assert!(
+                (i32::from(*a) - i32::from(b)).abs() <= 26,
+                "pixel ({}, {}): {:?} vs {c:?}",
+                k % w,
+                k / w,
+                canvas[k]
+            );
+        }
+    }
+}
+
 /// The picture a GIF's frames composite to, and its size.
 fn gif_canvas(path: &std::path::Path) -> (Vec<Rgb>, usize) {
     let mut opts = gif::DecodeOptions::new();
@@ -447,20 +465,7 @@ fn added_bodies_are_drawn_with_their_radius_and_removed_ones_not_at_all() {
         render: options(),
     };
     assert_eq!(render_gif(&run, &gif_path, &o).unwrap().frames, 7);
-    let (canvas, w) = gif_canvas(&gif_path);
-    for (k, px) in pm.pixels().iter().enumerate() {
-        let c = px.demultiply();
-        for (a, b) in canvas[k].iter().zip([c.red(), c.green(), c.blue()]) {
-            // The palette cube's coarsest step is 51: a colour is at most half of it away.
-            assert!(
-                (i32::from(*a) - i32::from(b)).abs() <= 26,
-                "pixel ({}, {}): {:?} vs {c:?}",
-                k % w,
-                k / w,
-                canvas[k]
-            );
-        }
-    }
+    assert_gif_ends_as(&gif_path, &pm);
 }
 
 #[test]
@@ -606,20 +611,7 @@ fn moving_walls_are_drawn_where_they_are_at_the_frames_time() {
         render: options(),
     };
     assert_eq!(render_gif(&run, &gif_path, &o).unwrap().frames, 8);
-    let (canvas, w) = gif_canvas(&gif_path);
-    for (k, px) in pm.pixels().iter().enumerate() {
-        let c = px.demultiply();
-        for (a, b) in canvas[k].iter().zip([c.red(), c.green(), c.blue()]) {
-            // The palette cube's coarsest step is 51: a colour is at most half of it away.
-            assert!(
-                (i32::from(*a) - i32::from(b)).abs() <= 26,
-                "pixel ({}, {}): {:?} vs {c:?}",
-                k % w,
-                k / w,
-                canvas[k]
-            );
-        }
-    }
+    assert_gif_ends_as(&gif_path, &pm);
 }
 
 #[test]

@@ -49,6 +49,21 @@ pub struct MovingWall<const D: usize> {
     pub velocity: Vector<D>,
 }
 
+/// How each of `walls` (a scene's `moving_walls`) moves at the scene's start time `t0`: at
+/// its scene geometry, translating at its scene velocity. Where a simulation, `verify` and
+/// the viewer all start replaying the walls from.
+#[must_use]
+pub fn start_motions<const D: usize>(walls: &[MovingWall<D>], t0: f64) -> Vec<WallMotion<D>> {
+    walls
+        .iter()
+        .map(|m| WallMotion {
+            offset: Vector::ZERO,
+            velocity: m.velocity,
+            time: t0,
+        })
+        .collect()
+}
+
 /// Where a moving wall is: displaced from its scene geometry by `offset` (metres) at `time`
 /// (seconds), translating at `velocity` (m/s) from then on.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -13,7 +13,7 @@ use crate::collision_filter::CollisionFilter;
 use crate::geom::Vector;
 use crate::growth::GrowthLaw;
 use crate::laws::Laws;
-use crate::moving_wall::{translated, WallMotion};
+use crate::moving_wall::{start_motions, translated, WallMotion};
 use crate::narrow::Motion;
 use crate::scene::{BodySpec, Scene, SceneError};
 use crate::wall::Wall;
@@ -95,15 +95,7 @@ impl<const D: usize> World<D> {
             id: (0..n).map(|i| scene.id_of(i)).collect(),
             walls: scene.walls.clone(),
             moving_walls: scene.moving_walls.iter().map(|m| m.wall).collect(),
-            wall_motions: scene
-                .moving_walls
-                .iter()
-                .map(|m| WallMotion {
-                    offset: Vector::ZERO,
-                    velocity: m.velocity,
-                    time: scene.start_time,
-                })
-                .collect(),
+            wall_motions: start_motions(&scene.moving_walls, scene.start_time),
             periodic: scene.periodic,
             restitution: scene.settings.restitution,
             restitutions: if scene.bodies.iter().any(|b| b.restitution.is_some()) {

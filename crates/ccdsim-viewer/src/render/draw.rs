@@ -75,19 +75,22 @@ fn segment<const D: usize>(pb: &mut PathBuilder, cam: &Camera, a: Vector<D>, b: 
     pb.line_to(x1, y1);
 }
 
+/// Corner `bits` of box `b`: bit `k` set takes its upper bound along axis `k`.
+fn box_corner<const D: usize>(b: &Aabb<D>, bits: usize) -> Vector<D> {
+    let mut p = Vector::<D>::ZERO;
+    for k in 0..D {
+        p[k] = if bits >> k & 1 == 1 {
+            b.max[k]
+        } else {
+            b.min[k]
+        };
+    }
+    p
+}
+
 /// Adds the edges of a box to a path: 4 in 2D, 12 in 3D.
 fn box_edges<const D: usize>(pb: &mut PathBuilder, cam: &Camera, b: &Aabb<D>) {
-    let corner = |bits: usize| {
-        let mut p = Vector::<D>::ZERO;
-        for k in 0..D {
-            p[k] = if bits >> k & 1 == 1 {
-                b.max[k]
-            } else {
-                b.min[k]
-            };
-        }
-        p
-    };
+    let corner = |bits: usize| box_corner(b, bits);
     for c in 0..(1usize << D) {
         for k in 0..D {
             if c >> k & 1 == 0 {
@@ -153,17 +156,7 @@ pub(crate) fn plane_section<const D: usize>(
     point: Vector<D>,
     normal: Vector<D>,
 ) -> Vec<Vector<D>> {
-    let corner = |bits: usize| {
-        let mut p = Vector::<D>::ZERO;
-        for k in 0..D {
-            p[k] = if bits >> k & 1 == 1 {
-                b.max[k]
-            } else {
-                b.min[k]
-            };
-        }
-        p
-    };
+    let corner = |bits: usize| box_corner(b, bits);
     let side = |p: Vector<D>| normal.dot(p - point);
     let mut pts: Vec<Vector<D>> = Vec::new();
     for c in 0..(1usize << D) {

@@ -210,15 +210,7 @@ impl<const D: usize> Verifier<D> {
             mass,
             walls: scene.walls.clone(),
             moving: scene.moving_walls.iter().map(|m| m.wall).collect(),
-            wall_motion: scene
-                .moving_walls
-                .iter()
-                .map(|m| crate::moving_wall::WallMotion {
-                    offset: Vector::ZERO,
-                    velocity: m.velocity,
-                    time: scene.start_time,
-                })
-                .collect(),
+            wall_motion: crate::moving_wall::start_motions(&scene.moving_walls, scene.start_time),
             period: scene.periodic,
             restitution: scene.settings.restitution,
             kinematic,
