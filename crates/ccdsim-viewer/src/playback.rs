@@ -80,6 +80,16 @@ impl<const D: usize> Playback<D> {
         file_len: u64,
         options: &KeyframeOptions,
     ) -> Result<Self, ViewerError> {
+        if reader.scene().settings.rest_speed.is_some() {
+            // Its bodies slide along walls with accelerations of their own, which playback
+            // does not replay yet: refuse rather than draw them sinking through the floor.
+            return Err(ViewerError::BadRun {
+                path: reader.path().to_string(),
+                why: "bodies resting on walls (settings.rest_speed, format version 11) are not \
+                      played back yet; `ccdsim verify` and `ccdsim export` read the run"
+                    .into(),
+            });
+        }
         let records = file_len.saturating_sub(reader.data_start()) / record_len(D) as u64;
         let n = reader.scene().bodies.len();
         let interval = options.interval::<D>(records, n);

@@ -95,6 +95,21 @@ pub enum Halt {
         /// The wall it rests on.
         wall: usize,
     },
+    /// Bodies `a` and `b` touch at `time` without normal speed while their accelerations
+    /// press them together (a body come to rest on another one resting on a wall, see
+    /// [`crate::resting`]): the collision there changed nothing and would repeat at the same
+    /// time for ever. Bodies resting on bodies are not simulated: the run stops.
+    #[error(
+        "at t = {time:e} s bodies {a} and {b} touch with no normal speed while gravity presses them together (one rests on the other): bodies resting on bodies are not simulated, so the run stops (settings.tc keeps such bounces elastic)"
+    )]
+    RestingOnBody {
+        /// The time, seconds.
+        time: f64,
+        /// The body of lower index.
+        a: usize,
+        /// The other body.
+        b: usize,
+    },
 }
 
 /// The simulation's per-event resolution check, with a fast path: up to a time `fast_until`
@@ -261,7 +276,12 @@ pub fn beyond_range<const D: usize>(world: &World<D>) -> Option<Halt> {
     for i in (0..n).filter(|&i| moving(i)) {
         let m = world.motion(i);
         for (w, wall) in world.walls().iter().enumerate() {
-            if toi_body_wall(&m, world.radius(i), wall, world.laws()) == Some(f64::INFINITY) {
+            let t = if world.laws().is_some_and(|l| l.resting) {
+                crate::narrow::toi_body_wall_resting(world, i, w)
+            } else {
+                toi_body_wall(&m, world.radius(i), wall, world.laws())
+            };
+            if t == Some(f64::INFINITY) {
                 return Some(Halt::BeyondRange {
                     body: i,
                     partner: Partner::Wall(w),

@@ -22,6 +22,11 @@ pub struct Laws<const D: usize> {
     /// True when bodies have collision groups and masks (see [`crate::collision_filter`]):
     /// finders then skip the pairs [`crate::World::collides`] rejects.
     pub filtered: bool,
+    /// True when bodies may rest on walls (`settings.rest_speed`, see [`crate::resting`]):
+    /// each body then has its own acceleration ([`crate::World::acceleration`]) and never
+    /// meets the wall it rests on, so finders take the narrow phase's resting forms
+    /// ([`crate::narrow::toi_pair_resting`], [`crate::narrow::toi_body_wall_resting`]).
+    pub resting: bool,
 }
 
 impl<const D: usize> Laws<D> {
@@ -31,13 +36,18 @@ impl<const D: usize> Laws<D> {
         gravity: None,
         kinematic: false,
         filtered: false,
+        resting: false,
     };
 
     /// `Some(self)` when any law is in force, `None` otherwise: what the dispatchers take.
     #[must_use]
     #[inline]
     pub fn in_force(&self) -> Option<&Self> {
-        (self.growth.is_some() || self.gravity.is_some() || self.kinematic || self.filtered)
+        (self.growth.is_some()
+            || self.gravity.is_some()
+            || self.kinematic
+            || self.filtered
+            || self.resting)
             .then_some(self)
     }
 }

@@ -41,6 +41,7 @@ pub(crate) mod prefetch;
 pub mod record;
 pub mod resolution;
 pub mod resolve;
+pub mod resting;
 pub mod scene;
 pub mod sensor;
 pub mod sim;

@@ -22,6 +22,7 @@
 //! still gives the all-pairs oracle's events bit for bit.
 
 use crate::geom::Vector;
+use crate::gravity::toi_circle_wall_falling;
 use crate::narrow::{toi_body_wall, Motion};
 use crate::wall::Wall;
 use crate::world::World;
@@ -115,7 +116,11 @@ pub fn toi_body_moving_wall<const D: usize>(world: &World<D>, i: usize, k: usize
         time: t0,
     };
     let there = translated(&world.moving_wall_base(k), wall.offset_at(t0));
-    toi_body_wall(&relative, world.radius(i), &there, world.laws())
+    match world.gravity_of(i) {
+        // The body's own acceleration: gravity's, or its slide's on the wall it rests on.
+        Some(a) => toi_circle_wall_falling(&relative, world.radius(i), &there, &a),
+        None => toi_body_wall(&relative, world.radius(i), &there, world.laws()),
+    }
 }
 
 #[cfg(test)]

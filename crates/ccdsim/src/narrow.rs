@@ -9,7 +9,7 @@ use crate::gravity::{toi_circle_circle_falling, toi_circle_wall_falling};
 use crate::growth::{toi_circle_circle_growing, toi_circle_wall_growing};
 use crate::laws::Laws;
 use crate::wall::Wall;
-use crate::world::Body;
+use crate::world::{Body, World};
 
 /// A body's stored linear motion: at time `time` it is at `pos`, moving with `vel`.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -328,6 +328,84 @@ fn toi_kinematic_pair<const D: usize>(a: &Body<D>, b: &Body<D>, laws: &Laws<D>) 
         }
         _ => toi_pair(&a.motion, a.radius, &b.motion, b.radius, Some(laws)),
     }
+}
+
+/// Time of impact of bodies `i < j` of an open (not periodic) `world` as every finder
+/// evaluates it: [`toi_pair_bodies`] of their records, or [`toi_pair_resting`] where bodies
+/// rest on walls.
+#[must_use]
+#[inline(always)]
+pub fn toi_bodies_in<const D: usize>(world: &World<D>, i: usize, j: usize) -> Option<f64> {
+    match world.laws() {
+        Some(l) if l.resting => toi_pair_resting(world, i, j),
+        laws => toi_pair_bodies(&world.bodies()[i], &world.bodies()[j], laws),
+    }
+}
+
+/// Time of impact of body `i` of `world` with static wall `w` as every finder evaluates it:
+/// [`toi_body_wall_of`] of its record, or [`toi_body_wall_resting`] where bodies rest on walls.
+#[must_use]
+#[inline(always)]
+pub fn toi_body_wall_in<const D: usize>(world: &World<D>, i: usize, w: usize) -> Option<f64> {
+    match world.laws() {
+        Some(l) if l.resting => toi_body_wall_resting(world, i, w),
+        laws => toi_body_wall_of(&world.bodies()[i], &world.walls()[w], laws),
+    }
+}
+
+/// Time of impact of bodies `i < j` of `world` as every finder evaluates it in a world where
+/// bodies rest on walls (see [`crate::resting`]): each body has its own acceleration
+/// ([`World::acceleration`]); two with the same one meet at the root of the straight-line
+/// quadratic of their relative motion ([`toi_circle_circle_falling`]), two with different
+/// ones at the first root of the quartic of their relative parabola
+/// ([`crate::gravity::toi_circle_circle_accelerating`]); two kinematic bodies never meet.
+#[must_use]
+#[inline(never)]
+pub fn toi_pair_resting<const D: usize>(world: &World<D>, i: usize, j: usize) -> Option<f64> {
+    debug_assert!(i < j);
+    let (a, b) = (&world.bodies()[i], &world.bodies()[j]);
+    toi_pair_accelerated(a, &world.acceleration(i), b, &world.acceleration(j))
+}
+
+/// [`toi_pair_resting`] of the records `a` and `b` (lower index first) with the accelerations
+/// `ga` and `gb`, metres per second squared.
+#[must_use]
+#[inline(never)]
+pub fn toi_pair_accelerated<const D: usize>(
+    a: &Body<D>,
+    ga: &Vector<D>,
+    b: &Body<D>,
+    gb: &Vector<D>,
+) -> Option<f64> {
+    if a.is_kinematic() && b.is_kinematic() {
+        return None;
+    }
+    if ga == gb {
+        toi_circle_circle_falling(&a.motion, a.radius, &b.motion, b.radius, Vector::ZERO, ga)
+    } else {
+        crate::gravity::toi_circle_circle_accelerating(
+            &a.motion, a.radius, ga, &b.motion, b.radius, gb,
+        )
+    }
+}
+
+/// Time of impact of body `i` of `world` with static wall `w` as every finder evaluates it
+/// in a world where bodies rest on walls (see [`crate::resting`]): under the body's own
+/// acceleration ([`World::acceleration`]); never with the wall it rests on, nor for a
+/// kinematic body.
+#[must_use]
+#[inline(never)]
+pub fn toi_body_wall_resting<const D: usize>(world: &World<D>, i: usize, w: usize) -> Option<f64> {
+    let b = &world.bodies()[i];
+    if b.is_kinematic() || world.support(i) == Some(w) {
+        return None;
+    }
+    toi_circle_wall_falling(
+        &b.motion,
+        b.radius,
+        &world.walls()[w],
+        &world.acceleration(i),
+    )
 }
 
 /// Time of impact of a body (record `b`) with a wall as every finder evaluates it:

@@ -626,6 +626,7 @@ mod tests {
                 gravity: None,
                 kinematic: false,
                 filtered: false,
+                resting: false,
             };
             let p: [PairArgs<'_, D>; LANES] = std::array::from_fn(|k| {
                 let (x, y) = pattern[k];

@@ -3,6 +3,7 @@
 use crate::geom::Vector;
 use crate::narrow::wall_normal;
 use crate::periodic::min_image;
+use crate::wall::Wall;
 use crate::world::World;
 
 /// Resolves a body–body collision at time `t`: both bodies are moved to `t` and receive
@@ -85,8 +86,17 @@ pub fn resolve_body_body_contact<const D: usize>(
             vj2 = vj - n * (k * share_j);
         }
     }
+    let supports = (world.support(i), world.support(j));
     world.set_state(i, pi, vi2, t);
     world.set_state(j, pj, vj2, t);
+    // A collision that leaves a resting body's velocity as it was (the pair was already
+    // parting) leaves it resting: it goes on along the same path (see `crate::resting`).
+    if let (Some(w), true) = (supports.0, vi2 == vi) {
+        world.rest_on(i, w);
+    }
+    if let (Some(w), true) = (supports.1, vj2 == vj) {
+        world.rest_on(j, w);
+    }
     world.note_pair_collision(i, j, t);
     Contact {
         overlap: ((sigma - dist) / sigma).max(0.0),
@@ -99,6 +109,10 @@ pub fn resolve_body_body_contact<const D: usize>(
 /// restitution); the wall, static or moving (`w ≥ walls().len()`, see
 /// [`crate::moving_wall`]), has infinite mass and keeps its velocity.
 ///
+/// Under `settings.rest_speed` a body that leaves a static plane gravity presses it on at a
+/// normal speed of at most that speed comes to rest on it instead, its normal velocity
+/// removed ([`World::support`] is then `w`; see [`crate::resting`]).
+///
 /// Returns the overlap depth at contact relative to the radius (0 when not overlapping).
 pub fn resolve_body_wall<const D: usize>(world: &mut World<D>, i: usize, w: usize, t: f64) -> f64 {
     let p = world.position_at(i, t);
@@ -109,15 +123,27 @@ pub fn resolve_body_wall<const D: usize>(world: &mut World<D>, i: usize, w: usiz
     // `crate::growth`).
     let grow = world.growth().map_or(0.0, |law| law.speed(world.radius(i)));
     let mut v2 = v;
+    let mut rests = false;
     if let Some(n) = wall_normal(&wall, p) {
         // A static wall's velocity is zero, and `v − 0` is `v` bit for bit.
         let vn = (v - world.wall_velocity(w)).dot(n) - grow;
         if vn < 0.0 {
             v2 = v - n * ((1.0 + world.wall_restitution(i, t)) * vn);
         }
+        if let (Some(rest_speed), Some(_), Wall::Plane { normal, .. }) =
+            (world.rest_speed(), world.slide_of(w), &wall)
+        {
+            if crate::resting::comes_to_rest(v2.dot(n), rest_speed) {
+                v2 = crate::resting::tangential(&v2, normal);
+                rests = true;
+            }
+        }
     }
     let clearance = crate::wall::wall_clearance(&wall, p);
     world.set_state(i, p, v2, t);
+    if rests {
+        world.rest_on(i, w);
+    }
     world.note_collision(i, t);
     ((r - clearance) / r).max(0.0)
 }

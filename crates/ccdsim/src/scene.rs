@@ -186,6 +186,11 @@ pub struct Settings {
     /// in finite time (a ball bouncing on a floor under gravity, a dense granular gas).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub tc: Option<f64>,
+    /// Resting contacts under gravity, metres per second: a body that leaves a collision with
+    /// a static plane it is pressed on by gravity at a normal speed of at most `rest_speed`
+    /// comes to rest on it and slides along it (see [`crate::resting`]).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub rest_speed: Option<f64>,
 }
 
 fn one() -> f64 {
@@ -200,6 +205,7 @@ impl Default for Settings {
             growth: None,
             gravity: None,
             tc: None,
+            rest_speed: None,
         }
     }
 }
@@ -463,6 +469,7 @@ impl<const D: usize> Scene<D> {
                 return Err(SceneError::NonPositive("settings.tc".into()));
             }
         }
+        self.validate_rest_speed()?;
         if !self.start_time.is_finite() {
             return Err(SceneError::NonFinite("start_time".into()));
         }
@@ -570,6 +577,27 @@ impl<const D: usize> Scene<D> {
             return unsupported(
                 "gravity with segment walls in 3D is not supported yet; use planes",
             );
+        }
+        Ok(())
+    }
+
+    /// `settings.rest_speed`: positive and finite, under gravity.
+    fn validate_rest_speed(&self) -> Result<(), SceneError> {
+        let Some(speed) = self.settings.rest_speed else {
+            return Ok(());
+        };
+        let field = || "settings.rest_speed".to_string();
+        if !speed.is_finite() {
+            return Err(SceneError::NonFinite(field()));
+        }
+        if speed <= 0.0 {
+            return Err(SceneError::NonPositive(field()));
+        }
+        if self.settings.gravity.is_none() {
+            return Err(SceneError::Unsupported {
+                field: field(),
+                why: "bodies rest on walls only under gravity; set settings.gravity".into(),
+            });
         }
         Ok(())
     }

@@ -24,6 +24,11 @@ pub struct Collision<const D: usize> {
     pub pos: [Vector<D>; 2],
     /// Velocities after the collision, in the same order.
     pub vel: [Vector<D>; 2],
+    /// For each body of the event (`event.a`, then `event.b` for body events), true when it
+    /// rests on a wall after it (see [`crate::resting`]): for a wall event on that wall,
+    /// for a body event on the wall it rested on before (the collision left its velocity as
+    /// it was). Edits and resets lift every body they change off its wall.
+    pub rests: [bool; 2],
 }
 
 impl<const D: usize> Collision<D> {
@@ -286,10 +291,17 @@ impl<const D: usize> Simulation<D> {
             }
             let answer = match found {
                 Some(e) if self.idle.is_some_and(|idle| idle == e) => {
-                    self.halt = Some(Halt::Resting {
-                        time: e.time,
-                        body: e.a as usize,
-                        wall: e.b as usize,
+                    self.halt = Some(match e.kind {
+                        EventKind::Body => Halt::RestingOnBody {
+                            time: e.time,
+                            a: e.a as usize,
+                            b: e.b as usize,
+                        },
+                        _ => Halt::Resting {
+                            time: e.time,
+                            body: e.a as usize,
+                            wall: e.b as usize,
+                        },
                     });
                     None
                 }
@@ -318,7 +330,11 @@ impl<const D: usize> Simulation<D> {
         };
         let t = clock.next_time();
         let halted_after = match self.halt {
-            Some(Halt::Resolution { time, .. } | Halt::Resting { time, .. }) => time > t,
+            Some(
+                Halt::Resolution { time, .. }
+                | Halt::Resting { time, .. }
+                | Halt::RestingOnBody { time, .. },
+            ) => time > t,
             Some(Halt::BeyondRange { .. }) => true,
             None => found.is_none(),
         };
@@ -428,6 +444,14 @@ impl<const D: usize> Simulation<D> {
         let out = match e.kind {
             EventKind::Body => {
                 let before = self.world.velocity_at(a, e.time);
+                // Only bodies with their own accelerations press together at a contact that
+                // changes nothing (see `Halt::RestingOnBody`).
+                let states = |w: &World<D>, t: f64| {
+                    let at = |i: usize| (w.position_at(i, t), w.velocity_at(i, t));
+                    (at(a), at(b))
+                };
+                let resting = self.world.laws().is_some_and(|l| l.resting);
+                let before_both = resting.then(|| states(&self.world, e.time));
                 let contact = resolve_body_body_contact(&mut self.world, a, b, e.time);
                 overlap = contact.overlap;
                 self.stats.body_collisions += 1;
@@ -437,12 +461,16 @@ impl<const D: usize> Simulation<D> {
                 // `r_ab · Δv_a · m_a` without taking the image a second time.
                 let r = -contact.separation;
                 self.stats.virial += r.dot(w.velocity(a) - before) * w.mass(a);
+                if before_both.is_some_and(|s| s == states(&self.world, e.time)) {
+                    self.idle = Some(e);
+                }
                 self.bodies_changed(&[a, b]);
                 let w = &self.world;
                 Collision {
                     event: e,
                     pos: [w.position(a), w.position(b)],
                     vel: [w.velocity(a), w.velocity(b)],
+                    rests: [w.support(a).is_some(), w.support(b).is_some()],
                 }
             }
             EventKind::Wall => {
@@ -460,7 +488,8 @@ impl<const D: usize> Simulation<D> {
                     let w = &self.world;
                     self.stats.wall_work += 0.5 * w.mass(a) * (w.velocity(a).norm_sq() - v2);
                 }
-                if before == Some((self.world.position(a), self.world.velocity(a))) {
+                let rests = [self.world.support(a).is_some(), false];
+                if !rests[0] && before == Some((self.world.position(a), self.world.velocity(a))) {
                     // Nothing changed: the same event would come again (see `Halt::Resting`).
                     self.idle = Some(e);
                 }
@@ -471,6 +500,7 @@ impl<const D: usize> Simulation<D> {
                     event: e,
                     pos: [w.position(a), Vector::ZERO],
                     vel: [w.velocity(a), Vector::ZERO],
+                    rests,
                 }
             }
             EventKind::Reset => {
@@ -650,6 +680,7 @@ impl<const D: usize> Simulation<D> {
             event: Event::reset(time, i),
             pos: [p, Vector::ZERO],
             vel: [reset.velocity, Vector::ZERO],
+            rests: [false; 2],
         }
     }
 
@@ -683,7 +714,11 @@ impl<const D: usize> Simulation<D> {
         // unresolved event after `t`, leaves nothing unresolved before `t`.)
         let blocked = matches!(
             self.halt,
-            Some(Halt::Resolution { time, .. } | Halt::Resting { time, .. }) if time <= t
+            Some(
+                Halt::Resolution { time, .. }
+                | Halt::Resting { time, .. }
+                | Halt::RestingOnBody { time, .. },
+            ) if time <= t
         );
         if t > self.world.now() && !blocked {
             if let Some(s) = &mut self.sensors {

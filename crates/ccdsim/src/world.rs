@@ -18,6 +18,9 @@ use crate::narrow::Motion;
 use crate::scene::{BodySpec, Scene, SceneError};
 use crate::wall::Wall;
 
+/// [`World::support`] of a body that rests on no wall, as stored.
+const NO_SUPPORT: u32 = u32::MAX;
+
 /// The hot part of one body's state: its stored motion, radius, mass and change count.
 ///
 /// `repr(C)` keeps the fields in this order: the ones every time of impact reads come first.
@@ -66,6 +69,14 @@ pub struct World<const D: usize> {
     vacant: Vec<bool>,
     /// The vacant slots, the most recently vacated last: bodies added fill them first.
     free: Vec<usize>,
+    /// `settings.rest_speed`, m/s, if bodies come to rest on walls (see [`crate::resting`]).
+    rest_speed: Option<f64>,
+    /// Under `rest_speed`: the static wall each body rests on, by body index
+    /// ([`NO_SUPPORT`] when it falls); empty otherwise.
+    supports: Vec<u32>,
+    /// Under `rest_speed`: the acceleration of a body sliding on each static wall, by wall
+    /// index (`None` where no body rests); empty otherwise.
+    slides: Vec<Option<Vector<D>>>,
     /// The id the next added body gets unless it names its own: above every id so far.
     next_id: u64,
     laws: Laws<D>,
@@ -123,6 +134,19 @@ impl<const D: usize> World<D> {
                 .map(|i| scene.id_of(i))
                 .max()
                 .map_or(0, |m| m.saturating_add(1)),
+            rest_speed: scene.settings.rest_speed,
+            supports: match scene.settings.rest_speed {
+                Some(_) => vec![NO_SUPPORT; n],
+                None => Vec::new(),
+            },
+            slides: match (scene.settings.rest_speed, scene.gravity()) {
+                (Some(_), Some(g)) => scene
+                    .walls
+                    .iter()
+                    .map(|w| crate::resting::slide_acceleration(&g, w))
+                    .collect(),
+                _ => Vec::new(),
+            },
             laws: Laws {
                 growth: scene.settings.growth.map(|g| GrowthLaw {
                     rate: g.rate,
@@ -131,6 +155,7 @@ impl<const D: usize> World<D> {
                 gravity: scene.gravity(),
                 kinematic: scene.bodies.iter().any(|b| b.kinematic),
                 filtered: scene.bodies.iter().any(BodySpec::is_filtered),
+                resting: scene.settings.rest_speed.is_some(),
             },
             now: scene.start_time,
         })
@@ -212,6 +237,9 @@ impl<const D: usize> World<D> {
             if self.tc.is_some() {
                 self.last_collision.push(f64::NEG_INFINITY);
             }
+            if self.rest_speed.is_some() {
+                self.supports.push(NO_SUPPORT);
+            }
         }
         // Filled lowest slot first.
         let n = self.bodies.len();
@@ -264,6 +292,7 @@ impl<const D: usize> World<D> {
         b.radius = spec.radius;
         b.mass = spec.effective_mass();
         b.changes += 1;
+        self.leave_support(i);
         self.id[i] = id;
         self.next_id = self.next_id.max(id.saturating_add(1));
         self.vacant[i] = false;
@@ -297,6 +326,7 @@ impl<const D: usize> World<D> {
         };
         b.mass = f64::INFINITY;
         b.changes += 1;
+        self.leave_support(i);
         self.id[i] = u64::MAX;
         self.filters[i] = CollisionFilter::NONE;
         self.vacant[i] = true;
@@ -326,17 +356,76 @@ impl<const D: usize> World<D> {
     #[inline]
     pub fn position_at(&self, i: usize, t: f64) -> Vector<D> {
         match &self.laws.gravity {
+            Some(_) if self.laws.resting => match self.gravity_of(i) {
+                Some(a) => self.motion(i).falling_at(t, &a),
+                None => self.motion(i).at(t),
+            },
             Some(g) if !self.bodies[i].is_kinematic() => self.motion(i).falling_at(t, g),
             _ => self.motion(i).at(t),
         }
     }
 
-    /// The acceleration of body `i` between events, m/s²: the world's gravity, or `None`
+    /// The acceleration of body `i` between events, m/s²: the world's gravity, or for a body
+    /// resting on a wall the acceleration it slides with (see [`crate::resting`]); `None`
     /// without gravity or for a kinematic body (which moves in a straight line).
     #[must_use]
     #[inline]
     pub fn gravity_of(&self, i: usize) -> Option<Vector<D>> {
-        self.laws.gravity.filter(|_| !self.bodies[i].is_kinematic())
+        let g = self
+            .laws
+            .gravity
+            .filter(|_| !self.bodies[i].is_kinematic())?;
+        Some(match self.support(i) {
+            Some(w) => self.slides[w].unwrap_or(g),
+            None => g,
+        })
+    }
+
+    /// The acceleration of body `i` between events, m/s²: [`World::gravity_of`], zero when
+    /// that is `None`.
+    #[must_use]
+    #[inline]
+    pub fn acceleration(&self, i: usize) -> Vector<D> {
+        self.gravity_of(i).unwrap_or(Vector::ZERO)
+    }
+
+    /// The static wall body `i` rests on, sliding along it (see [`crate::resting`]), if it
+    /// does: only under `settings.rest_speed`, and until its state next changes.
+    #[must_use]
+    #[inline]
+    pub fn support(&self, i: usize) -> Option<usize> {
+        match self.supports.get(i) {
+            Some(&w) if w != NO_SUPPORT => Some(w as usize),
+            _ => None,
+        }
+    }
+
+    /// `settings.rest_speed`, m/s: bodies leaving a collision with a plane gravity presses
+    /// them on at most this fast come to rest on it (see [`crate::resting`]).
+    #[must_use]
+    pub fn rest_speed(&self) -> Option<f64> {
+        self.rest_speed
+    }
+
+    /// The acceleration of a body sliding on static wall `w`, m/s², if bodies may rest on it
+    /// (a plane gravity presses them on, under `settings.rest_speed`).
+    #[must_use]
+    pub fn slide_of(&self, w: usize) -> Option<Vector<D>> {
+        self.slides.get(w).copied().flatten()
+    }
+
+    /// Body `i`, whose state was just set, rests on static wall `w` from now on.
+    pub(crate) fn rest_on(&mut self, i: usize, w: usize) {
+        debug_assert!(self.slide_of(w).is_some());
+        self.supports[i] = u32::try_from(w).expect("fewer than 2^32 − 1 walls");
+    }
+
+    /// Body `i` no longer rests on a wall.
+    #[inline]
+    fn leave_support(&mut self, i: usize) {
+        if let Some(s) = self.supports.get_mut(i) {
+            *s = NO_SUPPORT;
+        }
     }
 
     /// True for a kinematic body (infinite mass, see [`crate::BodySpec::kinematic`]).
@@ -397,6 +486,10 @@ impl<const D: usize> World<D> {
     #[inline]
     pub fn velocity_at(&self, i: usize, t: f64) -> Vector<D> {
         match &self.laws.gravity {
+            Some(_) if self.laws.resting => match self.gravity_of(i) {
+                Some(a) => self.bodies[i].motion.falling_velocity(t, &a),
+                None => self.bodies[i].motion.vel,
+            },
             Some(g) if !self.bodies[i].is_kinematic() => {
                 self.bodies[i].motion.falling_velocity(t, g)
             }
@@ -682,6 +775,11 @@ impl<const D: usize> World<D> {
         let b = &mut self.bodies[i];
         b.motion = Motion { pos, vel, time: t };
         b.changes += 1;
+        // Whatever changes a resting body's state lifts it off its wall (see
+        // `crate::resting`); a collision that leaves it resting says so after.
+        if !self.supports.is_empty() {
+            self.leave_support(i);
+        }
     }
 
     /// Replaces body `i`'s stored state with `motion`, for tools that rebuild a world from a

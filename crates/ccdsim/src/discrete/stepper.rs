@@ -77,13 +77,19 @@ pub struct DiscreteStepper<const D: usize> {
 }
 
 impl<const D: usize> DiscreteStepper<D> {
-    /// A stepper at the scene's start, with miss counting off. Scenes with moving walls are
-    /// refused: the stepper knows static walls only.
+    /// A stepper at the scene's start, with miss counting off. Scenes with moving walls or
+    /// resting bodies (`settings.rest_speed`) are refused: the stepper knows neither.
     pub fn new(scene: &Scene<D>) -> Result<Self, SceneError> {
         if !scene.moving_walls.is_empty() {
             return Err(SceneError::Unsupported {
                 field: "moving_walls".into(),
                 why: "the discrete stepper has static walls only".into(),
+            });
+        }
+        if scene.settings.rest_speed.is_some() {
+            return Err(SceneError::Unsupported {
+                field: "settings.rest_speed".into(),
+                why: "the discrete stepper does not rest bodies on walls".into(),
             });
         }
         let world = World::from_scene(scene)?;

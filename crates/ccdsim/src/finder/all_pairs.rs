@@ -2,7 +2,7 @@
 
 use super::{finite_event, Finder, FinderError};
 use crate::event::Event;
-use crate::narrow::{toi_body_wall_of, toi_pair_bodies};
+use crate::narrow::{toi_bodies_in, toi_body_wall_in};
 use crate::periodic::{toi_box_exit, toi_pair_periodic};
 use crate::world::World;
 
@@ -53,18 +53,17 @@ pub fn all_pairs_next_event<const D: usize>(world: &World<D>) -> Option<Event> {
         }
         return finite_event(best);
     }
-    let bodies = world.bodies();
     for i in 0..n {
         for j in i + 1..n {
             if !world.collides(i, j) {
                 continue;
             }
-            if let Some(t) = toi_pair_bodies(&bodies[i], &bodies[j], laws) {
+            if let Some(t) = toi_bodies_in(world, i, j) {
                 best = Event::earliest(best, Some(Event::body(t, i, j)));
             }
         }
-        for (w, wall) in world.walls().iter().enumerate() {
-            if let Some(t) = toi_body_wall_of(&bodies[i], wall, laws) {
+        for w in 0..world.walls().len() {
+            if let Some(t) = toi_body_wall_in(world, i, w) {
                 best = Event::earliest(best, Some(Event::wall(t, i, w)));
             }
         }

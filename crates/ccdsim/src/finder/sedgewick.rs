@@ -25,7 +25,7 @@
 
 use super::{finite_event, Finder, FinderError, FinderMemory};
 use crate::event::{Event, EventKind};
-use crate::narrow::{toi_body_wall_of, toi_pair_bodies};
+use crate::narrow::{toi_bodies_in, toi_body_wall_in};
 use crate::periodic::{toi_box_exit, toi_pair_periodic};
 use crate::world::World;
 use std::cmp::Reverse;
@@ -166,7 +166,7 @@ impl Sedgewick {
             };
             let (ra, rb) = (world.radius(a), world.radius(b));
             let t = match &period {
-                None => toi_pair_bodies(&world.bodies()[a], &world.bodies()[b], world.laws()),
+                None => toi_bodies_in(world, a, b),
                 Some(size) => toi_pair_periodic(&ma, ra, &mb, rb, size, world.laws()),
             };
             if let Some(t) = t {
@@ -177,8 +177,8 @@ impl Sedgewick {
                 ));
             }
         }
-        for (w, wall) in world.walls().iter().enumerate() {
-            if let Some(t) = toi_body_wall_of(&world.bodies()[i], wall, world.laws()) {
+        for w in 0..world.walls().len() {
+            if let Some(t) = toi_body_wall_in(world, i, w) {
                 self.push(Entry::new(Event::wall(t, i, w), ci, 0));
             }
         }

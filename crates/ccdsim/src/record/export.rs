@@ -91,6 +91,10 @@ struct EventOut<'a, const D: usize> {
     /// Added bodies with their own restitution.
     #[serde(skip_serializing_if = "Option::is_none")]
     restitution: Option<f64>,
+    /// Runs where bodies rest on walls: for each body of the line, whether it rests on a
+    /// wall after the event (see [`crate::resting`]); absent when none does.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    rests: Option<&'a [bool]>,
 }
 
 /// Writes a run as JSON Lines: a header object, then one object per event (see the README).
@@ -158,6 +162,7 @@ pub fn export_jsonl<R: Read, W: Write, const D: usize>(
             group: None,
             mask: None,
             restitution: None,
+            rests: (c.rests != [false; 2]).then_some(&c.rests[..k]),
         };
         let added;
         match c.event.kind {

@@ -49,7 +49,13 @@
 //! [`crate::moving_wall`]), steered or not: wall events may name a moving wall (`b` from
 //! the number of static walls on), and edit records of code 5 give one a new velocity.
 //!
-//! A record is: tag `u8` (1 body event, 2 wall event, 3 end of run, 4 reset, 5 edit), `a: u32`, `b: u32`,
+//! Version 11 is version 10 for scenes where bodies rest on walls (`settings.rest_speed`,
+//! see [`crate::resting`]): a wall event after which the body rests on the wall, sliding
+//! along it, sets bit 6 of its tag (`0x40`); a body event after which body `a` (`b`) still
+//! rests on the wall it rested on before sets bit 6 (bit 7, `0x80`).
+//!
+//! A record is: tag `u8` (1 body event, 2 wall event, 3 end of run, 4 reset, 5 edit; in
+//! version 11 bits 6 and 7 flag resting bodies), `a: u32`, `b: u32`,
 //! `t: f64`, then for two body slots the position at `t` and the velocity after the event
 //! (`D` `f64`s each; the second slot is zero for wall events and the end record), then an
 //! FNV-1a checksum (`u32`) of the record's preceding bytes. The end record's `t` is the time
@@ -86,13 +92,17 @@ pub const VERSION_EDITS: u32 = 8;
 pub const VERSION_SLOTS: u32 = 9;
 /// Format version of run files of scenes with moving walls.
 pub const VERSION_MOVING_WALLS: u32 = 10;
+/// Format version of run files of scenes where bodies rest on walls.
+pub const VERSION_RESTING: u32 = 11;
 /// The newest format version this build reads.
-pub const VERSION_NEWEST: u32 = VERSION_MOVING_WALLS;
+pub const VERSION_NEWEST: u32 = VERSION_RESTING;
 
 /// The format version a run of `scene` is written in.
 #[must_use]
 pub fn version_for<const D: usize>(scene: &crate::scene::Scene<D>) -> u32 {
-    if !scene.moving_walls.is_empty() {
+    if scene.settings.rest_speed.is_some() {
+        VERSION_RESTING
+    } else if !scene.moving_walls.is_empty() {
         VERSION_MOVING_WALLS
     } else if !scene.sensors.is_empty() {
         VERSION_SENSORS
@@ -118,6 +128,10 @@ pub(crate) const TAG_WALL: u8 = 2;
 pub(crate) const TAG_END: u8 = 3;
 pub(crate) const TAG_RESET: u8 = 4;
 pub(crate) const TAG_EDIT: u8 = 5;
+/// Tag bit: body `a` of the record rests on a wall after it (version 11).
+pub(crate) const REST_A: u8 = 0x40;
+/// Tag bit: body `b` of a body event rests on a wall after it (version 11).
+pub(crate) const REST_B: u8 = 0x80;
 
 /// Size in bytes of one record in a `D`-dimensional run file.
 #[must_use]

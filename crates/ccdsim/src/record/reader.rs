@@ -1,9 +1,9 @@
 //! Reading run files, tolerating a truncated tail.
 
 use super::{
-    fnv1a, record_len, RecordError, RunRecord, MAGIC, PREAMBLE_LEN, TAG_BODY, TAG_EDIT, TAG_END,
-    TAG_RESET, TAG_WALL, VERSION, VERSION_EDITS, VERSION_MOVING_WALLS, VERSION_NEWEST,
-    VERSION_SLOTS,
+    fnv1a, record_len, RecordError, RunRecord, MAGIC, PREAMBLE_LEN, REST_A, REST_B, TAG_BODY,
+    TAG_EDIT, TAG_END, TAG_RESET, TAG_WALL, VERSION, VERSION_EDITS, VERSION_MOVING_WALLS,
+    VERSION_NEWEST, VERSION_SLOTS,
 };
 use crate::event::Event;
 use crate::geom::Vector;
@@ -324,6 +324,20 @@ impl<R: Read, const D: usize> RunReader<R, D> {
                 // `crate::edit`); a record read on its own cannot know how many there are.
                 n = u32::MAX >> 1;
             }
+            if c.rests != [false; 2] {
+                use crate::event::EventKind;
+                if self.scene.settings.rest_speed.is_none() {
+                    return Err("a resting body in a run without settings.rest_speed".into());
+                }
+                let fits = match c.event.kind {
+                    EventKind::Body => true,
+                    EventKind::Wall => !c.rests[1] && c.event.b < self.scene.walls.len() as u32,
+                    _ => false,
+                };
+                if !fits {
+                    return Err("a resting body flagged where none can rest".into());
+                }
+            }
             let limit_b = match c.event.kind {
                 crate::event::EventKind::Body => n,
                 crate::event::EventKind::Wall => w,
@@ -417,8 +431,9 @@ fn decode<const D: usize>(buf: &[u8]) -> Result<RunRecord<D>, String> {
         event,
         pos: [vec_at(0), vec_at(2)],
         vel: [vec_at(1), vec_at(3)],
+        rests: [buf[0] & REST_A != 0, buf[0] & REST_B != 0],
     };
-    match buf[0] {
+    match buf[0] & !(REST_A | REST_B) {
         TAG_BODY if a < b => Ok(RunRecord::Event(c(Event::body(t, a as usize, b as usize)))),
         TAG_WALL => Ok(RunRecord::Event(c(Event::wall(t, a as usize, b as usize)))),
         TAG_END => Ok(RunRecord::End(t)),

@@ -148,6 +148,14 @@ pub struct Verifier<const D: usize> {
     vacant: Vec<bool>,
     /// The first record of an added body, waiting for its id record.
     pending_add: Option<Collision<D>>,
+    /// `settings.rest_speed`, if bodies rest on walls (see [`crate::resting`]).
+    rest_speed: Option<f64>,
+    /// The least restitution of the scene and its bodies: a wall bounce leaves at least
+    /// this fraction of the normal speed (the TC model only raises it).
+    least_restitution: f64,
+    /// The static wall each body rests on, by index, as the records say; empty unless
+    /// bodies rest on walls.
+    supports: Vec<Option<usize>>,
 }
 
 impl<const D: usize> Verifier<D> {
@@ -191,14 +199,24 @@ impl<const D: usize> Verifier<D> {
             motion.iter().map(|m| m.vel.norm()).sum::<f64>() / motion.len().max(1) as f64;
         let slab = slab_length(r_max, mean_speed, gravity).unwrap_or(f64::INFINITY);
         let pe = potential_energy(&motion, &mass, gravity, scene.start_time);
-        let mut grid = Proximity::new(&radius, scene.periodic, gravity, scene.start_time);
+        let mut grid = Proximity::new(&radius, scene.periodic, scene.start_time);
         grid.start_slab(scene.start_time, scene.start_time + slab);
         let grown = growth.map_or(1.0, |g| g.scale(grid.end));
         for (i, m) in motion.iter().enumerate() {
-            let falls = !scene.bodies[i].kinematic;
-            grid.file(i, m, radius[i] * grown, scene.start_time, falls);
+            let acc = gravity.filter(|_| !scene.bodies[i].kinematic);
+            grid.file(i, m, radius[i] * grown, scene.start_time, acc);
         }
         Verifier {
+            rest_speed: scene.settings.rest_speed,
+            least_restitution: scene
+                .bodies
+                .iter()
+                .filter_map(|b| b.restitution)
+                .fold(scene.settings.restitution, f64::min),
+            supports: match scene.settings.rest_speed {
+                Some(_) => vec![None; scene.bodies.len()],
+                None => Vec::new(),
+            },
             growth,
             gravity,
             vacant: Vec::new(),
@@ -245,9 +263,14 @@ impl<const D: usize> Verifier<D> {
         self.kinematic.get(i).copied().unwrap_or(false)
     }
 
-    /// Body `i`'s acceleration: the scene's gravity, unless it is kinematic.
+    /// Body `i`'s acceleration: the scene's gravity, unless it is kinematic; for a body
+    /// resting on a wall, its slide along it.
     fn g(&self, i: usize) -> Option<Vector<D>> {
-        self.gravity.filter(|_| !self.is_kinematic(i))
+        let g = self.gravity.filter(|_| !self.is_kinematic(i))?;
+        match self.supports.get(i).copied().flatten() {
+            Some(w) => crate::resting::slide_acceleration(&g, &self.walls[w]),
+            None => Some(g),
+        }
     }
 
     /// Body `i`'s position at `t` on its current motion.
@@ -337,12 +360,16 @@ impl<const D: usize> Verifier<D> {
             EventKind::Reset => self.check_reset(c, ids[0])?,
             EventKind::Edit => self.check_slot_edit(c, ids[0])?,
         }
+        let supports = self.check_rests(c, &ids[..k])?;
         for (s, &i) in ids[..k].iter().enumerate() {
             self.motion[i] = Motion {
                 pos: c.pos[s],
                 vel: c.vel[s],
                 time: t,
             };
+            if let Some(slot) = self.supports.get_mut(i) {
+                *slot = supports[s];
+            }
             self.refile(i, t);
         }
         self.last_time = t;
@@ -544,11 +571,94 @@ impl<const D: usize> Verifier<D> {
                 self.check_growth_rule(t, n, v0, v1, grow, &format!("body {i} at wall {w}"))?;
             }
             (Some(_), None) => {}
+            // Coming to rest: `check_rests` checks the velocity along the wall.
+            (None, _) if c.rests[0] => {}
             (None, _) => self.check_energy(t, e0, e1, &format!("body {i} at wall {w}"))?,
         }
         self.report.wall_collisions += 1;
         self.report.kinetic_energy_end += e1 - e0;
         Ok(())
+    }
+
+    /// The walls the bodies of record `c` (`ids`) rest on after it, as its flags say, each
+    /// checked against the rule of [`crate::resting`]: after a wall collision, on a static
+    /// plane gravity presses it on, which it left at most `rest_speed` fast, with no normal
+    /// velocity; after a body collision, on its wall before, its velocity unchanged.
+    fn check_rests(
+        &self,
+        c: &Collision<D>,
+        ids: &[usize],
+    ) -> Result<[Option<usize>; 2], Violation> {
+        let t = c.event.time;
+        let mut out = [None; 2];
+        for (s, &i) in ids.iter().enumerate() {
+            if !c.rests[s] {
+                continue;
+            }
+            let (Some(rest_speed), Some(g)) = (self.rest_speed, self.gravity) else {
+                return Err(self.fail(t, format!("body {i} rests without settings.rest_speed")));
+            };
+            out[s] = Some(match c.event.kind {
+                EventKind::Wall => {
+                    let w = c.event.b as usize;
+                    let Some(Wall::Plane { normal, .. }) = self.walls.get(w).copied() else {
+                        return Err(self.fail(t, format!("body {i} rests on wall {w}, no plane")));
+                    };
+                    if crate::resting::slide_acceleration(&g, &self.walls[w]).is_none() {
+                        return Err(self.fail(
+                            t,
+                            format!(
+                                "body {i} rests on wall {w}, which gravity does not press it on"
+                            ),
+                        ));
+                    }
+                    // The speed it would have left with: the normal velocity reflected.
+                    let unit = normal * (1.0 / normal.norm());
+                    let vn = self.vel_of(i, t).dot(unit);
+                    let e = self.least_restitution;
+                    let outgoing = if vn < 0.0 { -e * vn } else { vn };
+                    let scale = 1e-9 * (1.0 + self.vel_of(i, t).norm());
+                    if outgoing > rest_speed + scale {
+                        return Err(self.fail(
+                            t,
+                            format!(
+                                "body {i} rests on wall {w} leaving it at {outgoing} m/s, \
+                                 above rest_speed {rest_speed}"
+                            ),
+                        ));
+                    }
+                    let slide = crate::resting::tangential(&self.vel_of(i, t), &normal);
+                    if (c.vel[s] - slide).norm() > scale {
+                        return Err(self.fail(
+                            t,
+                            format!(
+                                "body {i} rests on wall {w} with velocity {:?}, not its \
+                                 velocity along the wall {:?}",
+                                c.vel[s].0, slide.0
+                            ),
+                        ));
+                    }
+                    w
+                }
+                EventKind::Body => {
+                    let Some(w) = self.supports.get(i).copied().flatten() else {
+                        return Err(
+                            self.fail(t, format!("body {i} goes on resting, but did not rest"))
+                        );
+                    };
+                    let before = self.vel_of(i, t);
+                    if (c.vel[s] - before).norm() > 1e-9 * (1.0 + before.norm()) {
+                        return Err(self.fail(
+                            t,
+                            format!("body {i} goes on resting on wall {w} with a new velocity"),
+                        ));
+                    }
+                    w
+                }
+                _ => return Err(self.fail(t, format!("body {i} rests after an edit or reset"))),
+            });
+        }
+        Ok(out)
     }
 
     fn check_energy(&self, t: f64, e0: f64, e1: f64, who: &str) -> Result<(), Violation> {
@@ -611,9 +721,9 @@ impl<const D: usize> Verifier<D> {
 
     /// Files body `i` in the grid (if any) anew from `t`, on its current motion.
     fn refile(&mut self, i: usize, t: f64) {
-        let (r, falls) = (self.radius_until_slab_end(i), self.g(i).is_some());
+        let (r, acc) = (self.radius_until_slab_end(i), self.g(i));
         if let Some(grid) = &mut self.grid {
-            grid.file(i, &self.motion[i], r, t, falls);
+            grid.file(i, &self.motion[i], r, t, acc);
         }
     }
 
@@ -838,13 +948,11 @@ impl<const D: usize> Verifier<D> {
         }
         let next_end = (end + self.slab).max(t);
         let grown = self.growth.map_or(1.0, |g| g.scale(next_end));
-        let falls: Vec<bool> = (0..self.motion.len())
-            .map(|i| self.g(i).is_some())
-            .collect();
+        let acc: Vec<Option<Vector<D>>> = (0..self.motion.len()).map(|i| self.g(i)).collect();
         let grid = self.grid.as_mut().expect("grid mode");
         grid.start_slab(end, next_end);
         for (i, m) in self.motion.iter().enumerate() {
-            grid.file(i, m, self.radius[i] * grown, m.time.max(end), falls[i]);
+            grid.file(i, m, self.radius[i] * grown, m.time.max(end), acc[i]);
         }
         Ok(())
     }

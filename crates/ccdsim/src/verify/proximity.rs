@@ -57,19 +57,12 @@ pub(super) struct Proximity<const D: usize> {
     pub(super) start: f64,
     /// End of the current slab, seconds.
     pub(super) end: f64,
-    /// The acceleration of every body, if the world has gravity.
-    gravity: Option<Vector<D>>,
 }
 
 impl<const D: usize> Proximity<D> {
     /// A grid with cells of `2 · r_max` (at least), for a world whose periodic box, if any,
-    /// is `period`, and whose bodies fall under `gravity`, if any; no body filed yet.
-    pub(super) fn new(
-        radii: &[f64],
-        period: Option<Vector<D>>,
-        gravity: Option<Vector<D>>,
-        start: f64,
-    ) -> Self {
+    /// is `period`; no body filed yet (each is filed with its own acceleration).
+    pub(super) fn new(radii: &[f64], period: Option<Vector<D>>, start: f64) -> Self {
         let r_max = radii.iter().fold(0.0f64, |m, &r| m.max(r));
         let side = (2.0 * r_max).max(f64::MIN_POSITIVE);
         let mut cell = [side; D];
@@ -97,7 +90,6 @@ impl<const D: usize> Proximity<D> {
             is_wide: vec![false; radii.len()],
             start,
             end: start,
-            gravity,
         }
     }
 
@@ -161,13 +153,20 @@ impl<const D: usize> Proximity<D> {
         }
     }
 
-    /// Files body `i`, moving as `m` with radius `r` (falling under the grid's gravity if
-    /// `falls`; kinematic bodies do not), for the rest of the slab from `from`, replacing
-    /// where it was filed.
-    pub(super) fn file(&mut self, i: usize, m: &Motion<D>, r: f64, from: f64, falls: bool) {
+    /// Files body `i`, moving as `m` with radius `r` and accelerating at `acc` (the grid's
+    /// gravity, a resting body's slide, or none for a kinematic body), for the rest of the
+    /// slab from `from`, replacing where it was filed.
+    pub(super) fn file(
+        &mut self,
+        i: usize,
+        m: &Motion<D>,
+        r: f64,
+        from: f64,
+        acc: Option<Vector<D>>,
+    ) {
         self.unfile(i);
         let end = self.end.max(from);
-        let gravity = self.gravity.filter(|_| falls);
+        let gravity = acc;
         let (a, b, lo, hi) = match &gravity {
             None => {
                 let (a, b) = (m.at(from), m.at(end));

@@ -125,6 +125,9 @@ impl<const D: usize> Verifier<D> {
             if !self.filters.is_empty() {
                 self.filters.push(CollisionFilter::NONE);
             }
+            if self.rest_speed.is_some() {
+                self.supports.push(None);
+            }
             if let Some(grid) = &mut self.grid {
                 grid.resize(k + 1);
             }

@@ -107,7 +107,7 @@ pub use validate::InvalidTree;
 
 use super::{finite_event, DebugBox, Finder, FinderError, FinderOptions};
 use crate::event::Event;
-use crate::narrow::toi_pair_bodies;
+use crate::narrow::toi_bodies_in;
 use crate::periodic::toi_pair_periodic;
 use crate::world::World;
 use tree::{children, l1, SweptTree};
@@ -227,7 +227,8 @@ impl<const D: usize> BvhFinder<D> {
                 .map(|i| l1(world.velocity_at(i, now)))
                 .fold(0.0, f64::max),
         };
-        if world.len() < 2 || v_max == 0.0 {
+        // Under gravity bodies at rest now still fall into each other.
+        if world.len() < 2 || (v_max == 0.0 && world.gravity().is_none()) {
             return wall;
         }
         self.build(world);
@@ -271,7 +272,7 @@ impl<const D: usize> BvhFinder<D> {
                 }
                 let (mj, ri, rj) = (world.motion(j), world.radius(i), world.radius(j));
                 let t = match world.periodic() {
-                    None => toi_pair_bodies(&world.bodies()[i], &world.bodies()[j], world.laws()),
+                    None => toi_bodies_in(world, i, j),
                     Some(size) => toi_pair_periodic(&mi, ri, &mj, rj, &size, world.laws()),
                 };
                 if let Some(t) = t {

@@ -5,7 +5,7 @@
 use super::tree::{children, SweptTree, ROUND_PAD};
 use crate::event::Event;
 use crate::geom::{Aabb, Vector};
-use crate::narrow::toi_pair_bodies;
+use crate::narrow::toi_bodies_in;
 use crate::periodic::toi_pair_periodic;
 use crate::world::World;
 
@@ -178,11 +178,7 @@ impl<const D: usize> Check<'_, D> {
         let (mi, ri) = (self.world.motion(i), self.world.radius(i));
         let (mj, rj) = (self.world.motion(j), self.world.radius(j));
         let t = match &self.period {
-            None => toi_pair_bodies(
-                &self.world.bodies()[i],
-                &self.world.bodies()[j],
-                self.world.laws(),
-            ),
+            None => toi_bodies_in(self.world, i, j),
             Some(size) => toi_pair_periodic(&mi, ri, &mj, rj, size, self.world.laws()),
         };
         let Some(t) = t else {

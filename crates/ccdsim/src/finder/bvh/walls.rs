@@ -2,7 +2,7 @@
 //! cached and recomputed only for bodies whose stored state changed.
 
 use crate::event::Event;
-use crate::narrow::toi_body_wall_of;
+use crate::narrow::toi_body_wall_in;
 use crate::periodic::toi_box_exit;
 use crate::world::World;
 
@@ -47,8 +47,8 @@ impl WallCache {
             }
             let m = world.motion(i);
             let mut best = None;
-            for (w, wall) in world.walls().iter().enumerate() {
-                if let Some(t) = toi_body_wall_of(&world.bodies()[i], wall, world.laws()) {
+            for w in 0..world.walls().len() {
+                if let Some(t) = toi_body_wall_in(world, i, w) {
                     best = Event::earliest(best, Some(Event::wall(t, i, w)));
                 }
             }

@@ -70,6 +70,8 @@ impl<const D: usize> Cells<D> {
             // Kinematic bodies do not fall.
             return self.grid.next_crossing(k, mi);
         }
+        // A body resting on a wall slides with its own acceleration.
+        let g = self.accels.get(i).copied().unwrap_or(g);
         self.grid.next_crossing_falling(k, mi, &g, self.clock)
     }
 
@@ -168,7 +170,7 @@ impl<const D: usize> Cells<D> {
             let (lo, hi) = self.grid.cell_box(&k.map(|x| x as usize));
             for d in 0..D {
                 let dt = (clock - m.time).abs();
-                let fall = world.gravity().map_or(0.0, |g| g[d].abs() * dt * dt);
+                let fall = world.gravity_of(i).map_or(0.0, |g| g[d].abs() * dt * dt);
                 let tol = 1e-9 * (1.0 + p[d].abs() + m.vel[d].abs() * dt + fall);
                 if p[d] < lo[d] - tol || p[d] > hi[d] + tol {
                     return Err(format!(

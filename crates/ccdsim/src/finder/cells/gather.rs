@@ -295,7 +295,7 @@ impl<const D: usize> Cells<D> {
 /// Offers body `i` its pair with body `j` meeting at time `t` (image code `image`), as
 /// [`Cells::offer_body`] does.
 #[inline(always)]
-fn offer_time(best: &mut Best, i: usize, j: usize, t: f64, image: u8) {
+pub(super) fn offer_time(best: &mut Best, i: usize, j: usize, t: f64, image: u8) {
     let bits = ordered(t);
     if bits <= best.threshold() {
         best.offer(Key::body_bits(bits, i.min(j), i.max(j)), image);

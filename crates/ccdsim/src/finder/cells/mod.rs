@@ -370,6 +370,9 @@ pub struct Cells<const D: usize> {
     gravity: Option<Vector<D>>,
     /// Which bodies are kinematic (they do not fall), by index; empty when none is.
     kinematic: Vec<bool>,
+    /// Where bodies rest on walls (see [`crate::resting`]): each body's acceleration
+    /// ([`World::acceleration`]) by index; empty otherwise.
+    accels: Vec<Vector<D>>,
     /// The world's collision filters by body index (see [`crate::collision_filter`]);
     /// empty when every pair collides.
     filters: Vec<crate::CollisionFilter>,
@@ -406,6 +409,7 @@ impl<const D: usize> Cells<D> {
             laws: None,
             gravity: None,
             kinematic: Vec::new(),
+            accels: Vec::new(),
             filters: Vec::new(),
         }
     }
@@ -603,6 +607,11 @@ impl<const D: usize> Finder<D> for Cells<D> {
         } else {
             Vec::new()
         };
+        self.accels = if self.resting() {
+            (0..n).map(|i| world.acceleration(i)).collect()
+        } else {
+            Vec::new()
+        };
         let mut grown = 1.0;
         if let Some(law) = world.growth() {
             let window = (law.scale(now) * GROWTH_HEADROOM / law.rate).max(0.0);
@@ -725,6 +734,12 @@ impl<const D: usize> Finder<D> for Cells<D> {
         if !self.kinematic.is_empty() {
             for &i in changed {
                 self.kinematic[i] = world.is_kinematic(i);
+            }
+        }
+        if !self.accels.is_empty() {
+            // A body comes to rest on a wall, or leaves it, only when its state changes.
+            for &i in changed {
+                self.accels[i] = world.acceleration(i);
             }
         }
         match self.mode {

@@ -110,6 +110,9 @@ impl<const D: usize> Cells<D> {
         bj: &mut Best,
     ) -> bool {
         let (i, j) = (pi.i, pj.i);
+        if self.resting() {
+            return false;
+        }
         let Some((base, block)) = self
             .grid
             .interior_pair(&self.cached[i].coords, &self.cached[j].coords)

@@ -2,14 +2,17 @@
 //! earliest event, checking that a cached event is still live, and scheduling the body's next
 //! cell crossing.
 
-use super::gather::{Gathered, GATHER_2D, GATHER_3D};
+use super::gather::{offer_time, Gathered, GATHER_2D, GATHER_3D};
 use super::grid::Grid;
 use super::key::{ordered, Key};
 use super::{Cells, Mode, NO_CROSSING, SECOND_KNOWN};
 use crate::collision_filter::{pair_collides, CollisionFilter};
 use crate::geom::Vector;
 use crate::laws::Laws;
-use crate::narrow::{toi_body_wall_of, toi_pair_bodies, toi_pair_shifted, Motion};
+use crate::narrow::{
+    toi_body_wall_of, toi_body_wall_resting, toi_pair_accelerated, toi_pair_bodies,
+    toi_pair_shifted, Motion,
+};
 use crate::narrow_lanes::Side;
 use crate::periodic::toi_box_exit;
 use crate::prefetch::prefetch;
@@ -131,6 +134,13 @@ impl<const D: usize> Probe<D> {
 }
 
 impl<const D: usize> Cells<D> {
+    /// True where bodies rest on walls (see [`crate::resting`]): pairs then take each body's
+    /// own acceleration, body by body (the four-lane kernel knows one acceleration only).
+    #[inline(always)]
+    pub(super) fn resting(&self) -> bool {
+        self.laws.is_some_and(|l| l.resting)
+    }
+
     /// Time of impact of body `p` with body `j` (record `bj`; image displaced by `shift`),
     /// computed exactly as the oracle does: by the same pure function, lower index first.
     #[inline(always)]
@@ -146,6 +156,10 @@ impl<const D: usize> Cells<D> {
         }
         let (i, bi) = (p.i, &p.b);
         let (a, b) = if i < j { (bi, bj) } else { (bj, bi) };
+        if self.resting() {
+            let (ga, gb) = (&self.accels[i.min(j)], &self.accels[i.max(j)]);
+            return toi_pair_accelerated(a, ga, b, gb);
+        }
         if self.periodic {
             let s = if i < j { *shift } else { Vector::ZERO - *shift };
             let law = self.laws.as_ref();
@@ -270,7 +284,11 @@ impl<const D: usize> Cells<D> {
             let neg = Vector::ZERO - *shift;
             for j in self.grid.bodies_in(c) {
                 let j = j as usize;
-                if j != p.i {
+                if j != p.i && self.resting() {
+                    if let Some(t) = self.pair_toi(p, j, &bodies[j], shift) {
+                        offer_time(best, p.i, j, t, image);
+                    }
+                } else if j != p.i {
                     let law = self.laws.as_ref();
                     let filters = &self.filters[..];
                     Self::offer_body::<PERIODIC>(
@@ -313,7 +331,7 @@ impl<const D: usize> Cells<D> {
         for c in cells.clone() {
             g.push(self.grid.cell(c));
         }
-        if g.overflow() {
+        if g.overflow() || self.resting() {
             let mut listed = [(0u32, Grid::<D>::ZERO_IMAGE); 27];
             let mut n = 0;
             for c in cells {
@@ -402,7 +420,12 @@ impl<const D: usize> Cells<D> {
                 continue;
             }
             let wall = &world.walls()[w as usize];
-            if let Some(t) = toi_body_wall_of(&p.b, wall, self.laws.as_ref()) {
+            let t = if self.resting() {
+                toi_body_wall_resting(world, p.i, w as usize)
+            } else {
+                toi_body_wall_of(&p.b, wall, self.laws.as_ref())
+            };
+            if let Some(t) = t {
                 best.offer(Key::wall(t, p.i, w as usize), Grid::<D>::ZERO_IMAGE);
             }
         }
