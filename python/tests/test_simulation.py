@@ -253,3 +253,21 @@ def test_moving_walls_are_steered_and_met_exactly():
         sim.set_wall_velocity(3, [0.0, 0.0])
     with pytest.raises(ValueError, match="a vector of 2 numbers"):
         sim.set_wall_velocity(0, [0.0])
+
+
+def test_a_ball_comes_to_rest_on_the_floor_and_slides():
+    # Dropped from 1.25 m with restitution 0.5 and rest_speed 0.4 m/s: it meets the floor at
+    # 5 m/s, bounces at 2.5, 1.25, 0.625, then rests (0.3125 <= 0.4) and slides at 0.5 m/s.
+    scene = {
+        "dim": 2,
+        "settings": {"restitution": 0.5, "gravity": [0.0, -10.0], "rest_speed": 0.4},
+        "bodies": [{"pos": [0.0, 1.5], "vel": [0.5, 0.0], "radius": 0.25}],
+        "walls": [{"point": [0.0, 0.0], "normal": [0.0, 1.0]}],
+    }
+    sim = ccdsim.Simulation(scene, finder="cells")
+    assert sim.run_until(10.0) == 4
+    assert sim.halt is None
+    np.testing.assert_allclose(sim.positions[0], [5.0, 0.25], atol=1e-12)
+    np.testing.assert_array_equal(sim.velocities[0], [0.5, 0.0])
+    with pytest.raises(ValueError, match="rest_speed"):
+        ccdsim.Simulation({**scene, "settings": {"rest_speed": 0.4}}, finder="cells")

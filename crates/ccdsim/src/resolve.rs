@@ -62,6 +62,8 @@ pub fn resolve_body_body_contact<const D: usize>(
     let sigma = world.radius_at(i, t) + world.radius_at(j, t);
     let (mut vi2, mut vj2) = (vi, vj);
     let e = world.pair_restitution(i, j, t);
+    // Bodies the collision presses into the plane they rest on, which stay on it.
+    let mut held = (false, false);
     if let Some(law) = world.growth() {
         // Growing radii: reverse the speed at which the surfaces approach (see
         // `crate::growth`): u' = (1 + e)·σ̇ − e·u along the line of centres.
@@ -78,7 +80,14 @@ pub fn resolve_body_body_contact<const D: usize>(
     } else if dist > 0.0 {
         let n = d * (1.0 / dist);
         let vn = (vj - vi).dot(n);
-        if vn < 0.0 {
+        let pressed = world
+            .laws()
+            .is_some_and(|l| l.resting)
+            .then(|| crate::resting::pressed_impulse(world, (i, vi), (j, vj), n, vn, e))
+            .flatten();
+        if let Some((v2, by)) = pressed {
+            ((vi2, vj2), held) = (v2, by);
+        } else if vn < 0.0 {
             // Velocity changes J/mi and J/mj with J = −(1+e)·vn·mi·mj/(mi+mj), written as mass
             // fractions so that equal masses exchange normal velocities exactly (m/2m = 0.5).
             let k = (1.0 + e) * vn;
@@ -89,12 +98,12 @@ pub fn resolve_body_body_contact<const D: usize>(
     let supports = (world.support(i), world.support(j));
     world.set_state(i, pi, vi2, t);
     world.set_state(j, pj, vj2, t);
-    // A collision that leaves a resting body's velocity as it was (the pair was already
-    // parting) leaves it resting: it goes on along the same path (see `crate::resting`).
-    if let (Some(w), true) = (supports.0, vi2 == vi) {
+    // A resting body stays on its plane when the collision pressed it into it, or left its
+    // velocity as it was (the pair was already parting; see `crate::resting`).
+    if let (Some(w), true) = (supports.0, held.0 || vi2 == vi) {
         world.rest_on(i, w);
     }
-    if let (Some(w), true) = (supports.1, vj2 == vj) {
+    if let (Some(w), true) = (supports.1, held.1 || vj2 == vj) {
         world.rest_on(j, w);
     }
     world.note_pair_collision(i, j, t);

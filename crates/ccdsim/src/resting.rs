@@ -19,11 +19,25 @@
 //! * a sliding body meets walls as a falling body does, under its own acceleration, and
 //!   never its support: it touches it all along.
 //!
-//! A body **leaves** its plane when its state next changes, whatever changes it (a collision
-//! with a body or another wall, an edit, a thermostat reset): it falls again under `g`. A body
-//! knocked along the plane then lands again at once, within rounding, with no normal speed,
-//! and rests again: one more event, exact like every other. A body knocked up flies off; one
-//! pushed into the plane meets it at once and bounces or rests.
+//! A body **leaves** its plane when its velocity next changes (a collision with a body or
+//! another wall, an edit, a thermostat reset): it falls again under `g`. A body knocked along
+//! the plane then lands again at once, within rounding, with no normal speed, and rests
+//! again: one more event, exact like every other. A body knocked up flies off.
+//!
+//! Two exceptions keep it on its plane. A collision that leaves its velocity as it was (the
+//! pair was already parting) changes nothing. And a body **pressed into its plane** by a
+//! body that hits it (a ball landing on a resting one) is held by the plane, which takes the
+//! normal part of the push ([`pressed_impulse`]): the resting body moves along the plane
+//! only, and the pair's normal speed is reversed times the restitution as in a free
+//! collision. Without this, the resting body would pass a share of the push to its plane in
+//! an endless sequence of collisions at one instant.
+//!
+//! **Bodies on bodies.** A ball whose bounces on a resting one die away (or a ball sliding
+//! down an incline against one resting on the floor) ends touching it without normal speed
+//! while their accelerations press them together: a stack, which needs a lasting contact
+//! between bodies. The run then stops with [`crate::Halt::RestingOnBody`], the same event for
+//! every finder. A body wedged in a corner between two planes bounces between them until it
+//! stops likewise ([`crate::Halt::Resting`]): it rests on one plane at a time.
 //!
 //! **Why planes only.** A body sliding on a segment reaches the segment's end, where a slow
 //! body would roll over the edge: a circular motion about the end point, not a polynomial
@@ -58,6 +72,62 @@ pub fn slide_acceleration<const D: usize>(g: &Vector<D>, wall: &Wall<D>) -> Opti
 #[must_use]
 pub fn tangential<const D: usize>(v: &Vector<D>, normal: &Vector<D>) -> Vector<D> {
     *v - *normal * (v.dot(*normal) / normal.norm_sq())
+}
+
+/// The velocities after a collision of bodies `i` and `j` (velocities `vi`, `vj` at the
+/// contact, `n` the unit vector from `i` to `j`, `vn = (vj − vi)·n < 0`, restitution `e`)
+/// when it presses one of them, or both, into the plane it rests on: such a body is held by
+/// its plane, which takes the normal part of its push, so it moves along the plane only
+/// (its velocity changes along `P n`, `P` the projection onto the plane). The pair's
+/// impulse `J = −(1 + e) vn / (w_i (P_i n)·n + w_j (P_j n)·n)` (`w` the inverse masses, 0
+/// for a kinematic body; `P = 1` for a body not held) reverses their normal speed times
+/// `e` as a free collision does. Returns the two velocities and which body its plane
+/// held; `None` when no body is pressed into its plane (or the pair parts), for the free
+/// collision.
+#[must_use]
+#[inline(never)]
+#[allow(clippy::type_complexity)]
+pub fn pressed_impulse<const D: usize>(
+    world: &crate::World<D>,
+    (i, vi): (usize, Vector<D>),
+    (j, vj): (usize, Vector<D>),
+    n: Vector<D>,
+    vn: f64,
+    e: f64,
+) -> Option<((Vector<D>, Vector<D>), (bool, bool))> {
+    if vn >= 0.0 {
+        return None;
+    }
+    // The direction the pair's impulse moves body `k` (pushed along `push`) and its plane's
+    // normal if the plane holds it.
+    let held = |k: usize, push: Vector<D>| match world.support(k).map(|w| world.walls()[w]) {
+        Some(Wall::Plane { normal, .. }) if push.dot(normal) < 0.0 => {
+            (tangential(&push, &normal), Some(normal))
+        }
+        _ => (push, None),
+    };
+    let (ui, hi) = held(i, Vector::ZERO - n);
+    let (uj, hj) = held(j, n);
+    if hi.is_none() && hj.is_none() {
+        return None;
+    }
+    let inverse = |k: usize| 1.0 / world.mass(k);
+    let (wi, wj) = (inverse(i), inverse(j));
+    let denominator = wi * ui.dot(Vector::ZERO - n) + wj * uj.dot(n);
+    if denominator <= 0.0 {
+        // Pressed straight into its plane by a kinematic body: no motion takes the push.
+        return None;
+    }
+    let impulse = -(1.0 + e) * vn / denominator;
+    let along = |v: Vector<D>, u: Vector<D>, w: f64, plane: Option<Vector<D>>| {
+        let v2 = v + u * (impulse * w);
+        // On its plane to the last bit where the normal is an axis.
+        plane.map_or(v2, |normal| tangential(&v2, &normal))
+    };
+    Some((
+        (along(vi, ui, wi, hi), along(vj, uj, wj, hj)),
+        (hi.is_some(), hj.is_some()),
+    ))
 }
 
 /// True when a body that leaves a collision with a plane at normal speed `outgoing` (m/s,

@@ -207,6 +207,21 @@ fn record_run<const D: usize>(
                 );
                 want = None;
             }
+            if let (None, Some(Halt::Resting { time, body, wall })) = (got, sim.halt()) {
+                // The same wall event came again after a collision that changed nothing: the
+                // simulation stops there, and the oracle names that very event.
+                assert_eq!(
+                    want,
+                    Some(Event::wall(time, body, wall)),
+                    "{label} [{name}]"
+                );
+                want = None;
+            }
+            if let (None, Some(Halt::RestingOnBody { time, a, b })) = (got, sim.halt()) {
+                // Two bodies pressed together without normal speed (see `resting`): the same.
+                assert_eq!(want, Some(Event::body(time, a, b)), "{label} [{name}]");
+                want = None;
+            }
             match got {
                 // A thermostat reset comes from the simulation, not the finder: it must come
                 // strictly before the oracle's next collision (a collision wins a tie).
@@ -1928,5 +1943,106 @@ fn moving_walls() {
             1200,
             slots,
         );
+    }
+}
+
+/// `scene` under gravity `g` with bodies resting on walls (restitution 0.5, `rest_speed`
+/// 0.5 m/s): in 2D its box becomes four planes (bodies rest on planes only) and an incline
+/// across its lower left corner, bodies crossing it left out.
+fn resting<const D: usize>(mut scene: Scene<D>, g: [f64; D]) -> Scene<D> {
+    scene.settings.gravity = ccdsim::gravity::Gravity::new(&g);
+    scene.settings.restitution = 0.5;
+    scene.settings.rest_speed = Some(0.5);
+    if D == 2 {
+        let mut lo = Vector::<D>::splat(f64::INFINITY);
+        let mut hi = Vector::<D>::splat(f64::NEG_INFINITY);
+        for w in &scene.walls {
+            if let Wall::Segment { a, b } = w {
+                lo = lo.min(a.min(*b));
+                hi = hi.max(a.max(*b));
+            }
+        }
+        let plane = |point: Vector<D>, d: usize, sign: f64| {
+            let mut normal = Vector::<D>::ZERO;
+            normal[d] = sign;
+            Wall::Plane { point, normal }
+        };
+        let mut walls: Vec<Wall<D>> = (0..D)
+            .flat_map(|d| [plane(lo, d, 1.0), plane(hi, d, -1.0)])
+            .collect();
+        let mut corner = lo;
+        corner[1] = lo[1] + 0.25 * (hi[1] - lo[1]);
+        let mut normal = Vector::<D>::splat(1.0);
+        normal[1] = 1.5;
+        let incline = Wall::Plane {
+            point: corner,
+            normal,
+        };
+        scene
+            .bodies
+            .retain(|b| ccdsim::wall::wall_clearance(&incline, b.pos) > b.radius);
+        walls.push(incline);
+        scene.walls = walls;
+    }
+    scene
+}
+
+/// How many times the bodies of a run file come to rest on a wall.
+fn rests_in<const D: usize>(run: &Recorded) -> usize {
+    let mut r =
+        ccdsim::record::RunReader::<_, D>::new(&run.bytes[..], "run".into()).expect("header");
+    let (events, _) = r.read_events().expect("records");
+    events
+        .iter()
+        .filter(|c| c.event.kind == EventKind::Wall && c.rests[0])
+        .count()
+}
+
+/// Verify accepts the run file `run` of `scene`.
+fn verifies<const D: usize>(label: &str, scene: &Scene<D>, run: &Recorded) {
+    let mut r =
+        ccdsim::record::RunReader::<_, D>::new(&run.bytes[..], label.into()).expect("header");
+    let (events, end) = r.read_events().expect("records");
+    let mut v = ccdsim::verify::Verifier::new(scene);
+    for c in &events {
+        v.check(c)
+            .unwrap_or_else(|e| panic!("{label}: the oracle's run fails verify: {e}"));
+    }
+    v.finish(end.expect("an end record"))
+        .unwrap_or_else(|e| panic!("{label}: the oracle's run fails verify: {e}"));
+}
+
+#[test]
+fn resting_and_sliding() {
+    // Bodies whose bounces die away come to rest on the floor, the side walls' planes and an
+    // incline, and slide along them with their own accelerations, while others fall onto
+    // them; kicks, teleports, frames, bodies added and removed and kinematic bodies lift
+    // them off. Every finder and cells mode writes the oracle's run file, whose runs verify.
+    for &seed in &SMALL_SEEDS[..2] {
+        let s2 = resting(gas_scene::<2>(40, 0.1, (0.2, 1.0), seed), [0.0, -9.81]);
+        // A tilted gravity in 3D: bodies slide along the floor plane.
+        let s3 = resting(
+            gas_scene::<3>(70, 0.15, (0.5, 0.5), seed),
+            [1.5, -0.5, -9.81],
+        );
+        let kin = with_kinematic(s2.clone(), 3);
+        let drives = [
+            Drive::Events,
+            Drive::Kicks { every: 37 },
+            Drive::FrameTeleports { dt: 0.05 },
+            Drive::Slots { every: 41 },
+        ];
+        for drive in drives {
+            for (what, scene) in [("2D", &s2), ("kinematic 2D", &kin)] {
+                let label = format!("resting {what} seed {seed} {drive:?}");
+                let oracle = check_all_driven(&label, scene, 1500, drive);
+                verifies(&label, scene, &oracle);
+                assert!(rests_in::<2>(&oracle) >= 3, "{label}: few rests");
+            }
+            let label = format!("resting 3D seed {seed} {drive:?}");
+            let oracle = check_all_driven(&label, &s3, 1200, drive);
+            verifies(&label, &s3, &oracle);
+            assert!(rests_in::<3>(&oracle) >= 3, "{label}: few rests");
+        }
     }
 }

@@ -239,3 +239,59 @@ fn rest_speed_needs_gravity_and_a_positive_speed() {
     let scene: Scene<2> = serde_json::from_str(json).unwrap();
     assert_eq!(scene.settings.rest_speed, Some(0.2));
 }
+
+#[test]
+fn a_ball_landing_on_a_resting_one_pushes_it_along_the_floor_not_into_it() {
+    // Ball 0 lands on the floor at once and rests (rest_speed above its speed); ball 1 falls
+    // onto it off-centre. The floor takes the normal part of ball 0's push: ball 0 slides
+    // off sideways, still resting, and the pair parts at e times its closing speed.
+    let e = 0.5;
+    let scene = Scene {
+        settings: Settings {
+            restitution: e,
+            gravity: Gravity::new(&[0.0, -10.0]),
+            rest_speed: Some(1.0),
+            ..Settings::default()
+        },
+        bodies: vec![
+            BodySpec::new(Vector([0.0, 0.5 + 1e-6]), Vector([0.0, 0.0]), 0.5),
+            BodySpec::new(Vector([-0.6, 3.0]), Vector([0.0, 0.0]), 0.5),
+        ],
+        walls: vec![plane([0.0, 0.0], [0.0, 1.0])],
+        ..Scene::default()
+    };
+    for finder in FINDERS {
+        let mut sim = Simulation::new(&scene, finder).unwrap();
+        let landing = sim.step_event().unwrap();
+        assert!(
+            landing.rests[0] && landing.event.b == 0,
+            "[{finder}] {landing:?}"
+        );
+        let t = sim.peek_event().unwrap().time;
+        let (v0, v1) = (sim.world().velocity_at(0, t), sim.world().velocity_at(1, t));
+        let hit = sim.step_event().unwrap();
+        assert_eq!(hit.event.kind, ccdsim::EventKind::Body, "[{finder}]");
+        assert_eq!(
+            hit.rests,
+            [true, false],
+            "[{finder}] ball 0 stays on the floor"
+        );
+        assert_eq!(sim.world().support(0), Some(0));
+        let (w0, w1) = (hit.vel[0], hit.vel[1]);
+        assert_eq!(w0[1], 0.0, "[{finder}] along the floor: {w0:?}");
+        assert!(w0[0] > 0.0, "[{finder}] pushed away from ball 1: {w0:?}");
+        // Equal masses: momentum along the floor is kept.
+        assert!((w0[0] + w1[0] - v0[0] - v1[0]).abs() < 1e-12, "[{finder}]");
+        // Normal speed reversed times e.
+        let n = hit.pos[0] - hit.pos[1];
+        let n = n * (1.0 / n.norm());
+        let (before, after) = ((v0 - v1).dot(n), (w0 - w1).dot(n));
+        assert!(
+            (after + e * before).abs() < 1e-12,
+            "[{finder}] {before} -> {after}"
+        );
+    }
+    let (bytes, _) = recorded(&scene, "cells", 3.0);
+    let (_, events, end) = replay::records::<2>(&bytes);
+    replay::replay(&scene, &events, end, false).unwrap();
+}

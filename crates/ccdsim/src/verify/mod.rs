@@ -415,6 +415,9 @@ impl<const D: usize> Verifier<D> {
         let p0 = vi * mi + vj * mj;
         let p1 = c.vel[0] * mi + c.vel[1] * mj;
         let scale = (vi * mi).norm() + (vj * mj).norm() + f64::MIN_POSITIVE;
+        if c.rests != [false; 2] {
+            return self.check_held_pair(c, i, j, (vi, vj), p1 - p0, scale);
+        }
         if (p1 - p0).norm() > CONSERVATION_TOLERANCE * scale {
             return Err(self.fail(
                 t,
@@ -439,6 +442,66 @@ impl<const D: usize> Verifier<D> {
             )?;
         } else {
             self.check_energy(t, e0, e1, &format!("bodies {i} and {j}"))?;
+        }
+        self.report.body_collisions += 1;
+        self.report.kinetic_energy_end += e1 - e0;
+        Ok(())
+    }
+
+    /// [`Verifier::check_pair`] when a body rests on a plane after the collision (see
+    /// [`crate::resting`]): the planes took the pushes of the bodies pressed into them, so
+    /// the momentum change `dp` must lie along their normals, and no energy is made.
+    fn check_held_pair(
+        &mut self,
+        c: &Collision<D>,
+        i: usize,
+        j: usize,
+        (vi, vj): (Vector<D>, Vector<D>),
+        dp: Vector<D>,
+        scale: f64,
+    ) -> Result<(), Violation> {
+        let t = c.event.time;
+        let mut basis: Vec<Vector<D>> = Vec::new();
+        for (s, k) in [(0, i), (1, j)] {
+            let plane = self
+                .supports
+                .get(k)
+                .copied()
+                .flatten()
+                .map(|w| self.walls[w]);
+            let (true, Some(Wall::Plane { normal, .. })) = (c.rests[s], plane) else {
+                continue;
+            };
+            let mut u = normal;
+            for b in &basis {
+                u = u - *b * u.dot(*b);
+            }
+            if u.norm() > 1e-9 * normal.norm() {
+                basis.push(u * (1.0 / u.norm()));
+            }
+        }
+        let mut rest = dp;
+        for b in &basis {
+            rest = rest - *b * rest.dot(*b);
+        }
+        if rest.norm() > CONSERVATION_TOLERANCE * scale {
+            return Err(self.fail(
+                t,
+                format!(
+                    "momentum of bodies {i} and {j} along the planes they rest on changes by {:e} \
+                     (relative)",
+                    rest.norm() / scale
+                ),
+            ));
+        }
+        let (mi, mj) = (self.mass[i], self.mass[j]);
+        let e0 = 0.5 * (mi * vi.norm_sq() + mj * vj.norm_sq());
+        let e1 = 0.5 * (mi * c.vel[0].norm_sq() + mj * c.vel[1].norm_sq());
+        if e1 > e0 * (1.0 + CONSERVATION_TOLERANCE) + f64::MIN_POSITIVE {
+            return Err(self.fail(
+                t,
+                format!("bodies {i} and {j}, held by their planes, gain energy: {e0} -> {e1}"),
+            ));
         }
         self.report.body_collisions += 1;
         self.report.kinetic_energy_end += e1 - e0;
@@ -646,11 +709,16 @@ impl<const D: usize> Verifier<D> {
                             self.fail(t, format!("body {i} goes on resting, but did not rest"))
                         );
                     };
-                    let before = self.vel_of(i, t);
-                    if (c.vel[s] - before).norm() > 1e-9 * (1.0 + before.norm()) {
+                    // Left as it was, or pressed into its plane: either way along it.
+                    let Wall::Plane { normal, .. } = self.walls[w] else {
+                        unreachable!("bodies rest on planes only")
+                    };
+                    let v = c.vel[s];
+                    let scale = 1e-9 * (1.0 + v.norm() + self.vel_of(i, t).norm());
+                    if v.dot(normal).abs() > scale * normal.norm() {
                         return Err(self.fail(
                             t,
-                            format!("body {i} goes on resting on wall {w} with a new velocity"),
+                            format!("body {i} goes on resting on wall {w} with a normal velocity"),
                         ));
                     }
                     w
