@@ -26,7 +26,25 @@ pub struct Contact<const D: usize> {
 
 /// [`resolve_body_body`], also returning the separation of the centres at the contact, so
 /// that a caller accumulating the collision virial does not take the minimum image again.
+#[inline(always)]
 pub fn resolve_body_body_contact<const D: usize>(
+    world: &mut World<D>,
+    i: usize,
+    j: usize,
+    t: f64,
+) -> Contact<D> {
+    if world.has_resting() {
+        resolve_resting_pair(world, i, j, t)
+    } else {
+        resolve_free_pair(world, i, j, t)
+    }
+}
+
+/// [`resolve_body_body_contact`] where no body rests on a wall: the impulse along the line
+/// of centres. Out of line and without calls out (see [`World::free_position_at`]), as it
+/// always was: its values stay in registers.
+#[inline(never)]
+fn resolve_free_pair<const D: usize>(
     world: &mut World<D>,
     i: usize,
     j: usize,
@@ -36,24 +54,13 @@ pub fn resolve_body_body_contact<const D: usize>(
     let (pi, pj, vi, vj) = match world.gravity() {
         None => (a.at(t), b.at(t), a.vel, b.vel),
         Some(_) => (
-            world.position_at(i, t),
-            world.position_at(j, t),
-            world.velocity_at(i, t),
-            world.velocity_at(j, t),
+            world.free_position_at(i, t),
+            world.free_position_at(j, t),
+            world.free_velocity_at(i, t),
+            world.free_velocity_at(j, t),
         ),
     };
-    // Each body's share of the velocity change: `m_j/(m_i + m_j)` and `m_i/(m_i + m_j)`, or,
-    // against a kinematic body (infinite mass), all of it for the other (∞/∞ is no number).
-    let (mi, mj) = (world.mass(i), world.mass(j));
-    let (mut share_i, mut share_j) = (mj / (mi + mj), mi / (mi + mj));
-    if world.has_kinematic() {
-        (share_i, share_j) = match (mi == f64::INFINITY, mj == f64::INFINITY) {
-            (false, false) => (share_i, share_j),
-            (false, true) => (1.0, 0.0),
-            (true, false) => (0.0, 1.0),
-            (true, true) => (0.0, 0.0),
-        };
-    }
+    let (share_i, share_j) = mass_shares(world, i, j);
     let d = match world.periodic() {
         Some(size) => min_image(pj - pi, &size),
         None => pj - pi,
@@ -62,8 +69,6 @@ pub fn resolve_body_body_contact<const D: usize>(
     let sigma = world.radius_at(i, t) + world.radius_at(j, t);
     let (mut vi2, mut vj2) = (vi, vj);
     let e = world.pair_restitution(i, j, t);
-    // Bodies the collision presses into the plane they rest on, which stay on it.
-    let mut held = (false, false);
     if let Some(law) = world.growth() {
         // Growing radii: reverse the speed at which the surfaces approach (see
         // `crate::growth`): u' = (1 + e)·σ̇ − e·u along the line of centres.
@@ -80,14 +85,7 @@ pub fn resolve_body_body_contact<const D: usize>(
     } else if dist > 0.0 {
         let n = d * (1.0 / dist);
         let vn = (vj - vi).dot(n);
-        let pressed = world
-            .laws()
-            .is_some_and(|l| l.resting)
-            .then(|| crate::resting::pressed_impulse(world, (i, vi), (j, vj), n, vn, e))
-            .flatten();
-        if let Some((v2, by)) = pressed {
-            ((vi2, vj2), held) = (v2, by);
-        } else if vn < 0.0 {
+        if vn < 0.0 {
             // Velocity changes J/mi and J/mj with J = −(1+e)·vn·mi·mj/(mi+mj), written as mass
             // fractions so that equal masses exchange normal velocities exactly (m/2m = 0.5).
             let k = (1.0 + e) * vn;
@@ -95,11 +93,66 @@ pub fn resolve_body_body_contact<const D: usize>(
             vj2 = vj - n * (k * share_j);
         }
     }
+    world.set_state(i, pi, vi2, t);
+    world.set_state(j, pj, vj2, t);
+    world.note_pair_collision(i, j, t);
+    Contact {
+        overlap: ((sigma - dist) / sigma).max(0.0),
+        separation: d,
+    }
+}
+
+/// Each body's share of a collision's velocity change: `m_j/(m_i + m_j)` and
+/// `m_i/(m_i + m_j)`, or, against a kinematic body (infinite mass), all of it for the other
+/// (∞/∞ is no number).
+#[inline(always)]
+fn mass_shares<const D: usize>(world: &World<D>, i: usize, j: usize) -> (f64, f64) {
+    let (mi, mj) = (world.mass(i), world.mass(j));
+    let shares = (mj / (mi + mj), mi / (mi + mj));
+    if !world.has_kinematic() {
+        return shares;
+    }
+    match (mi == f64::INFINITY, mj == f64::INFINITY) {
+        (false, false) => shares,
+        (false, true) => (1.0, 0.0),
+        (true, false) => (0.0, 1.0),
+        (true, true) => (0.0, 0.0),
+    }
+}
+
+/// [`resolve_body_body_contact`] where bodies rest on walls (see [`crate::resting`]; such
+/// worlds have gravity, fixed radii and no periodic box). A resting body stays on its plane
+/// when the collision pressed it into it ([`crate::resting::pressed_impulse`]), or left its
+/// velocity as it was (the pair was already parting).
+#[inline(never)]
+fn resolve_resting_pair<const D: usize>(
+    world: &mut World<D>,
+    i: usize,
+    j: usize,
+    t: f64,
+) -> Contact<D> {
+    let (pi, pj) = (world.position_at(i, t), world.position_at(j, t));
+    let (vi, vj) = (world.velocity_at(i, t), world.velocity_at(j, t));
+    let d = pj - pi;
+    let dist = d.norm();
+    let sigma = world.radius(i) + world.radius(j);
+    let e = world.pair_restitution(i, j, t);
+    let (mut vi2, mut vj2) = (vi, vj);
+    let mut held = (false, false);
+    let n = d * (1.0 / dist);
+    let vn = if dist > 0.0 { (vj - vi).dot(n) } else { 0.0 };
+    if let Some((v2, by)) = crate::resting::pressed_impulse(world, (i, vi), (j, vj), n, vn, e) {
+        ((vi2, vj2), held) = (v2, by);
+    } else if vn < 0.0 {
+        // The free collision, as in `resolve_body_body_contact` (no growth under gravity).
+        let (share_i, share_j) = mass_shares(world, i, j);
+        let k = (1.0 + e) * vn;
+        vi2 = vi + n * (k * share_i);
+        vj2 = vj - n * (k * share_j);
+    }
     let supports = (world.support(i), world.support(j));
     world.set_state(i, pi, vi2, t);
     world.set_state(j, pj, vj2, t);
-    // A resting body stays on its plane when the collision pressed it into it, or left its
-    // velocity as it was (the pair was already parting; see `crate::resting`).
     if let (Some(w), true) = (supports.0, held.0 || vi2 == vi) {
         world.rest_on(i, w);
     }

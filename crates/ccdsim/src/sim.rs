@@ -450,8 +450,10 @@ impl<const D: usize> Simulation<D> {
                     let at = |i: usize| (w.position_at(i, t), w.velocity_at(i, t));
                     (at(a), at(b))
                 };
-                let resting = self.world.laws().is_some_and(|l| l.resting);
-                let before_both = resting.then(|| states(&self.world, e.time));
+                let before_both = self
+                    .world
+                    .has_resting()
+                    .then(|| states(&self.world, e.time));
                 let contact = resolve_body_body_contact(&mut self.world, a, b, e.time);
                 overlap = contact.overlap;
                 self.stats.body_collisions += 1;
@@ -470,7 +472,11 @@ impl<const D: usize> Simulation<D> {
                     event: e,
                     pos: [w.position(a), w.position(b)],
                     vel: [w.velocity(a), w.velocity(b)],
-                    rests: [w.support(a).is_some(), w.support(b).is_some()],
+                    rests: if w.has_resting() {
+                        [w.support(a).is_some(), w.support(b).is_some()]
+                    } else {
+                        [false; 2]
+                    },
                 }
             }
             EventKind::Wall => {

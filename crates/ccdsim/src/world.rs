@@ -71,9 +71,11 @@ pub struct World<const D: usize> {
     free: Vec<usize>,
     /// `settings.rest_speed`, m/s, if bodies come to rest on walls (see [`crate::resting`]).
     rest_speed: Option<f64>,
-    /// Under `rest_speed`: the static wall each body rests on, by body index
-    /// ([`NO_SUPPORT`] when it falls); empty otherwise.
-    supports: Vec<u32>,
+    /// Under `rest_speed`: the static wall each body rested on last, by body index
+    /// ([`NO_SUPPORT`] for none), and its change count then: the body rests on it while
+    /// the count is unchanged, so that any change of its state (which counts) lifts it off
+    /// at no cost to the code that changes it. Empty otherwise.
+    supports: Vec<(u32, u64)>,
     /// Under `rest_speed`: the acceleration of a body sliding on each static wall, by wall
     /// index (`None` where no body rests); empty otherwise.
     slides: Vec<Option<Vector<D>>>,
@@ -136,7 +138,7 @@ impl<const D: usize> World<D> {
                 .map_or(0, |m| m.saturating_add(1)),
             rest_speed: scene.settings.rest_speed,
             supports: match scene.settings.rest_speed {
-                Some(_) => vec![NO_SUPPORT; n],
+                Some(_) => vec![(NO_SUPPORT, 0); n],
                 None => Vec::new(),
             },
             slides: match (scene.settings.rest_speed, scene.gravity()) {
@@ -238,7 +240,7 @@ impl<const D: usize> World<D> {
                 self.last_collision.push(f64::NEG_INFINITY);
             }
             if self.rest_speed.is_some() {
-                self.supports.push(NO_SUPPORT);
+                self.supports.push((NO_SUPPORT, 0));
             }
         }
         // Filled lowest slot first.
@@ -292,7 +294,6 @@ impl<const D: usize> World<D> {
         b.radius = spec.radius;
         b.mass = spec.effective_mass();
         b.changes += 1;
-        self.leave_support(i);
         self.id[i] = id;
         self.next_id = self.next_id.max(id.saturating_add(1));
         self.vacant[i] = false;
@@ -326,7 +327,6 @@ impl<const D: usize> World<D> {
         };
         b.mass = f64::INFINITY;
         b.changes += 1;
-        self.leave_support(i);
         self.id[i] = u64::MAX;
         self.filters[i] = CollisionFilter::NONE;
         self.vacant[i] = true;
@@ -355,14 +355,60 @@ impl<const D: usize> World<D> {
     #[must_use]
     #[inline]
     pub fn position_at(&self, i: usize, t: f64) -> Vector<D> {
+        if self.laws.resting {
+            self.position_at_resting(i, t)
+        } else {
+            self.free_position_at(i, t)
+        }
+    }
+
+    /// [`World::position_at`] in a world where no body rests on a wall: without the call
+    /// out that resting needs, so that hot callers that know it stay leaf functions.
+    #[inline(always)]
+    pub(crate) fn free_position_at(&self, i: usize, t: f64) -> Vector<D> {
         match &self.laws.gravity {
-            Some(_) if self.laws.resting => match self.gravity_of(i) {
-                Some(a) => self.motion(i).falling_at(t, &a),
-                None => self.motion(i).at(t),
-            },
             Some(g) if !self.bodies[i].is_kinematic() => self.motion(i).falling_at(t, g),
             _ => self.motion(i).at(t),
         }
+    }
+
+    /// [`World::velocity_at`] in a world where no body rests on a wall (see
+    /// [`World::free_position_at`]).
+    #[inline(always)]
+    pub(crate) fn free_velocity_at(&self, i: usize, t: f64) -> Vector<D> {
+        match &self.laws.gravity {
+            Some(g) if !self.bodies[i].is_kinematic() => {
+                self.bodies[i].motion.falling_velocity(t, g)
+            }
+            _ => self.bodies[i].motion.vel,
+        }
+    }
+
+    /// [`World::position_at`] where bodies rest on walls (out of line: the common worlds'
+    /// callers stay small).
+    #[inline(never)]
+    fn position_at_resting(&self, i: usize, t: f64) -> Vector<D> {
+        match self.gravity_of(i) {
+            Some(a) => self.motion(i).falling_at(t, &a),
+            None => self.motion(i).at(t),
+        }
+    }
+
+    /// [`World::velocity_at`] where bodies rest on walls (out of line, as
+    /// `position_at_resting`).
+    #[inline(never)]
+    fn velocity_at_resting(&self, i: usize, t: f64) -> Vector<D> {
+        match self.gravity_of(i) {
+            Some(a) => self.bodies[i].motion.falling_velocity(t, &a),
+            None => self.bodies[i].motion.vel,
+        }
+    }
+
+    /// True when bodies may rest on walls (`settings.rest_speed`, see [`crate::resting`]).
+    #[must_use]
+    #[inline]
+    pub fn has_resting(&self) -> bool {
+        self.laws.resting
     }
 
     /// The acceleration of body `i` between events, m/s²: the world's gravity, or for a body
@@ -395,7 +441,9 @@ impl<const D: usize> World<D> {
     #[inline]
     pub fn support(&self, i: usize) -> Option<usize> {
         match self.supports.get(i) {
-            Some(&w) if w != NO_SUPPORT => Some(w as usize),
+            Some(&(w, changes)) if w != NO_SUPPORT && changes == self.bodies[i].changes => {
+                Some(w as usize)
+            }
             _ => None,
         }
     }
@@ -417,15 +465,8 @@ impl<const D: usize> World<D> {
     /// Body `i`, whose state was just set, rests on static wall `w` from now on.
     pub(crate) fn rest_on(&mut self, i: usize, w: usize) {
         debug_assert!(self.slide_of(w).is_some());
-        self.supports[i] = u32::try_from(w).expect("fewer than 2^32 − 1 walls");
-    }
-
-    /// Body `i` no longer rests on a wall.
-    #[inline]
-    fn leave_support(&mut self, i: usize) {
-        if let Some(s) = self.supports.get_mut(i) {
-            *s = NO_SUPPORT;
-        }
+        let w = u32::try_from(w).expect("fewer than 2^32 − 1 walls");
+        self.supports[i] = (w, self.bodies[i].changes);
     }
 
     /// True for a kinematic body (infinite mass, see [`crate::BodySpec::kinematic`]).
@@ -485,15 +526,10 @@ impl<const D: usize> World<D> {
     #[must_use]
     #[inline]
     pub fn velocity_at(&self, i: usize, t: f64) -> Vector<D> {
-        match &self.laws.gravity {
-            Some(_) if self.laws.resting => match self.gravity_of(i) {
-                Some(a) => self.bodies[i].motion.falling_velocity(t, &a),
-                None => self.bodies[i].motion.vel,
-            },
-            Some(g) if !self.bodies[i].is_kinematic() => {
-                self.bodies[i].motion.falling_velocity(t, g)
-            }
-            _ => self.bodies[i].motion.vel,
+        if self.laws.resting {
+            self.velocity_at_resting(i, t)
+        } else {
+            self.free_velocity_at(i, t)
         }
     }
 
@@ -774,12 +810,9 @@ impl<const D: usize> World<D> {
     pub(crate) fn set_state(&mut self, i: usize, pos: Vector<D>, vel: Vector<D>, t: f64) {
         let b = &mut self.bodies[i];
         b.motion = Motion { pos, vel, time: t };
+        // Counting the change lifts a resting body off its wall (see `World::support`); a
+        // collision that leaves it resting says so after.
         b.changes += 1;
-        // Whatever changes a resting body's state lifts it off its wall (see
-        // `crate::resting`); a collision that leaves it resting says so after.
-        if !self.supports.is_empty() {
-            self.leave_support(i);
-        }
     }
 
     /// Replaces body `i`'s stored state with `motion`, for tools that rebuild a world from a
