@@ -420,6 +420,24 @@ impl<const D: usize> World<D> {
         self.supports[i] = u32::try_from(w).expect("fewer than 2^32 − 1 walls");
     }
 
+    /// Puts body `i` on static wall `w` (`Some`), sliding along it, or lifts it off (`None`),
+    /// for tools that rebuild a world from a record (a viewer restoring the state at some
+    /// instant from a run file whose records say which bodies rest): call it after
+    /// [`World::set_motion`], which lifts the body off. Returns false, and changes nothing,
+    /// when no body can rest on `w` (see [`World::slide_of`]) or there is no body `i`. As
+    /// for [`World::set_motion`], a finder serving this world must be told.
+    pub fn set_support(&mut self, i: usize, w: Option<usize>) -> bool {
+        if i >= self.len() {
+            return false;
+        }
+        match w {
+            Some(w) if self.slide_of(w).is_some() => self.rest_on(i, w),
+            Some(_) => return false,
+            None => self.leave_support(i),
+        }
+        true
+    }
+
     /// Body `i` no longer rests on a wall.
     #[inline]
     fn leave_support(&mut self, i: usize) {
