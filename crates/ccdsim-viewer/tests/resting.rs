@@ -1,14 +1,19 @@
 //! Runs where bodies rest on planes and slide along them (`settings.rest_speed`, format
-//! version 11): playback, keyframes, bounds and rendered frames follow each
+//! version 11): playback, keyframes, bounds, the API's answers and rendered frames follow each
 //! body's support as the records' flags give it, on a recorded run (`tests/common/resting.rs`).
 
 mod common;
 
-use ccdsim::Vector;
+use ccdsim::resting::slide_acceleration;
+use ccdsim::{EventKind, Vector};
 use ccdsim_viewer::render::colour::{self, Rgb};
 use ccdsim_viewer::render::Camera;
-use ccdsim_viewer::{render_png, KeyframeOptions, Playback, RenderOptions, Snapshot};
-use common::resting::{record_rest_run, Checkpoint, RestRun, FLOOR, KICK_AT, RADIUS};
+use ccdsim_viewer::wire::{REST_A, REST_B, REST_SECTION, STATE_HEADER};
+use ccdsim_viewer::{
+    render_png, serve, KeyframeOptions, Playback, RenderOptions, ServeOptions, Snapshot,
+};
+use common::resting::{record_rest_run, Checkpoint, RestRun, FLOOR, INCLINE, KICK_AT, RADIUS};
+use common::{f64s, get};
 
 /// Keyframes every 2 events, so that snapshots replay from many of them.
 const DENSE: KeyframeOptions = KeyframeOptions {
@@ -133,6 +138,88 @@ fn a_resting_run_is_bounded_by_its_floor_and_its_true_speeds() {
         "{} vs {seen}",
         e.max_speed
     );
+}
+
+struct Running {
+    port: u16,
+    stop: ccdsim_viewer::StopHandle,
+    thread: Option<std::thread::JoinHandle<()>>,
+}
+
+impl Drop for Running {
+    fn drop(&mut self) {
+        self.stop.stop();
+        if let Some(t) = self.thread.take() {
+            t.join().unwrap();
+        }
+    }
+}
+
+fn start(run: &std::path::Path) -> Running {
+    let options = ServeOptions {
+        keyframes: DENSE,
+        ..ServeOptions::default()
+    };
+    let server = serve(run, 0, &options).unwrap();
+    let port = server.port();
+    let stop = server.stop_handle();
+    let thread = Some(std::thread::spawn(move || server.run()));
+    Running { port, stop, thread }
+}
+
+#[test]
+fn a_resting_run_is_served_with_its_supports_accelerations_and_rest_flags() {
+    let (path, run) = recorded("rest-server");
+    let s = start(&path);
+    let meta: serde_json::Value = serde_json::from_slice(&get(s.port, "/api/meta").body).unwrap();
+    assert_eq!(meta["rest_speed"], 0.4);
+    let g = Vector([0.0, -10.0]);
+    let slides: Vec<Option<Vector<2>>> = run
+        .scene
+        .walls
+        .iter()
+        .map(|w| slide_acceleration(&g, w))
+        .collect();
+    assert_eq!(meta["slides"], serde_json::json!(slides));
+    assert_eq!(meta["slides"][FLOOR], serde_json::json!([0.0, 0.0]));
+    assert_eq!(meta["slides"][2], serde_json::Value::Null);
+    let accel = |support: Option<usize>| support.map_or(g, |w| slides[w].unwrap());
+    // Every state answer ends with the rest section: each body's support and acceleration.
+    for cp in run.checkpoints.iter().step_by(3) {
+        let body = get(s.port, &format!("/api/state?t={}", cp.time)).body;
+        let n = f64s(&body[..8 * STATE_HEADER])[2] as usize;
+        assert_eq!(n, 2);
+        let off = 8 * STATE_HEADER + 2 * 4 * 2 * n;
+        let rest = f64s(&body[off..]);
+        assert_eq!(rest.len(), 1 + n + 2 * n, "t = {}", cp.time);
+        assert_eq!(rest[0], REST_SECTION);
+        for (i, b) in cp.bodies.iter().enumerate() {
+            let support = b.support.map_or(-1.0, |w| w as f64);
+            assert_eq!(rest[1 + i], support, "body {i} at t = {}", cp.time);
+            let a = accel(b.support);
+            assert_eq!(
+                rest[1 + n + 2 * i..1 + n + 2 * i + 2],
+                a.0,
+                "body {i} at t = {}",
+                cp.time
+            );
+        }
+    }
+    // Every event carries its rest flags after its 12 values.
+    let mut p = Playback::<2>::open(&path, &DENSE).unwrap();
+    let all = p.events_window(0, u64::MAX).unwrap();
+    let events = f64s(&get(s.port, &format!("/api/events?from=0&count={}", all.len())).body);
+    assert_eq!(events.len(), all.len() * 13);
+    let mut flagged = [0; 2];
+    for (e, c) in events.chunks(13).zip(&all) {
+        assert_eq!(e[0], c.event.time);
+        let want = u8::from(c.rests[0]) * REST_A + u8::from(c.rests[1]) * REST_B;
+        assert_eq!(e[12], f64::from(want), "event at t = {}", c.event.time);
+        if c.event.kind == EventKind::Wall && c.rests[0] {
+            flagged[usize::from(c.event.b as usize == INCLINE)] += 1;
+        }
+    }
+    assert!(flagged[0] >= 4 && flagged[1] == 1, "{flagged:?}");
 }
 
 /// Pixel colour of `pm` at world point `q` under camera `cam`.
