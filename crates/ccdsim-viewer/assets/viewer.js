@@ -11,6 +11,12 @@
 // A vacant slot has radius 0 and is not drawn. Snapshots of such a run carry every slot's
 // radius, id and kinematic flag (src/wire.rs), and edit events update them as they play.
 //
+// In a run where bodies rest on walls (meta.rest_speed), each body falls or slides with an
+// acceleration of its own, A[i]: g, or once a wall event's rest flag puts it on a plane, the
+// acceleration it slides along it with (meta.slides[wall]), which a body event's flag keeps;
+// any other event naming it without its flag makes it fall under g again. Snapshots carry
+// every body's acceleration (src/wire.rs's rest section), events their rest flags.
+//
 // Moving walls (meta.moving_walls) are kept the same way: wall k is its scene geometry
 // translated by WM's offset + velocity·(t − time); snapshots carry every wall's (time,
 // offset, velocity) and edit events of code 5 restate one wall's (their `a` names the wall,
@@ -31,6 +37,7 @@
   const STATE_HEADER = 8; // f64 values before a snapshot's arrays (src/wire.rs)
   const SLOT_SECTION = 1; // opens a snapshot's slot section (src/wire.rs)
   const WALL_SECTION = 2; // opens a snapshot's wall section (src/wire.rs)
+  const REST_SECTION = 3; // opens a snapshot's rest section (src/wire.rs)
   const EDIT = 3; // event kind of edits; their codes (b) as in crates/ccdsim/src/edit.rs:
   const ADD = 1, ADD_ID = 2, REMOVE = 3, WALL_MOTION = 5;
 
@@ -38,6 +45,7 @@
     meta: null, D: 2, n: 0, stride: 12,
     radius: null, ids: null, idBucket: null, kin: null, scene: null,
     P: null, V: null, T0: null, G: null, flash: null, evTime: null,
+    A: null, slides: null, // resting runs only: per body acceleration; per static wall slide (or null)
     walls: [], WM: new Float64Array(0), // moving walls: scene geometry; per wall time, offset, velocity
     time: 0, applied: 0, lastEvent: null,
     buf: { start: 0, count: 0, data: new Float64Array(0) },
@@ -86,7 +94,7 @@
     S.P.set(pos.subarray(0, m * D));
     S.V.set(vel.subarray(0, m * D));
     S.T0.fill(S.time);
-    loadWalls(ab, loadSlots(ab, 8 * STATE_HEADER + 8 * n * D, n, m));
+    loadRests(ab, loadWalls(ab, loadSlots(ab, 8 * STATE_HEADER + 8 * n * D, n, m)), n, m);
     S.lastEvent = h[4] >= 0 ? { t: h[5], kind: h[4], a: h[6], b: h[7] } : null;
     // Flashes of the events played before a jump mean nothing after it.
     S.flash.fill(-Infinity);
@@ -125,11 +133,39 @@
   }
 
   // The moving walls' motions: the snapshot's wall section, which follows the slot section
-  // from the next multiple of 8 bytes on (a run with moving walls always has one).
+  // from the next multiple of 8 bytes on (a run with moving walls always has one). Returns
+  // the offset after it.
   function loadWalls(ab, off) {
     off = Math.ceil(off / 8) * 8;
-    if (S.walls.length === 0 || ab.byteLength < off + 8 || new Float64Array(ab, off, 1)[0] !== WALL_SECTION) return;
+    if (S.walls.length === 0 || ab.byteLength < off + 8 || new Float64Array(ab, off, 1)[0] !== WALL_SECTION) return off;
     S.WM.set(new Float64Array(ab, off + 8, S.WM.length));
+    return off + 8 * (1 + S.WM.length);
+  }
+
+  // The bodies' accelerations in a run where bodies rest on walls: the snapshot's rest
+  // section (n supports, then n·D accelerations), from the next multiple of 8 bytes on.
+  function loadRests(ab, off, n, m) {
+    if (!S.A) return;
+    off = Math.ceil(off / 8) * 8;
+    const D = S.D;
+    if (ab.byteLength >= off + 8 * (1 + n + n * D) && new Float64Array(ab, off, 1)[0] === REST_SECTION) {
+      S.A.set(new Float64Array(ab, off + 8 + 8 * n, n * D).subarray(0, m * D));
+    } else {
+      for (let i = 0; i < m; i++) fall(i);
+    }
+    S.A.fill(0, m * D);
+  }
+
+  // Body i falls under g from now on (kinematic bodies and vacant slots do not fall).
+  function fall(i) {
+    const D = S.D;
+    for (let k = 0; k < D; k++) S.A[i * D + k] = S.kin[i] || !S.G ? 0 : S.G[k];
+  }
+
+  // Body i slides along static wall w from now on.
+  function slide(i, w) {
+    const D = S.D, a = S.slides[w];
+    for (let k = 0; k < D; k++) S.A[i * D + k] = a[k];
   }
 
   // A moving wall's edit names a wall, not a body: nothing to highlight.
@@ -244,6 +280,13 @@
       S.radius[a] = 0;
       S.kin[a] = 1;
     }
+    if (S.A) {
+      // The event's rest flags: bit 0 body a rests on a wall after it, bit 1 body b does.
+      const rests = d[o + 4 + 4 * D];
+      if (kind === 1 && rests & 1) slide(a, b);
+      else if (!(kind === 0 && rests & 1)) fall(a);
+      if (kind === 0 && !(rests & 2)) fall(b);
+    }
     markEvent(S.lastEvent);
     flashEvent(S.lastEvent);
   }
@@ -355,7 +398,8 @@
   function position(i, t, out) {
     const D = S.D, dt = t - S.T0[i], G = S.kin[i] ? null : S.G;
     for (let k = 0; k < D; k++) out[k] = S.P[i * D + k] + S.V[i * D + k] * dt;
-    if (G) for (let k = 0; k < D; k++) out[k] += 0.5 * G[k] * dt * dt;
+    if (S.A) for (let k = 0; k < D; k++) out[k] += 0.5 * S.A[i * D + k] * dt * dt;
+    else if (G) for (let k = 0; k < D; k++) out[k] += 0.5 * G[k] * dt * dt;
     return out;
   }
 
@@ -364,7 +408,8 @@
     if (S.colour === 'speed') {
       const D = S.D, G = S.kin[i] ? null : S.G, dt = t - S.T0[i];
       let v2 = 0;
-      for (let k = 0; k < D; k++) v2 += (S.V[i * D + k] + (G ? G[k] * dt : 0)) ** 2;
+      if (S.A) for (let k = 0; k < D; k++) v2 += (S.V[i * D + k] + S.A[i * D + k] * dt) ** 2;
+      else for (let k = 0; k < D; k++) v2 += (S.V[i * D + k] + (G ? G[k] * dt : 0)) ** 2;
       return Raster.SPEED_WORDS[Raster.speedBucket(Math.sqrt(v2), S.meta.max_speed)];
     }
     return Raster.ID_WORDS[S.idBucket[i]];
@@ -729,8 +774,11 @@
       S.meta = meta;
       S.D = meta.dim;
       S.n = meta.bodies;
-      S.stride = 4 + 4 * meta.dim;
       S.G = meta.gravity || null;
+      // Resting runs: each event ends with its rest flags, each body has its acceleration.
+      const resting = meta.rest_speed !== undefined;
+      S.stride = 4 + 4 * meta.dim + (resting ? 1 : 0);
+      S.slides = resting ? meta.slides : null;
       // Before the first snapshot's wall section: at their scene geometry and velocity.
       S.walls = meta.moving_walls || [];
       S.WM = new Float64Array(S.walls.length * (1 + 2 * S.D));
@@ -753,6 +801,7 @@
       S.P = new Float64Array(S.n * S.D);
       S.V = new Float64Array(S.n * S.D);
       S.T0 = new Float64Array(S.n);
+      S.A = resting ? new Float64Array(S.n * S.D) : null;
       S.flash = new Float64Array(S.n).fill(-Infinity);
       S.evTime = new Float64Array(S.n).fill(-Infinity);
       const bodyCount = meta.slot_edits ? `${meta.scene_bodies} bodies at the start, bodies added and removed (${meta.bodies} slots)` : `${meta.bodies} bodies`;
@@ -782,6 +831,8 @@
     seek: (t) => seek(t),
     // Slot i as the page holds it: radius (0 when vacant), id and kinematic flag.
     slot: (i) => ({ radius: S.radius[i], id: S.ids[i], kinematic: S.kin[i] === 1 }),
+    // Body i's acceleration as the page holds it (a resting run), or null.
+    acceleration: (i) => (S.A ? Array.from(S.A.subarray(i * S.D, (i + 1) * S.D)) : null),
     // Sensor k's centre and radius, in CSS pixels from the canvas's top-left corner.
     sensorOnScreen(k) {
       const s = S.meta.sensors[k];

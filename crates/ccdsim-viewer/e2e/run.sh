@@ -2,8 +2,9 @@
 # End-to-end tests of the browser viewer in headless Chromium.
 #
 # Needs Debian's chromium (apt-get install -y chromium) and Node.js with npm. Builds the
-# `ccdsim` binary and the viewer's `slot_run` and `wall_run` examples (which write a run that
-# adds and removes bodies and one with moving walls), installs playwright-core from
+# `ccdsim` binary and the viewer's `slot_run`, `wall_run` and `rest_run` examples (which write
+# a run that adds and removes bodies, one with moving walls and one where balls rest on
+# planes), installs playwright-core from
 # package-lock.json, then runs node's test runner; screenshots land in e2e/out/.
 # `run.sh --which-bin` prints the binary's path and exits.
 set -euo pipefail
@@ -18,13 +19,16 @@ if [ "${1:-}" = "--which-bin" ]; then
   exit 0
 fi
 cargo build --locked -p ccdsim-cli
-cargo build --locked -p ccdsim-viewer --example slot_run --example wall_run
+cargo build --locked -p ccdsim-viewer --example slot_run --example wall_run --example rest_run
 slot_run="$(dirname "$bin")/examples/slot_run"
 wall_run="$(dirname "$bin")/examples/wall_run"
+rest_run="$(dirname "$bin")/examples/rest_run"
 [ -x "$bin" ] || { echo "e2e: no ccdsim binary at $bin" >&2; exit 1; }
 [ -x "$slot_run" ] || { echo "e2e: no slot_run example at $slot_run" >&2; exit 1; }
 [ -x "$wall_run" ] || { echo "e2e: no wall_run example at $wall_run" >&2; exit 1; }
+[ -x "$rest_run" ] || { echo "e2e: no rest_run example at $rest_run" >&2; exit 1; }
 cd "$here"
 npm ci --no-audit --no-fund
-CCDSIM_BIN="$bin" SLOT_RUN_BIN="$slot_run" WALL_RUN_BIN="$wall_run" \
-  node --test viewer.test.mjs viewer3d.test.mjs slots.test.mjs sensors.test.mjs walls.test.mjs
+CCDSIM_BIN="$bin" SLOT_RUN_BIN="$slot_run" WALL_RUN_BIN="$wall_run" REST_RUN_BIN="$rest_run" \
+  node --test viewer.test.mjs viewer3d.test.mjs slots.test.mjs sensors.test.mjs walls.test.mjs \
+  resting.test.mjs

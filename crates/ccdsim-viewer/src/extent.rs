@@ -10,7 +10,8 @@ use crate::states::{edit_code, BodyStates};
 pub struct Extent<const D: usize> {
     /// A box holding every body over the whole run (at the start or when added, at each of
     /// its collisions and edits, and at the end or when removed: motion is straight in
-    /// between; under gravity, also at the vertices of the parabolas in between, per axis),
+    /// between; under gravity, also at the vertices of the parabolas in between, per axis,
+    /// a resting body's under the acceleration it slides with),
     /// the segment walls and the offsets of axis-aligned planes, and the moving walls
     /// likewise wherever they are at the start, at each of their edits and at the end
     /// (they move straight in between), metres.
@@ -25,7 +26,6 @@ pub struct Extent<const D: usize> {
 /// from the states each record ends (so bodies added during the run count with theirs).
 pub(crate) struct ExtentBuilder<const D: usize> {
     extent: Extent<D>,
-    gravity: Option<Vector<D>>,
     /// The moving walls' scene geometry.
     moving: Vec<Wall<D>>,
     /// The box of the moving segments' places so far.
@@ -49,7 +49,6 @@ impl<const D: usize> ExtentBuilder<D> {
         }
         let mut builder = ExtentBuilder {
             extent,
-            gravity: scene.gravity(),
             moving: scene.moving_walls.iter().map(|m| m.wall).collect(),
             moving_segments: Aabb::EMPTY,
             moving_planes: Aabb::EMPTY,
@@ -80,10 +79,11 @@ impl<const D: usize> ExtentBuilder<D> {
     }
 
     /// Under gravity: takes in body `i`'s arc from its reference time to `t` (as `states`
-    /// hold it), the vertex of the parabola on each axis where it lies in between, and its
-    /// speed at `t`. The ends of the arc are taken in elsewhere.
+    /// hold it, under its own acceleration: a resting body's slide along its wall), the
+    /// vertex of the parabola on each axis where it lies in between, and its speed at `t`.
+    /// The ends of the arc are taken in elsewhere.
     fn add_arc(&mut self, states: &BodyStates<D>, i: usize, t: f64) {
-        let Some(g) = self.gravity.filter(|_| !states.is_kinematic(i)) else {
+        let Some(g) = states.acceleration(i) else {
             return;
         };
         let (m, r) = (states.motion(i), states.radius(i));

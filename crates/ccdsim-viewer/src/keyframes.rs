@@ -1,7 +1,8 @@
 //! The keyframe index: every body's state every `K` events, built in one streaming pass.
 //!
 //! A run file can be larger than memory, so the viewer never holds its events. It holds the
-//! full state after every `K`-th event instead; the state after any event `k` is then the
+//! full state after every `K`-th event instead (in a run where bodies rest on walls, with the
+//! wall each body rests on); the state after any event `k` is then the
 //! keyframe at or before `k` plus at most `K − 1` records replayed from the file (records are
 //! fixed-size, so record `k` is at a known offset). `K` is chosen so that all keyframes fit a
 //! memory budget; a run that adds bodies, and so outgrows the estimate made from its scene,
@@ -38,7 +39,15 @@ impl KeyframeOptions {
     /// dimensions: the budget's, but at least `min_interval`.
     #[must_use]
     pub fn interval<const D: usize>(&self, events: u64, bodies: usize) -> u64 {
-        let per_frame = (BodyStates::<D>::bytes_per_body() * bodies.max(1)) as u128;
+        self.interval_for(events, bodies, BodyStates::<D>::bytes_per_body())
+    }
+
+    /// The interval `K` for a run of about `events` events and `bodies` bodies of
+    /// `bytes_per_body` bytes each in a keyframe (see [`BodyStates::bytes_per_body_of`]): the
+    /// budget's, but at least `min_interval`.
+    #[must_use]
+    pub fn interval_for(&self, events: u64, bodies: usize, bytes_per_body: usize) -> u64 {
+        let per_frame = (bytes_per_body.max(1) * bodies.max(1)) as u128;
         let frames_fitting = (self.budget_bytes as u128 / per_frame).max(1);
         let k = (u128::from(events)).div_ceil(frames_fitting);
         (k as u64).max(self.min_interval.max(1))

@@ -80,19 +80,10 @@ impl<const D: usize> Playback<D> {
         file_len: u64,
         options: &KeyframeOptions,
     ) -> Result<Self, ViewerError> {
-        if reader.scene().settings.rest_speed.is_some() {
-            // Its bodies slide along walls with accelerations of their own, which playback
-            // does not replay yet: refuse rather than draw them sinking through the floor.
-            return Err(ViewerError::BadRun {
-                path: reader.path().to_string(),
-                why: "bodies resting on walls (settings.rest_speed, format version 11) are not \
-                      played back yet; `ccdsim verify` and `ccdsim export` read the run"
-                    .into(),
-            });
-        }
         let records = file_len.saturating_sub(reader.data_start()) / record_len(D) as u64;
         let n = reader.scene().bodies.len();
-        let interval = options.interval::<D>(records, n);
+        let per_body = BodyStates::<D>::bytes_per_body_of(reader.scene());
+        let interval = options.interval_for(records, n, per_body);
         let index = KeyframeIndex::build(&mut reader, interval, options.budget_bytes)?;
         Ok(Playback {
             scene: reader.scene().clone(),
@@ -158,6 +149,14 @@ impl<const D: usize> Playback<D> {
     #[must_use]
     pub fn has_slot_edits(&self) -> bool {
         self.index.slot_edits
+    }
+
+    /// True when bodies may rest on walls in the run (its scene has `settings.rest_speed`;
+    /// run files of format version 11): each body's support is kept, and the API's answers
+    /// carry it (see [`crate::wire`]).
+    #[must_use]
+    pub fn has_rests(&self) -> bool {
+        self.scene.settings.rest_speed.is_some()
     }
 
     /// The keyframe index.
@@ -288,13 +287,14 @@ impl<const D: usize> Playback<D> {
     /// The run's world rebuilt to `snap`, with the clock at the snapshot's time.
     ///
     /// Until a body is added or removed, this is the scene's world with every body's stored
-    /// state as the simulation had it (its moving walls move as the scene started them, not
-    /// as the run steered them: no finder sees moving walls). After that (the snapshot's states have slot edits),
-    /// the world holds the snapshot's bodies only, vacant slots left out (so its indices are
-    /// not the run's slots), each with its stored state, radius and kinematic flag, and the
-    /// scene's settings; it has no walls or sensors, its bodies collide with nothing (group
-    /// and mask 0, so that bodies that pass through each other in the run may overlap) and
-    /// their ids and masses are the defaults. That is what a finder's boxes need (every
+    /// state as the simulation had it, resting bodies on their walls (its moving walls move as
+    /// the scene started them, not as the run steered them: no finder sees moving walls).
+    /// After that (the snapshot's states have slot edits), the world holds the snapshot's
+    /// bodies only, vacant slots left out (so its indices are not the run's slots), each with
+    /// its stored state, radius and kinematic flag, and the scene's settings; it has no walls
+    /// or sensors (so no body rests on a wall in it: a resting body falls under `g` there),
+    /// its bodies collide with nothing (group and mask 0, so that bodies that pass through
+    /// each other in the run may overlap) and their ids and masses are the defaults. That is what a finder's boxes need (every
     /// body present, where it is), not a world to simulate on; the simulation's own world
     /// also holds its vacant and reserved slots, at rest and out of every collision.
     pub fn world_at(&self, snap: &Snapshot<D>) -> Result<World<D>, ViewerError> {
@@ -303,6 +303,10 @@ impl<const D: usize> Playback<D> {
             let mut world = World::from_scene(&self.scene)?;
             for i in 0..s.len() {
                 world.set_motion(i, s.motion(i));
+                if let Some(w) = s.support(i) {
+                    // A plane bodies rest on: the keyframe pass checked it.
+                    world.set_support(i, Some(w));
+                }
             }
             world.set_time(snap.time);
             return Ok(world);

@@ -169,7 +169,8 @@ fn api<const D: usize>(
         "events" => {
             let from = q.u64("from")?.unwrap_or(0);
             let count = q.u64("count")?.unwrap_or(4096).min(MAX_EVENT_WINDOW);
-            Body::Binary(wire::encode_events(&p.events_window(from, count)?))
+            let rests = p.has_rests();
+            Body::Binary(wire::encode_events(&p.events_window(from, count)?, rests))
         }
         "step" => {
             let t = q

@@ -1,4 +1,5 @@
-//! Every body's lazy state, and every moving wall's motion, as replayed from a run file.
+//! Every body's lazy state, every resting body's support, and every moving wall's motion, as
+//! replayed from a run file.
 
 use ccdsim::moving_wall::{start_motions, translated, WallMotion};
 use ccdsim::narrow::Motion;
@@ -27,6 +28,9 @@ pub mod edit_code {
 }
 
 use edit_code::{ADD, ADD_ID, FILTER, MOTION, REMOVE, WALL_MOTION};
+
+/// A body's support when it rests on no wall (see [`BodyStates::support`]).
+const NO_SUPPORT: u32 = u32::MAX;
 
 /// The slots' radii, ids, kinematic flags and vacancies.
 ///
@@ -67,6 +71,15 @@ impl SlotTable {
 /// no one) until a body is added there. Slots the simulation reserved but the run never
 /// filled are not known here: [`BodyStates::len`] counts the slots up to the last one used.
 ///
+/// In a run where bodies rest on walls (the scene's `settings.rest_speed`, run files of format
+/// version 11, see [`ccdsim::resting`]), each body also has a *support*: the static plane it
+/// rests on, if any ([`BodyStates::support`]). A resting body slides along its plane with
+/// the acceleration [`ccdsim::resting::slide_acceleration`] gives instead of `g`
+/// ([`BodyStates::acceleration`]). The records' flags say which bodies rest: a wall event
+/// flagged for its body puts it on that wall, a body event flagged for one of its bodies keeps
+/// that body on the wall it rested on, and any record naming a body without its flag lifts it
+/// off (it falls under `g` again).
+///
 /// The moving walls of a run (a scene's `moving_walls`, see [`ccdsim::moving_wall`]) are kept
 /// here too, since the same records move them: moving wall `k` is its scene geometry
 /// displaced by [`BodyStates::wall_motion`]`(k)`, which each of its edit records
@@ -84,8 +97,15 @@ pub struct BodyStates<const D: usize> {
     /// Reference times, seconds.
     pub time: Vec<f64>,
     /// The acceleration of every body between events (the scene's `settings.gravity`), if
-    /// the run has gravity, metres per second squared.
+    /// the run has gravity, metres per second squared; a body resting on a wall slides with
+    /// its own (see [`BodyStates::acceleration`]).
     pub gravity: Option<Vector<D>>,
+    /// The static wall each slot's body rests on ([`NO_SUPPORT`]: none); empty in a run
+    /// where bodies never rest (no `settings.rest_speed`).
+    supports: Vec<u32>,
+    /// The acceleration of a body sliding on each static wall (`None` where none rests),
+    /// which never changes: shared by every copy; empty where bodies never rest.
+    slides: Arc<[Option<Vector<D>>]>,
     slots: Arc<SlotTable>,
     /// The moving walls' scene geometry, which never changes: shared by every copy.
     wall_bases: Arc<[Wall<D>]>,
@@ -103,6 +123,18 @@ impl<const D: usize> BodyStates<D> {
             vel: scene.bodies.iter().map(|b| b.vel).collect(),
             time: vec![scene.start_time; n],
             gravity: scene.gravity(),
+            supports: match scene.settings.rest_speed {
+                Some(_) => vec![NO_SUPPORT; n],
+                None => Vec::new(),
+            },
+            slides: match (scene.settings.rest_speed, scene.gravity()) {
+                (Some(_), Some(g)) => scene
+                    .walls
+                    .iter()
+                    .map(|w| ccdsim::resting::slide_acceleration(&g, w))
+                    .collect(),
+                _ => Arc::new([]),
+            },
             slots: Arc::new(SlotTable {
                 radius: scene.bodies.iter().map(|b| b.radius).collect(),
                 id: (0..n).map(|i| scene.id_of(i)).collect(),
@@ -187,9 +219,12 @@ impl<const D: usize> BodyStates<D> {
     /// `len().max(1024)`: the simulation reserves a quarter more slots at a time and fills
     /// the lowest first), and a moving wall's edit, which names one of the moving walls. An
     /// added body's id record ([`edit_code::ADD_ID`]) is checked by the caller, which knows
-    /// the record before.
+    /// the record before. A body flagged as resting after the record (version 11) must rest
+    /// on a static plane bodies can rest on (a wall event's wall) or have rested before (a
+    /// body event's body).
     pub fn check(&self, c: &Collision<D>) -> Result<(), String> {
         let a = c.event.a as usize;
+        self.check_rests(c)?;
         let present = |i: usize| -> Result<(), String> {
             if i >= self.len() {
                 Err(format!(
@@ -234,19 +269,62 @@ impl<const D: usize> BodyStates<D> {
         }
     }
 
+    /// Checks the record's resting flags (see [`BodyStates::check`]).
+    fn check_rests(&self, c: &Collision<D>) -> Result<(), String> {
+        if c.rests == [false; 2] {
+            return Ok(());
+        }
+        if self.supports.is_empty() {
+            return Err("flags a resting body in a run where none rests".into());
+        }
+        let (a, b) = (c.event.a as usize, c.event.b as usize);
+        match c.event.kind {
+            EventKind::Wall if !c.rests[1] => match self.slides.get(b) {
+                Some(Some(_)) => Ok(()),
+                _ => Err(format!(
+                    "rests body {a} on wall {b}, which holds no resting body"
+                )),
+            },
+            EventKind::Body => {
+                for (s, i) in [(0, a), (1, b)] {
+                    if c.rests[s] && self.support(i).is_none() {
+                        return Err(format!("keeps body {i} resting, but it rested on no wall"));
+                    }
+                }
+                Ok(())
+            }
+            _ => Err("flags a resting body where none can rest".into()),
+        }
+    }
+
     /// Stores the states a recorded collision or edit left its bodies in: a body added fills
     /// its slot (the slots up to it grow, vacant), a body removed stops and leaves its slot
     /// vacant, an id record sets the added body's id, a moving wall's edit gives that wall
-    /// its new motion (and touches no body). Assumes [`BodyStates::check`] passed.
+    /// its new motion (and touches no body). Every body the record names leaves its wall
+    /// unless the record says it rests: on the wall of a wall event, or, after a body event,
+    /// on the wall it rested on before. Assumes [`BodyStates::check`] passed.
     pub fn apply(&mut self, c: &Collision<D>) {
         let t = c.event.time;
         let a = c.event.a as usize;
         match c.event.kind {
             EventKind::Body => {
+                let b = c.event.b as usize;
+                let kept = [a, b].map(|i| self.supports.get(i).copied());
                 self.set(a, c.pos[0], c.vel[0], t);
-                self.set(c.event.b as usize, c.pos[1], c.vel[1], t);
+                self.set(b, c.pos[1], c.vel[1], t);
+                for (s, i) in [(0, a), (1, b)] {
+                    if let (true, Some(w)) = (c.rests[s], kept[s]) {
+                        self.supports[i] = w;
+                    }
+                }
             }
-            EventKind::Wall | EventKind::Reset => self.set(a, c.pos[0], c.vel[0], t),
+            EventKind::Wall => {
+                self.set(a, c.pos[0], c.vel[0], t);
+                if c.rests[0] {
+                    self.supports[a] = c.event.b;
+                }
+            }
+            EventKind::Reset => self.set(a, c.pos[0], c.vel[0], t),
             EventKind::Edit => match c.event.b {
                 ADD => {
                     if a >= self.len() {
@@ -295,6 +373,9 @@ impl<const D: usize> BodyStates<D> {
         self.pos.resize(n, p);
         self.vel.resize(n, Vector::ZERO);
         self.time.resize(n, t);
+        if !self.supports.is_empty() {
+            self.supports.resize(n, NO_SUPPORT);
+        }
         let s = self.slots_mut();
         s.radius.resize(n, 0.0);
         s.id.resize(n, u64::MAX);
@@ -302,10 +383,47 @@ impl<const D: usize> BodyStates<D> {
         s.vacant.resize(n, true);
     }
 
+    /// Sets body `i`'s state, which lifts it off its wall (a record that leaves it resting
+    /// puts it back).
     fn set(&mut self, i: usize, p: Vector<D>, v: Vector<D>, t: f64) {
         self.pos[i] = p;
         self.vel[i] = v;
         self.time[i] = t;
+        if let Some(s) = self.supports.get_mut(i) {
+            *s = NO_SUPPORT;
+        }
+    }
+
+    /// The static wall (by index among the scene's `walls`) the body in slot `i` rests on,
+    /// sliding along it, if it does: only in a run with `settings.rest_speed`.
+    #[must_use]
+    pub fn support(&self, i: usize) -> Option<usize> {
+        match self.supports.get(i) {
+            Some(&w) if w != NO_SUPPORT => Some(w as usize),
+            _ => None,
+        }
+    }
+
+    /// True in a run where bodies may rest on walls (the scene has `settings.rest_speed`):
+    /// its states keep every body's support.
+    #[must_use]
+    pub fn has_supports(&self) -> bool {
+        !self.supports.is_empty()
+    }
+
+    /// The acceleration of the body in slot `i` between events, metres per second squared:
+    /// the run's gravity, or for a body resting on a wall the acceleration it slides with
+    /// (`g − n (g·n)/(n·n)`); `None` without gravity or for a kinematic body (or a vacant
+    /// slot), which moves in a straight line. As the simulation's
+    /// [`ccdsim::World::gravity_of`].
+    #[must_use]
+    #[inline]
+    pub fn acceleration(&self, i: usize) -> Option<Vector<D>> {
+        let g = self.gravity.filter(|_| !self.is_kinematic(i))?;
+        Some(match self.support(i) {
+            Some(w) => self.slides[w].unwrap_or(g),
+            None => g,
+        })
     }
 
     /// Body `i`'s stored state.
@@ -319,30 +437,32 @@ impl<const D: usize> BodyStates<D> {
     }
 
     /// Position of body `i` at time `t`, metres: on its straight line, or on its parabola
-    /// in a run with gravity.
+    /// in a run with gravity (under [`BodyStates::acceleration`]: a resting body's slides
+    /// along its wall).
     #[must_use]
     pub fn position_at(&self, i: usize, t: f64) -> Vector<D> {
-        match &self.gravity {
-            Some(g) if !self.is_kinematic(i) => self.motion(i).falling_at(t, g),
-            _ => self.motion(i).at(t),
+        match self.acceleration(i) {
+            Some(a) => self.motion(i).falling_at(t, &a),
+            None => self.motion(i).at(t),
         }
     }
 
     /// Velocity of body `i` at time `t`, metres per second: the stored one, or in a run with
-    /// gravity that plus `g·(t − time)`.
+    /// gravity that plus `a·(t − time)`, `a` its [`BodyStates::acceleration`].
     #[must_use]
     pub fn velocity_at(&self, i: usize, t: f64) -> Vector<D> {
-        match &self.gravity {
-            Some(g) if !self.is_kinematic(i) => self.motion(i).falling_velocity(t, g),
-            _ => self.vel[i],
+        match self.acceleration(i) {
+            Some(a) => self.motion(i).falling_velocity(t, &a),
+            None => self.vel[i],
         }
     }
 
-    /// Heap bytes held: the motions (the bodies' and the moving walls'), and the slot table
-    /// as if this were its only holder.
+    /// Heap bytes held: the motions (the bodies' and the moving walls'), the supports, and
+    /// the slot table as if this were its only holder.
     #[must_use]
     pub fn heap_bytes(&self) -> usize {
         Self::bytes_per_body() * self.len()
+            + std::mem::size_of::<u32>() * self.supports.len()
             + std::mem::size_of::<WallMotion<D>>() * self.wall_count()
             + self.slot_table_bytes()
     }
@@ -366,6 +486,18 @@ impl<const D: usize> BodyStates<D> {
     #[must_use]
     pub const fn bytes_per_body() -> usize {
         (2 * D + 1) * std::mem::size_of::<f64>()
+    }
+
+    /// Bytes one body takes in the states of a run of `scene`: its motion, and its support
+    /// in a run where bodies rest on walls.
+    #[must_use]
+    pub fn bytes_per_body_of(scene: &Scene<D>) -> usize {
+        Self::bytes_per_body()
+            + if scene.settings.rest_speed.is_some() {
+                std::mem::size_of::<u32>()
+            } else {
+                0
+            }
     }
 }
 
@@ -478,6 +610,124 @@ mod tests {
         let mut far = edit;
         far.event.a = 1;
         assert!(s.check(&far).unwrap_err().contains("1 moving walls"));
+    }
+
+    #[test]
+    fn the_records_flags_put_bodies_on_their_walls_and_lift_them_off() {
+        use ccdsim::gravity::Gravity;
+        use ccdsim::{Event, Settings};
+        let incline = Wall::Plane {
+            point: Vector([0.0, 0.0]),
+            normal: Vector([-1.0, 1.0]),
+        };
+        let scene = Scene::<2> {
+            settings: Settings {
+                gravity: Gravity::new(&[0.0, -10.0]),
+                rest_speed: Some(0.5),
+                ..Settings::default()
+            },
+            bodies: vec![
+                BodySpec::new(Vector([0.0, 1.0]), Vector([1.0, 0.0]), 0.5),
+                BodySpec::new(Vector([3.0, 1.0]), Vector([0.0, 0.0]), 0.5),
+                BodySpec {
+                    kinematic: true,
+                    ..BodySpec::new(Vector([6.0, 1.0]), Vector([0.0, -1.0]), 0.5)
+                },
+            ],
+            walls: vec![
+                Wall::Plane {
+                    point: Vector([0.0, 0.0]),
+                    normal: Vector([0.0, 1.0]),
+                },
+                incline,
+                Wall::Segment {
+                    a: Vector([-9.0, 0.0]),
+                    b: Vector([-9.0, 9.0]),
+                },
+            ],
+            ..Scene::default()
+        };
+        let g = Vector([0.0, -10.0]);
+        let record = |kind, a, b, t: f64, rests| Collision {
+            event: Event {
+                time: t,
+                kind,
+                a,
+                b,
+            },
+            pos: [Vector([0.0, 0.5]), Vector([3.0, 0.5])],
+            vel: [Vector([1.0, 0.0]), Vector([-1.0, 0.0])],
+            rests,
+        };
+        let mut s = BodyStates::from_scene(&scene);
+        assert!(s.has_supports());
+        assert_eq!((s.support(0), s.acceleration(0)), (None, Some(g)));
+        assert_eq!(s.acceleration(2), None, "kinematic bodies never fall");
+        let apply = |s: &mut BodyStates<2>, c: &Collision<2>| {
+            s.check(c).unwrap();
+            s.apply(c);
+        };
+        // Body 0 comes to rest on the floor, body 1 on the incline.
+        apply(&mut s, &record(EventKind::Wall, 0, 0, 1.0, [true, false]));
+        apply(&mut s, &record(EventKind::Wall, 1, 1, 1.0, [true, false]));
+        assert_eq!(s.support(0), Some(0));
+        assert_eq!(s.acceleration(0), Some(Vector([0.0, 0.0])));
+        assert_eq!(s.position_at(0, 3.0), Vector([2.0, 0.5]), "it slides on");
+        assert_eq!(s.acceleration(1), Some(Vector([-5.0, -5.0])));
+        // A body event that keeps body 0 resting and not body 1: body 1 falls again.
+        apply(&mut s, &record(EventKind::Body, 0, 1, 2.0, [true, false]));
+        assert_eq!((s.support(0), s.support(1)), (Some(0), None));
+        assert_eq!(s.acceleration(1), Some(g));
+        // Keyframes keep the supports.
+        let copy = s.clone();
+        // A wall event without the flag lifts it off, so does an edit.
+        apply(&mut s, &record(EventKind::Wall, 0, 2, 3.0, [false; 2]));
+        assert_eq!(s.support(0), None);
+        apply(&mut s, &record(EventKind::Wall, 1, 1, 3.0, [true, false]));
+        apply(
+            &mut s,
+            &Edit::Motion {
+                body: 1,
+                pos: Vector([3.0, 0.5]),
+                vel: Vector::ZERO,
+            }
+            .records(4.0)[0],
+        );
+        assert_eq!(s.support(1), None);
+        assert_eq!(copy.support(0), Some(0));
+        // Refused: a rest on a segment or after a reset; a body event keeping a body resting
+        // that did not rest.
+        for (c, why) in [
+            (
+                record(EventKind::Wall, 0, 2, 5.0, [true, false]),
+                "holds no",
+            ),
+            (
+                record(EventKind::Body, 0, 1, 5.0, [false, true]),
+                "rested on no",
+            ),
+            (
+                record(EventKind::Reset, 0, 0, 5.0, [true, false]),
+                "none can",
+            ),
+        ] {
+            let err = s.check(&c).unwrap_err();
+            assert!(err.contains(why), "{err}");
+        }
+        // In a run where bodies never rest, any flag is refused and nothing is kept.
+        let plain = BodyStates::from_scene(&Scene {
+            settings: Settings {
+                gravity: Gravity::new(&[0.0, -10.0]),
+                ..Settings::default()
+            },
+            ..scene.clone()
+        });
+        assert!(!plain.has_supports());
+        let err = plain
+            .check(&record(EventKind::Wall, 0, 0, 1.0, [true, false]))
+            .unwrap_err();
+        assert!(err.contains("none rests"), "{err}");
+        assert_eq!(plain.heap_bytes() + 4 * 3, copy.heap_bytes());
     }
 
     #[test]

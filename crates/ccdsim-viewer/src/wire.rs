@@ -4,8 +4,8 @@
 //! | endpoint | layout |
 //! |---|---|
 //! | `/api/bodies` | the scene's `f64` radii, then its `f64` ids, each padded to the run's slot count `n` (meta's `bodies`) with radius 0 and id 0 for slots the scene does not have |
-//! | `/api/state` | `f64` header of [`STATE_HEADER`] values (its `n` is the snapshot's slot count, at most meta's `bodies`), then `f32` positions at the snapshot time (`n·D`), then `f32` velocities at the snapshot time (`n·D`), then, only when bodies were added or removed by then, the slot section: one `f64` [`SLOT_SECTION`], `f64` radii (`n`, 0 for a vacant slot), `f64` ids (`n`), `u8` flags (`n`: bit 0 kinematic, bit 1 vacant); then, only in a run with moving walls, zero bytes up to a multiple of 8 and the wall section: one `f64` [`WALL_SECTION`], then per moving wall `1 + 2·D` `f64`s: the time of its last edit (the scene's start time before any), its displacement from its scene geometry then, its velocity since |
-//! | `/api/events` | per event `4 + 4·D` `f64`s: `t`, kind (0 body, 1 wall, 2 thermostat reset, 3 edit), `a`, `b`, position and velocity of slot 0, then of slot 1 |
+//! | `/api/state` | `f64` header of [`STATE_HEADER`] values (its `n` is the snapshot's slot count, at most meta's `bodies`), then `f32` positions at the snapshot time (`n·D`), then `f32` velocities at the snapshot time (`n·D`), then, only when bodies were added or removed by then, the slot section: one `f64` [`SLOT_SECTION`], `f64` radii (`n`, 0 for a vacant slot), `f64` ids (`n`), `u8` flags (`n`: bit 0 kinematic, bit 1 vacant); then, only in a run with moving walls, zero bytes up to a multiple of 8 and the wall section: one `f64` [`WALL_SECTION`], then per moving wall `1 + 2·D` `f64`s: the time of its last edit (the scene's start time before any), its displacement from its scene geometry then, its velocity since; then, only in a run where bodies rest on walls (`settings.rest_speed`), zero bytes up to a multiple of 8 and the rest section: one `f64` [`REST_SECTION`], `f64` supports (`n`: the static wall each body rests on, −1 for none), then `f64` accelerations (`n·D`: each body's until its next event, its slide along its wall for a resting body, `g` for a falling one, 0 for a kinematic body or a vacant slot) |
+//! | `/api/events` | per event `4 + 4·D` `f64`s: `t`, kind (0 body, 1 wall, 2 thermostat reset, 3 edit), `a`, `b`, position and velocity of slot 0, then of slot 1; in a run where bodies rest on walls, one more `f64` per event: its rest flags (bit 0: body `a` rests on a wall after it, bit 1: body `b` does) |
 //! | `/api/boxes` | per box `2 + 2·D` `f32`s: depth, leaf (0/1), min corner, max corner |
 //!
 //! A state answer without the slot section has the scene's radii, ids and kinematic flags
@@ -21,12 +21,21 @@
 //! by that displacement plus the velocity times the time since. Wall events (kind 1) name a
 //! moving wall in `b` from the number of meta's `walls` on.
 //!
+//! In a run where bodies rest on walls (meta's `rest_speed` is there), a body moves between
+//! events with its own acceleration: `g` (meta's `gravity`) unless it is kinematic, or, once
+//! a wall event flags it (bit 0), the acceleration of a body sliding on that wall (meta's
+//! `slides[b]`), which a body event that flags it keeps; any other record naming it without
+//! its flag makes it fall under `g` again. The rest section gives every body's support and
+//! acceleration at the snapshot.
+//!
 //! Answers of runs without moving walls have neither meta's `moving_walls` nor the state's
-//! wall section: they are what they were before moving walls existed, byte for byte.
+//! wall section: they are what they were before moving walls existed, byte for byte. Answers
+//! of runs where no body rests (no `settings.rest_speed`) have neither meta's `rest_speed`
+//! and `slides`, nor the state's rest section, nor the events' rest flags.
 
 use crate::playback::{Playback, Snapshot};
 use ccdsim::finder::DebugBox;
-use ccdsim::{Collision, EventKind, FINDER_NAMES};
+use ccdsim::{Collision, EventKind, Vector, FINDER_NAMES};
 
 /// Number of `f64` values before the arrays of a `/api/state` answer: time, events applied,
 /// slots, dimension, last event's kind (−1 none, 0 body, 1 wall, 2 reset, 3 edit), time,
@@ -38,6 +47,14 @@ pub const SLOT_SECTION: f64 = 1.0;
 
 /// The `f64` that opens the wall section of a `/api/state` answer (see the module docs).
 pub const WALL_SECTION: f64 = 2.0;
+
+/// The `f64` that opens the rest section of a `/api/state` answer (see the module docs).
+pub const REST_SECTION: f64 = 3.0;
+
+/// Bit of an event's rest flags (runs where bodies rest on walls): body `a` rests after it.
+pub const REST_A: u8 = 1;
+/// Bit of an event's rest flags: body `b` of a body event rests after it.
+pub const REST_B: u8 = 2;
 
 /// Bit of a slot's flags in the slot section: the body is kinematic.
 pub const SLOT_KINEMATIC: u8 = 1;
@@ -81,7 +98,8 @@ pub fn encode_bodies<const D: usize>(p: &Playback<D>) -> Vec<u8> {
 
 /// A snapshot: header, positions at its time, velocities at its time (under gravity the
 /// stored velocities hold only at each body's last event), the slot section when bodies
-/// were added or removed by then, and the wall section in a run with moving walls.
+/// were added or removed by then, the wall section in a run with moving walls, and the rest
+/// section in a run where bodies rest on walls.
 #[must_use]
 pub fn encode_snapshot<const D: usize>(s: &Snapshot<D>) -> Vec<u8> {
     let n = s.states.len();
@@ -148,13 +166,27 @@ pub fn encode_snapshot<const D: usize>(s: &Snapshot<D>) -> Vec<u8> {
             }
         }
     }
+    if s.states.has_supports() {
+        out.resize(out.len().next_multiple_of(8), 0);
+        put_f64(&mut out, REST_SECTION);
+        for i in 0..n {
+            put_f64(&mut out, s.states.support(i).map_or(-1.0, |w| w as f64));
+        }
+        for i in 0..n {
+            let a = s.states.acceleration(i).unwrap_or(Vector::ZERO);
+            for d in 0..D {
+                put_f64(&mut out, a[d]);
+            }
+        }
+    }
     out
 }
 
-/// A window of events.
+/// A window of events, each followed by its rest flags ([`REST_A`], [`REST_B`]) when
+/// `rests` (a run where bodies rest on walls, see [`Playback::has_rests`]).
 #[must_use]
-pub fn encode_events<const D: usize>(events: &[Collision<D>]) -> Vec<u8> {
-    let mut out = Vec::with_capacity(events.len() * 8 * (4 + 4 * D));
+pub fn encode_events<const D: usize>(events: &[Collision<D>], rests: bool) -> Vec<u8> {
+    let mut out = Vec::with_capacity(events.len() * 8 * (4 + 4 * D + usize::from(rests)));
     for c in events {
         put_f64(&mut out, c.event.time);
         put_f64(&mut out, kind_code(c.event.kind));
@@ -166,6 +198,10 @@ pub fn encode_events<const D: usize>(events: &[Collision<D>]) -> Vec<u8> {
                     put_f64(&mut out, v[k]);
                 }
             }
+        }
+        if rests {
+            let flags = (u8::from(c.rests[0]) * REST_A) | (u8::from(c.rests[1]) * REST_B);
+            put_f64(&mut out, f64::from(flags));
         }
     }
     out
@@ -197,7 +233,10 @@ pub fn encode_boxes<const D: usize>(boxes: &[DebugBox<D>]) -> Vec<u8> {
 /// the run (the scene's bodies, or more in a run that adds bodies past them),
 /// `scene_bodies` the scene's, and `slot_edits` says whether bodies are added or removed.
 /// A run with moving walls also has `moving_walls`: the scene's, each a wall (segment or
-/// plane fields, where it is at the start) with its `velocity` from the start on.
+/// plane fields, where it is at the start) with its `velocity` from the start on. A run
+/// where bodies rest on walls also has `rest_speed` (the scene's `settings.rest_speed`) and
+/// `slides`: per static wall, the acceleration of a body resting on it (`[ax, ay(, az)]`), or
+/// `null` where none rests.
 #[must_use]
 pub fn meta_json<const D: usize>(p: &Playback<D>, finder: &str) -> serde_json::Value {
     let e = p.extent();
@@ -236,6 +275,17 @@ pub fn meta_json<const D: usize>(p: &Playback<D>, finder: &str) -> serde_json::V
     // Only when there are some: the description of every other run stays as it was.
     if !p.scene().moving_walls.is_empty() {
         meta["moving_walls"] = serde_json::json!(p.scene().moving_walls);
+    }
+    if let Some(rest_speed) = p.scene().settings.rest_speed {
+        meta["rest_speed"] = serde_json::json!(rest_speed);
+        let g = p.scene().gravity();
+        let slides: Vec<Option<Vector<D>>> = p
+            .scene()
+            .walls
+            .iter()
+            .map(|w| g.and_then(|g| ccdsim::resting::slide_acceleration(&g, w)))
+            .collect();
+        meta["slides"] = serde_json::json!(slides);
     }
     meta
 }

@@ -98,6 +98,10 @@ fn meta_and_bodies_describe_the_run() {
         meta.get("moving_walls").is_none(),
         "no moving walls, no key"
     );
+    assert!(
+        meta.get("rest_speed").is_none() && meta.get("slides").is_none(),
+        "no resting bodies, no keys"
+    );
     assert_eq!(meta["keyframe_interval"], 7);
     assert_eq!(meta["finder"], "bvh");
     // The table, up to the rounding of balls touching the cushions.

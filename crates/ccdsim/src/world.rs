@@ -469,6 +469,28 @@ impl<const D: usize> World<D> {
         self.supports[i] = (w, self.bodies[i].changes);
     }
 
+    /// Puts body `i` on static wall `w` (`Some`), sliding along it, or lifts it off (`None`),
+    /// for tools that rebuild a world from a record (a viewer restoring the state at some
+    /// instant from a run file whose records say which bodies rest): call it after
+    /// [`World::set_motion`], which lifts the body off. Returns false, and changes nothing,
+    /// when no body can rest on `w` (see [`World::slide_of`]) or there is no body `i`. As
+    /// for [`World::set_motion`], a finder serving this world must be told.
+    pub fn set_support(&mut self, i: usize, w: Option<usize>) -> bool {
+        if i >= self.len() {
+            return false;
+        }
+        match w {
+            Some(w) if self.slide_of(w).is_some() => self.rest_on(i, w),
+            Some(_) => return false,
+            None => {
+                if let Some(s) = self.supports.get_mut(i) {
+                    s.0 = NO_SUPPORT;
+                }
+            }
+        }
+        true
+    }
+
     /// True for a kinematic body (infinite mass, see [`crate::BodySpec::kinematic`]).
     #[must_use]
     #[inline]

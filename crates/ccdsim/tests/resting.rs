@@ -295,3 +295,31 @@ fn a_ball_landing_on_a_resting_one_pushes_it_along_the_floor_not_into_it() {
     let (_, events, end) = replay::records::<2>(&bytes);
     replay::replay(&scene, &events, end, false).unwrap();
 }
+
+#[test]
+fn a_rebuilt_world_takes_the_supports_a_record_gives() {
+    // A tool rebuilding a world from a run file (the viewer) sets each body's state, which
+    // lifts it off its wall, and then its support: the body then slides as the simulation's.
+    let scene = box_with_incline(2);
+    let mut sim = Simulation::new(&scene, "all-pairs").unwrap();
+    sim.run_until(3.0);
+    let resting: Vec<usize> = (0..2)
+        .filter(|&i| sim.world().support(i).is_some())
+        .collect();
+    assert!(!resting.is_empty(), "a ball rests by 3 s");
+    let mut world = ccdsim::World::from_scene(&scene).unwrap();
+    for i in 0..2 {
+        world.set_motion(i, sim.world().motion(i));
+        assert_eq!(world.support(i), None);
+        assert!(world.set_support(i, sim.world().support(i)));
+        assert_eq!(world.support(i), sim.world().support(i));
+        assert_eq!(world.acceleration(i), sim.world().acceleration(i));
+        assert_eq!(world.position_at(i, 3.5), sim.world().position_at(i, 3.5));
+    }
+    // The side walls hold no resting body, and there is no body 2.
+    assert!(!world.set_support(0, Some(1)));
+    assert!(!world.set_support(2, Some(0)));
+    assert!(world.set_support(resting[0], None));
+    assert_eq!(world.support(resting[0]), None);
+    assert_eq!(world.acceleration(resting[0]), Vector([0.0, -9.81]));
+}

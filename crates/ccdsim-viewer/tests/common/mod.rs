@@ -2,6 +2,7 @@
 
 #![allow(dead_code)]
 
+pub mod resting;
 pub mod slots;
 pub mod walls;
 
