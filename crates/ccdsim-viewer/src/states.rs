@@ -127,14 +127,7 @@ impl<const D: usize> BodyStates<D> {
                 Some(_) => vec![NO_SUPPORT; n],
                 None => Vec::new(),
             },
-            slides: match (scene.settings.rest_speed, scene.gravity()) {
-                (Some(_), Some(g)) => scene
-                    .walls
-                    .iter()
-                    .map(|w| ccdsim::resting::slide_acceleration(&g, w))
-                    .collect(),
-                _ => Arc::new([]),
-            },
+            slides: ccdsim::resting::slides(scene).into(),
             slots: Arc::new(SlotTable {
                 radius: scene.bodies.iter().map(|b| b.radius).collect(),
                 id: (0..n).map(|i| scene.id_of(i)).collect(),

@@ -278,14 +278,7 @@ pub fn meta_json<const D: usize>(p: &Playback<D>, finder: &str) -> serde_json::V
     }
     if let Some(rest_speed) = p.scene().settings.rest_speed {
         meta["rest_speed"] = serde_json::json!(rest_speed);
-        let g = p.scene().gravity();
-        let slides: Vec<Option<Vector<D>>> = p
-            .scene()
-            .walls
-            .iter()
-            .map(|w| g.and_then(|g| ccdsim::resting::slide_acceleration(&g, w)))
-            .collect();
-        meta["slides"] = serde_json::json!(slides);
+        meta["slides"] = serde_json::json!(ccdsim::resting::slides(p.scene()));
     }
     meta
 }

@@ -67,6 +67,21 @@ pub fn slide_acceleration<const D: usize>(g: &Vector<D>, wall: &Wall<D>) -> Opti
     }
 }
 
+/// The acceleration of a body sliding on each static wall of `scene`, by wall index
+/// ([`slide_acceleration`]; `None` where no body rests), when bodies rest on walls there
+/// (`settings.rest_speed` and gravity); empty otherwise.
+#[must_use]
+pub fn slides<const D: usize>(scene: &crate::Scene<D>) -> Vec<Option<Vector<D>>> {
+    match (scene.settings.rest_speed, scene.gravity()) {
+        (Some(_), Some(g)) => scene
+            .walls
+            .iter()
+            .map(|w| slide_acceleration(&g, w))
+            .collect(),
+        _ => Vec::new(),
+    }
+}
+
 /// `v` without its component along the plane normal `normal`: `v − n (v·n)/(n·n)`, the
 /// velocity a body comes to rest with.
 #[must_use]

@@ -141,14 +141,7 @@ impl<const D: usize> World<D> {
                 Some(_) => vec![(NO_SUPPORT, 0); n],
                 None => Vec::new(),
             },
-            slides: match (scene.settings.rest_speed, scene.gravity()) {
-                (Some(_), Some(g)) => scene
-                    .walls
-                    .iter()
-                    .map(|w| crate::resting::slide_acceleration(&g, w))
-                    .collect(),
-                _ => Vec::new(),
-            },
+            slides: crate::resting::slides(scene),
             laws: Laws {
                 growth: scene.settings.growth.map(|g| GrowthLaw {
                     rate: g.rate,

@@ -45,6 +45,16 @@ fn box_with_incline(balls: usize) -> Scene<2> {
     }
 }
 
+/// Restitution `e`, gravity 10 m/s² downwards, resting below `rest_speed`.
+fn falling_settings(e: f64, rest_speed: f64) -> Settings {
+    Settings {
+        restitution: e,
+        gravity: Gravity::new(&[0.0, -10.0]),
+        rest_speed: Some(rest_speed),
+        ..Settings::default()
+    }
+}
+
 fn recorded(scene: &Scene<2>, finder: &str, until: f64) -> (Vec<u8>, Simulation<2>) {
     let mut sim = Simulation::new(scene, finder).unwrap();
     let mut run = RunWriter::new(Vec::new(), "rest".into(), scene).unwrap();
@@ -58,12 +68,7 @@ fn a_dropped_ball_comes_to_rest_on_the_floor_and_slides_on_at_its_speed() {
     // bounce leaves with half the speed, so 5 → 2.5 → 1.25 → 0.625 and then 0.3125 ≤ 0.4: it
     // rests at the fourth contact, and its 0.5 m/s along the floor never changes.
     let scene = Scene {
-        settings: Settings {
-            restitution: 0.5,
-            gravity: Gravity::new(&[0.0, -10.0]),
-            rest_speed: Some(0.4),
-            ..Settings::default()
-        },
+        settings: falling_settings(0.5, 0.4),
         bodies: vec![BodySpec::new(Vector([0.0, 1.5]), Vector([0.5, 0.0]), 0.25)],
         walls: vec![plane([0.0, 0.0], [0.0, 1.0])],
         ..Scene::default()
@@ -105,12 +110,7 @@ fn a_ball_at_rest_on_an_incline_slides_down_it_at_g_sin_alpha() {
     let r = 0.5;
     let start = [0.0 + normal[0] * (r + 1e-3), 0.0 + normal[1] * (r + 1e-3)];
     let scene = Scene {
-        settings: Settings {
-            restitution: 0.5,
-            gravity: Gravity::new(&[0.0, -10.0]),
-            rest_speed: Some(1.0),
-            ..Settings::default()
-        },
+        settings: falling_settings(0.5, 1.0),
         bodies: vec![BodySpec::new(Vector(start), Vector([0.0, 0.0]), r)],
         walls: vec![plane([0.0, 0.0], normal)],
         ..Scene::default()
@@ -194,12 +194,7 @@ fn a_ball_landing_for_ever_on_a_resting_one_halts_the_same_with_every_finder() {
     // away (the lower one passes its push on to the floor), until they touch without
     // normal speed under gravity: the run stops there, the same for every finder.
     let scene = Scene {
-        settings: Settings {
-            restitution: 0.5,
-            gravity: Gravity::new(&[0.0, -10.0]),
-            rest_speed: Some(0.4),
-            ..Settings::default()
-        },
+        settings: falling_settings(0.5, 0.4),
         bodies: vec![
             BodySpec::new(Vector([0.0, 0.5]), Vector([0.0, 0.0]), 0.5),
             BodySpec::new(Vector([0.0, 2.0]), Vector([0.0, 0.0]), 0.5),
@@ -247,12 +242,7 @@ fn a_ball_landing_on_a_resting_one_pushes_it_along_the_floor_not_into_it() {
     // off sideways, still resting, and the pair parts at e times its closing speed.
     let e = 0.5;
     let scene = Scene {
-        settings: Settings {
-            restitution: e,
-            gravity: Gravity::new(&[0.0, -10.0]),
-            rest_speed: Some(1.0),
-            ..Settings::default()
-        },
+        settings: falling_settings(e, 1.0),
         bodies: vec![
             BodySpec::new(Vector([0.0, 0.5 + 1e-6]), Vector([0.0, 0.0]), 0.5),
             BodySpec::new(Vector([-0.6, 3.0]), Vector([0.0, 0.0]), 0.5),
