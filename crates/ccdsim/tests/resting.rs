@@ -313,3 +313,29 @@ fn a_rebuilt_world_takes_the_supports_a_record_gives() {
     assert_eq!(world.support(resting[0]), None);
     assert_eq!(world.acceleration(resting[0]), Vector([0.0, -9.81]));
 }
+
+#[test]
+fn a_body_added_with_its_own_restitution_rests_as_verify_expects() {
+    // The scene's restitution is 0.9; a ball added with its own 0.1 meets the floor at
+    // √(2·10·0.5) ≈ 3.16 m/s and leaves at 0.32 ≤ rest_speed 0.4: it rests at once, which
+    // verify accepts only if it counts the added body's restitution.
+    let scene = Scene {
+        settings: falling_settings(0.9, 0.4),
+        bodies: vec![BodySpec::new(Vector([5.0, 0.3]), Vector([0.0, 0.0]), 0.25)],
+        walls: vec![plane([0.0, 0.0], [0.0, 1.0])],
+        ..Scene::default()
+    };
+    let mut sim = Simulation::new(&scene, "cells").unwrap();
+    let mut run = RunWriter::new_steered(Vec::new(), "added".into(), &scene).unwrap();
+    sim.record_edits(true);
+    let mut ball = BodySpec::new(Vector([0.0, 0.75]), Vector([0.0, 0.0]), 0.25);
+    ball.restitution = Some(0.1);
+    let i = sim.add_body(ball).unwrap();
+    for record in sim.take_edits().iter().chain(&sim.advance(2.0)) {
+        run.write_event(record).unwrap();
+    }
+    assert_eq!(sim.world().support(i), Some(0), "the added ball rests");
+    let bytes = run.finish(sim.time()).unwrap();
+    let (_, events, end) = replay::records::<2>(&bytes);
+    replay::replay(&scene, &events, end, false).unwrap();
+}

@@ -97,11 +97,17 @@ impl<const D: usize> Verifier<D> {
             radius,
             mass,
             filter,
+            restitution,
             ..
         } = edit
         else {
             unreachable!("the first record starts an added body");
         };
+        // A body with its own restitution may leave walls slower: the bound resting checks
+        // (see `check_rests`) takes it in.
+        if let Some(e) = restitution {
+            self.least_restitution = self.least_restitution.min(e);
+        }
         let valid = radius.is_finite() && radius > 0.0 && mass > 0.0 && vel.is_finite();
         if !valid {
             return Err(self.fail(
