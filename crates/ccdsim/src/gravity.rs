@@ -32,7 +32,7 @@
 
 use crate::accelerated_contact::first_contact_accelerating;
 use crate::geom::Vector;
-use crate::narrow::{first_contact, toi_circle_plane, toi_circle_segment, Motion};
+use crate::narrow::{first_contact, toi_circle_plane, Motion};
 use crate::wall::Wall;
 use serde::{Deserialize, Serialize};
 
@@ -268,7 +268,7 @@ pub(crate) fn face_roots(c: f64, b: f64, a: f64) -> Option<(f64, f64)> {
 /// only; scenes with gravity refuse segments in 3D): the first entry into the slab around its
 /// line whose foot lies on the segment, or the first contact with an end point
 /// ([`first_contact_accelerating`]), from the ball's reference time. With zero gravity this is
-/// [`toi_circle_segment`] bit for bit.
+/// [`toi_circle_segment`](crate::narrow::toi_circle_segment) bit for bit.
 #[must_use]
 pub fn toi_circle_segment_falling<const D: usize>(
     m: &Motion<D>,
@@ -277,8 +277,23 @@ pub fn toi_circle_segment_falling<const D: usize>(
     b: Vector<D>,
     g: &Vector<D>,
 ) -> Option<f64> {
+    toi_circle_segment_falling_ends(m, r, a, b, g, [true; 2])
+}
+
+/// [`toi_circle_segment_falling`] with the end points `a` and `b` counted only where `ends`
+/// says (see [`crate::narrow::toi_circle_segment_ends`]).
+#[must_use]
+#[inline(always)]
+pub fn toi_circle_segment_falling_ends<const D: usize>(
+    m: &Motion<D>,
+    r: f64,
+    a: Vector<D>,
+    b: Vector<D>,
+    g: &Vector<D>,
+    ends: [bool; 2],
+) -> Option<f64> {
     if *g == Vector::ZERO || D != 2 {
-        return toi_circle_segment(m, r, a, b);
+        return crate::narrow::toi_circle_segment_ends(m, r, a, b, ends);
     }
     let u = b - a;
     let l2 = u.norm_sq();
@@ -309,7 +324,8 @@ pub fn toi_circle_segment_falling<const D: usize>(
         let vertex = hv / (-2.0 * ha);
         let h_vertex = h0 + hv * vertex + ha * vertex * vertex;
         let turns_inward = (h0 >= 0.0) == (ha < 0.0);
-        if vertex > 0.0 && h_vertex.abs() <= r && turns_inward {
+        // At rest in contact (`hv = 0`) and pressed inward, the vertex is now.
+        if vertex >= 0.0 && h_vertex.abs() <= r && turns_inward {
             candidates[3] = Some(vertex);
         }
     }
@@ -318,8 +334,12 @@ pub fn toi_circle_segment_falling<const D: usize>(
         .flatten()
         .filter(|&dt| dt >= 0.0 && dt.is_finite() && foot(dt))
         .reduce(f64::min);
-    let end_a = first_contact_accelerating(w, m.vel, *g, r);
-    let end_b = first_contact_accelerating(m.pos - b, m.vel, *g, r);
+    let end_a = ends[0]
+        .then(|| first_contact_accelerating(w, m.vel, *g, r))
+        .flatten();
+    let end_b = ends[1]
+        .then(|| first_contact_accelerating(m.pos - b, m.vel, *g, r))
+        .flatten();
     [interior, end_a, end_b]
         .into_iter()
         .flatten()
@@ -346,6 +366,7 @@ pub fn toi_circle_wall_falling<const D: usize>(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::narrow::toi_circle_segment;
 
     const G: Vector<2> = Vector([0.0, -10.0]);
 

@@ -30,6 +30,7 @@ pub mod gravity;
 pub mod growth;
 pub mod halt;
 pub mod laws;
+pub mod ledge;
 pub mod moving_wall;
 pub mod moving_wall_tracker;
 pub mod narrow;

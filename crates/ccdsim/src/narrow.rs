@@ -155,6 +155,21 @@ pub fn toi_circle_segment<const D: usize>(
     a: Vector<D>,
     b: Vector<D>,
 ) -> Option<f64> {
+    toi_circle_segment_ends(m, r, a, b, [true; 2])
+}
+
+/// [`toi_circle_segment`] with the end points `a` and `b` counted only where `ends` says:
+/// a body resting on a segment never meets an end point it shares with another one (see
+/// [`crate::ledge`]).
+#[must_use]
+#[inline(always)]
+pub fn toi_circle_segment_ends<const D: usize>(
+    m: &Motion<D>,
+    r: f64,
+    a: Vector<D>,
+    b: Vector<D>,
+    ends: [bool; 2],
+) -> Option<f64> {
     let u = b - a;
     let l2 = u.norm_sq();
     let w = m.pos - a;
@@ -167,8 +182,8 @@ pub fn toi_circle_segment<const D: usize>(
         let s = (w + vel * dt).dot(u) / l2;
         (0.0..=1.0).contains(&s)
     });
-    let end_a = first_contact(w, vel, r);
-    let end_b = first_contact(m.pos - b, vel, r);
+    let end_a = ends[0].then(|| first_contact(w, vel, r)).flatten();
+    let end_b = ends[1].then(|| first_contact(m.pos - b, vel, r)).flatten();
     [interior, end_a, end_b]
         .into_iter()
         .flatten()
@@ -391,21 +406,21 @@ pub fn toi_pair_accelerated<const D: usize>(
 
 /// Time of impact of body `i` of `world` with static wall `w` as every finder evaluates it
 /// in a world where bodies rest on walls (see [`crate::resting`]): under the body's own
-/// acceleration ([`World::acceleration`]); never with the wall it rests on, nor for a
-/// kinematic body.
+/// acceleration ([`World::acceleration`]); never with the plane it rests on, nor for a
+/// kinematic body. A body sliding on a segment meets it at its end, and one that just flew
+/// off a segment's end meets it when it comes back to that end point ([`crate::ledge`]).
 #[must_use]
 #[inline(never)]
 pub fn toi_body_wall_resting<const D: usize>(world: &World<D>, i: usize, w: usize) -> Option<f64> {
     let b = &world.bodies()[i];
-    if b.is_kinematic() || world.support(i) == Some(w) {
+    if b.is_kinematic() {
         return None;
     }
-    toi_circle_wall_falling(
-        &b.motion,
-        b.radius,
-        &world.walls()[w],
-        &world.acceleration(i),
-    )
+    match world.walls()[w] {
+        Wall::Segment { a, b } => crate::ledge::toi_body_segment(world, i, w, a, b),
+        Wall::Plane { .. } if world.support(i) == Some(w) => None,
+        ref plane => toi_circle_wall_falling(&b.motion, b.radius, plane, &world.acceleration(i)),
+    }
 }
 
 /// Time of impact of a body (record `b`) with a wall as every finder evaluates it:

@@ -171,9 +171,10 @@ fn resolve_resting_pair<const D: usize>(
 /// restitution); the wall, static or moving (`w ≥ walls().len()`, see
 /// [`crate::moving_wall`]), has infinite mass and keeps its velocity.
 ///
-/// Under `settings.rest_speed` a body that leaves a static plane gravity presses it on at a
+/// Under `settings.rest_speed` a body that leaves a static wall gravity presses it on at a
 /// normal speed of at most that speed comes to rest on it instead, its normal velocity
-/// removed ([`World::support`] is then `w`; see [`crate::resting`]).
+/// removed ([`World::support`] is then `w`; see [`crate::resting`]). A body meeting the
+/// segment it slides on has reached its end: see [`resolve_slide_end`].
 ///
 /// Returns the overlap depth at contact relative to the radius (0 when not overlapping).
 pub fn resolve_body_wall<const D: usize>(world: &mut World<D>, i: usize, w: usize, t: f64) -> f64 {
@@ -192,11 +193,13 @@ pub fn resolve_body_wall<const D: usize>(world: &mut World<D>, i: usize, w: usiz
         if vn < 0.0 {
             v2 = v - n * ((1.0 + world.wall_restitution(i, t)) * vn);
         }
-        if let (Some(rest_speed), Some(_), Wall::Plane { normal, .. }) =
-            (world.rest_speed(), world.slide_of(w), &wall)
+        if let (Some(rest_speed), Some(_), Some(g)) =
+            (world.rest_speed(), world.slide_of(w), world.gravity())
         {
-            if crate::resting::comes_to_rest(v2.dot(n), rest_speed) {
-                v2 = crate::resting::tangential(&v2, normal);
+            if crate::resting::comes_to_rest(v2.dot(n), rest_speed)
+                && crate::resting::held_at(&wall, &g, p)
+            {
+                v2 = crate::resting::along_support(&v2, &wall);
                 rests = true;
             }
         }
@@ -208,6 +211,39 @@ pub fn resolve_body_wall<const D: usize>(world: &mut World<D>, i: usize, w: usiz
     }
     world.note_collision(i, t);
     ((r - clearance) / r).max(0.0)
+}
+
+/// Resolves the arrival of body `i`, sliding on segment `w`, at the segment's end at time `t`
+/// (see [`crate::ledge`]): it rests on the segment that goes straight on from there, if
+/// there is one, its velocity projected onto it; otherwise it flies off, its state as it
+/// was, falling under gravity from now on. Returns the wall the event names in records: the
+/// segment it goes on to, or `w`. The caller has made sure that it does not roll over the
+/// edge ([`crate::halt::over_edge`]).
+pub fn resolve_slide_end<const D: usize>(
+    world: &mut World<D>,
+    i: usize,
+    w: usize,
+    t: f64,
+) -> usize {
+    let p = world.position_at(i, t);
+    let v = world.velocity_at(i, t);
+    let Wall::Segment { a, b } = world.walls()[w] else {
+        unreachable!("bodies slide to the ends of segments only");
+    };
+    let end = crate::ledge::end_reached(a, b, p);
+    match crate::ledge::continuation(world.walls(), world.slides(), w, end) {
+        Some(next) => {
+            let v2 = crate::resting::along_support(&v, &world.walls()[next]);
+            world.set_state(i, p, v2, t);
+            world.rest_on(i, next);
+            next
+        }
+        None => {
+            world.set_state(i, p, v, t);
+            world.depart(i, w);
+            w
+        }
+    }
 }
 
 /// Applies the exit of body `i` through face `face` (see [`crate::periodic`]) of the periodic

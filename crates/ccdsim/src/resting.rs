@@ -2,34 +2,36 @@
 //!
 //! With restitution below 1 a ball's bounces on a floor die away geometrically: infinitely
 //! many collisions in finite time. With `settings.rest_speed` set, a body that leaves a
-//! collision with a **static plane** gravity presses it on (`g·n < 0`, `n` the plane's normal
-//! towards the body) at a normal speed of at most `rest_speed` comes to **rest** on it
-//! instead: its normal velocity is removed (`v − n (v·n)/(n·n)`), it keeps its tangential
-//! velocity and, until its state next changes, it **slides** without friction with the
-//! acceleration `g − n (g·n)/(n·n)`: gravity less the part the plane takes. A parabola still,
-//! so every contact of a sliding body is a root of the same polynomials as a falling body's,
-//! against its own acceleration:
+//! collision with a **static plane or segment** gravity presses it on (`g·n < 0`, `n` the
+//! wall's normal towards the body; on a segment, touching it between its ends) at a normal
+//! speed of at most `rest_speed` comes to **rest** on it instead: its normal velocity is
+//! removed ([`along_support`]), it keeps its tangential velocity and, until its state next
+//! changes, it **slides** without friction with the acceleration `g − n (g·n)/(n·n)`:
+//! gravity less the part the wall takes ([`slide_acceleration`]). A parabola still, so every
+//! contact of a sliding body is a root of the same polynomials as a falling body's, against
+//! its own acceleration:
 //!
-//! * a sliding body and a falling one (or two sliding on different planes) have a constant
+//! * a sliding body and a falling one (or two sliding on different walls) have a constant
 //!   relative acceleration: their contact is the quartic of
 //!   [`toi_circle_circle_accelerating`](crate::gravity::toi_circle_circle_accelerating), the
 //!   function kinematic bodies already use;
-//! * two bodies with the same acceleration (both falling, or both sliding on one plane) keep
+//! * two bodies with the same acceleration (both falling, or both sliding on one wall) keep
 //!   the straight-line quadratic of their relative motion;
 //! * a sliding body meets walls as a falling body does, under its own acceleration, and
-//!   never its support: it touches it all along.
+//!   never its support: it touches it all along. A body sliding on a segment meets it once
+//!   more, when it reaches one of its ends ([`crate::ledge`]).
 //!
-//! A body **leaves** its plane when its velocity next changes (a collision with a body or
+//! A body **leaves** its wall when its velocity next changes (a collision with a body or
 //! another wall, an edit, a thermostat reset): it falls again under `g`. A body knocked along
-//! the plane then lands again at once, within rounding, with no normal speed, and rests
+//! the wall then lands again at once, within rounding, with no normal speed, and rests
 //! again: one more event, exact like every other. A body knocked up flies off.
 //!
-//! Two exceptions keep it on its plane. A collision that leaves its velocity as it was (the
-//! pair was already parting) changes nothing. And a body **pressed into its plane** by a
-//! body that hits it (a ball landing on a resting one) is held by the plane, which takes the
-//! normal part of the push ([`pressed_impulse`]): the resting body moves along the plane
+//! Two exceptions keep it on its wall. A collision that leaves its velocity as it was (the
+//! pair was already parting) changes nothing. And a body **pressed into its wall** by a
+//! body that hits it (a ball landing on a resting one) is held by the wall, which takes the
+//! normal part of the push ([`pressed_impulse`]): the resting body moves along the wall
 //! only, and the pair's normal speed is reversed times the restitution as in a free
-//! collision. Without this, the resting body would pass a share of the push to its plane in
+//! collision. Without this, the resting body would pass a share of the push to its wall in
 //! an endless sequence of collisions at one instant.
 //!
 //! **Bodies on bodies.** A ball whose bounces on a resting one die away (or a ball sliding
@@ -39,10 +41,10 @@
 //! every finder. A body wedged in a corner between two planes bounces between them until it
 //! stops likewise ([`crate::Halt::Resting`]): it rests on one plane at a time.
 //!
-//! **Why planes only.** A body sliding on a segment reaches the segment's end, where a slow
-//! body would roll over the edge: a circular motion about the end point, not a polynomial
-//! one, which no finder could bound exactly. Bodies keep bouncing on segments (with the TC
-//! model, or until [`crate::Halt::Resting`]).
+//! **Segments end.** A body sliding on a segment reaches one of its ends: it slides on along
+//! a segment that goes straight on from there, flies off if it is fast enough to clear the
+//! edge, and otherwise (it would roll over the edge, a motion no finder can bound exactly)
+//! the run stops with [`crate::Halt::OverEdge`]. See [`crate::ledge`].
 //!
 //! Every finder reads each body's acceleration from the world ([`crate::World::acceleration`])
 //! and skips its support ([`crate::World::support`]), so all of them return the oracle's
@@ -54,8 +56,10 @@ use crate::geom::Vector;
 use crate::wall::Wall;
 
 /// The acceleration of a body sliding on `wall` under gravity `g`, metres per second
-/// squared: `g − n (g·n)/(n·n)` for a plane that `g` presses bodies on (`g·n < 0`), `None`
-/// for a segment or a plane gravity does not press on (no body rests there).
+/// squared: `g − n (g·n)/(n·n)` for a plane that `g` presses bodies on (`g·n < 0`); for a
+/// 2D segment not along `g`, the part of `g` along it, `u (g·u)/(u·u)` (`u = b − a`), which
+/// is exact across an axis-aligned segment. `None` where no body rests: a plane gravity
+/// does not press on, a segment along gravity, a segment in 3D (which gravity refuses).
 #[must_use]
 pub fn slide_acceleration<const D: usize>(g: &Vector<D>, wall: &Wall<D>) -> Option<Vector<D>> {
     match *wall {
@@ -63,7 +67,68 @@ pub fn slide_acceleration<const D: usize>(g: &Vector<D>, wall: &Wall<D>) -> Opti
             let gn = g.dot(normal);
             (gn < 0.0).then(|| *g - normal * (gn / normal.norm_sq()))
         }
-        Wall::Segment { .. } => None,
+        Wall::Segment { a, b } => {
+            let u = b - a;
+            (D == 2 && g[0] * u[1] != g[1] * u[0]).then(|| along_segment(g, &u))
+        }
+    }
+}
+
+/// `v`'s part along the direction `u`: `u (v·u)/(u·u)`.
+fn along_segment<const D: usize>(v: &Vector<D>, u: &Vector<D>) -> Vector<D> {
+    *u * (v.dot(*u) / u.norm_sq())
+}
+
+/// `v` with its part normal to `wall` removed: [`tangential`] to a plane's normal, the part
+/// along a segment. The velocity a body comes to rest on `wall` with, and keeps sliding.
+#[must_use]
+pub fn along_support<const D: usize>(v: &Vector<D>, wall: &Wall<D>) -> Vector<D> {
+    match *wall {
+        Wall::Plane { normal, .. } => tangential(v, &normal),
+        Wall::Segment { a, b } => along_segment(v, &(b - a)),
+    }
+}
+
+/// The normal of `wall` on the side a body resting on it lies, not of unit length: a
+/// plane's own normal; for a 2D segment the perpendicular `(−u_y, u_x)` or its negation,
+/// whichever gravity `g` presses against (`g·n < 0`). Meaningful where
+/// [`slide_acceleration`] is `Some`.
+#[must_use]
+pub fn support_normal<const D: usize>(wall: &Wall<D>, g: &Vector<D>) -> Vector<D> {
+    match *wall {
+        Wall::Plane { normal, .. } => normal,
+        Wall::Segment { a, b } => {
+            let u = b - a;
+            let mut n = Vector::<D>::ZERO;
+            if D >= 2 {
+                n[0] = -u[1];
+                n[1] = u[0];
+            }
+            if g.dot(n) > 0.0 {
+                Vector::ZERO - n
+            } else {
+                n
+            }
+        }
+    }
+}
+
+/// True when a body whose centre is at `p`, touching `wall`, lies where the wall can hold it
+/// under gravity `g`: on a plane, anywhere (if gravity presses on it at all); on a segment,
+/// on the side gravity presses against and with its centre's foot between the ends (a body
+/// touching an end point from beyond it is not held).
+#[must_use]
+pub fn held_at<const D: usize>(wall: &Wall<D>, g: &Vector<D>, p: Vector<D>) -> bool {
+    if slide_acceleration(g, wall).is_none() {
+        return false;
+    }
+    match *wall {
+        Wall::Plane { .. } => true,
+        Wall::Segment { a, b } => {
+            let u = b - a;
+            let s = (p - a).dot(u) / u.norm_sq();
+            (0.0..=1.0).contains(&s) && (p - a).dot(support_normal(wall, g)) > 0.0
+        }
     }
 }
 
@@ -91,13 +156,13 @@ pub fn tangential<const D: usize>(v: &Vector<D>, normal: &Vector<D>) -> Vector<D
 
 /// The velocities after a collision of bodies `i` and `j` (velocities `vi`, `vj` at the
 /// contact, `n` the unit vector from `i` to `j`, `vn = (vj − vi)·n < 0`, restitution `e`)
-/// when it presses one of them, or both, into the plane it rests on: such a body is held by
-/// its plane, which takes the normal part of its push, so it moves along the plane only
-/// (its velocity changes along `P n`, `P` the projection onto the plane). The pair's
+/// when it presses one of them, or both, into the wall it rests on: such a body is held by
+/// its wall, which takes the normal part of its push, so it moves along the wall only
+/// (its velocity changes along `P n`, `P` the projection onto the wall). The pair's
 /// impulse `J = −(1 + e) vn / (w_i (P_i n)·n + w_j (P_j n)·n)` (`w` the inverse masses, 0
 /// for a kinematic body; `P = 1` for a body not held) reverses their normal speed times
-/// `e` as a free collision does. Returns the two velocities and which body its plane
-/// held; `None` when no body is pressed into its plane (or the pair parts), for the free
+/// `e` as a free collision does. Returns the two velocities and which body its wall
+/// held; `None` when no body is pressed into its wall (or the pair parts), for the free
 /// collision.
 #[must_use]
 #[inline(never)]
@@ -113,11 +178,12 @@ pub fn pressed_impulse<const D: usize>(
     if vn >= 0.0 {
         return None;
     }
-    // The direction the pair's impulse moves body `k` (pushed along `push`) and its plane's
-    // normal if the plane holds it.
+    // The direction the pair's impulse moves body `k` (pushed along `push`) and the wall
+    // that holds it, if one does.
+    let g = world.gravity().unwrap_or(Vector::ZERO);
     let held = |k: usize, push: Vector<D>| match world.support(k).map(|w| world.walls()[w]) {
-        Some(Wall::Plane { normal, .. }) if push.dot(normal) < 0.0 => {
-            (tangential(&push, &normal), Some(normal))
+        Some(wall) if push.dot(support_normal(&wall, &g)) < 0.0 => {
+            (along_support(&push, &wall), Some(wall))
         }
         _ => (push, None),
     };
@@ -130,14 +196,14 @@ pub fn pressed_impulse<const D: usize>(
     let (wi, wj) = (inverse(i), inverse(j));
     let denominator = wi * ui.dot(Vector::ZERO - n) + wj * uj.dot(n);
     if denominator <= 0.0 {
-        // Pressed straight into its plane by a kinematic body: no motion takes the push.
+        // Pressed straight into its wall by a kinematic body: no motion takes the push.
         return None;
     }
     let impulse = -(1.0 + e) * vn / denominator;
-    let along = |v: Vector<D>, u: Vector<D>, w: f64, plane: Option<Vector<D>>| {
+    let along = |v: Vector<D>, u: Vector<D>, w: f64, wall: Option<Wall<D>>| {
         let v2 = v + u * (impulse * w);
-        // On its plane to the last bit where the normal is an axis.
-        plane.map_or(v2, |normal| tangential(&v2, &normal))
+        // On its wall to the last bit where the wall is axis-aligned.
+        wall.map_or(v2, |wall| along_support(&v2, &wall))
     };
     Some((
         (along(vi, ui, wi, hi), along(vj, uj, wj, hj)),
@@ -145,7 +211,7 @@ pub fn pressed_impulse<const D: usize>(
     ))
 }
 
-/// True when a body that leaves a collision with a plane at normal speed `outgoing` (m/s,
+/// True when a body that leaves a collision with a wall at normal speed `outgoing` (m/s,
 /// `≥ 0`) comes to rest under `settings.rest_speed = rest_speed`.
 #[must_use]
 #[inline]
@@ -187,11 +253,42 @@ mod tests {
             normal: Vector([1.0, 0.0]),
         };
         assert_eq!(slide_acceleration(&g, &side), None);
-        let segment = Wall::Segment {
+        // A level shelf takes all of gravity too; a tilted one its normal part; a post none.
+        let shelf = Wall::Segment {
             a: Vector([0.0, 0.0]),
-            b: Vector([1.0, 0.0]),
+            b: Vector([3.0, 0.0]),
         };
-        assert_eq!(slide_acceleration(&g, &segment), None);
+        assert_eq!(slide_acceleration(&g, &shelf), Some(Vector([0.0, 0.0])));
+        let ramp = Wall::Segment {
+            a: Vector([0.0, 0.0]),
+            b: Vector([-2.0, 2.0]),
+        };
+        let a = slide_acceleration(&g, &ramp).unwrap();
+        assert_eq!(a, Vector([5.0, -5.0]), "down the ramp, g·sin 45° along it");
+        let post = Wall::Segment {
+            a: Vector([0.0, 0.0]),
+            b: Vector([0.0, 1.0]),
+        };
+        assert_eq!(slide_acceleration(&g, &post), None);
+    }
+
+    #[test]
+    fn a_shelf_holds_bodies_on_its_top_between_its_ends() {
+        let g = Vector([0.0, -10.0]);
+        // Drawn right to left: its perpendicular (−u_y, u_x) points down, so the support
+        // normal is its negation.
+        let shelf = Wall::Segment {
+            a: Vector([3.0, 1.0]),
+            b: Vector([0.0, 1.0]),
+        };
+        assert_eq!(support_normal(&shelf, &g), Vector([0.0, 3.0]));
+        assert!(held_at(&shelf, &g, Vector([1.0, 1.5])));
+        assert!(!held_at(&shelf, &g, Vector([1.0, 0.5])), "under it");
+        assert!(!held_at(&shelf, &g, Vector([3.2, 1.4])), "beyond its end");
+        assert_eq!(
+            along_support(&Vector([0.3, -0.7]), &shelf),
+            Vector([0.3, 0.0])
+        );
     }
 
     #[test]

@@ -3,11 +3,13 @@
 use crate::event::{Event, EventKind};
 use crate::finder::{make_finder, Finder, FinderError, FinderOptions};
 use crate::geom::Vector;
-use crate::halt::{beyond_range, unresolved, Halt, ResolutionGuard};
+use crate::halt::{beyond_range, over_edge, unresolved, Halt, ResolutionGuard};
 use crate::moving_wall_tracker::MovingWallTracker;
 use crate::observables::{observables, Observables};
 use crate::periodic::wrap_point;
-use crate::resolve::{resolve_body_body_contact, resolve_body_wall, resolve_exit};
+use crate::resolve::{
+    resolve_body_body_contact, resolve_body_wall, resolve_exit, resolve_slide_end,
+};
 use crate::scene::{Scene, SceneError};
 use crate::sensor::{SensorEvent, SensorTracker};
 use crate::thermostat::ResetClock;
@@ -305,6 +307,11 @@ impl<const D: usize> Simulation<D> {
                     });
                     None
                 }
+                Some(e) if self.world.has_resting() && over_edge(&self.world, &e).is_some() => {
+                    // A slow body at the end of its segment would roll over the edge.
+                    self.halt = over_edge(&self.world, &e);
+                    None
+                }
                 Some(e) if self.guard.resolved(&self.world, &e) => Some(e),
                 Some(e) => {
                     self.halt = unresolved(&self.world, &e);
@@ -333,7 +340,8 @@ impl<const D: usize> Simulation<D> {
             Some(
                 Halt::Resolution { time, .. }
                 | Halt::Resting { time, .. }
-                | Halt::RestingOnBody { time, .. },
+                | Halt::RestingOnBody { time, .. }
+                | Halt::OverEdge { time, .. },
             ) => time > t,
             Some(Halt::BeyondRange { .. }) => true,
             None => found.is_none(),
@@ -487,6 +495,9 @@ impl<const D: usize> Simulation<D> {
                         self.world.velocity_at(a, e.time),
                     )
                 });
+                if self.world.has_resting() && self.world.support(a) == Some(b) {
+                    return self.resolve_slide_end(e);
+                }
                 let moving = b >= self.world.walls().len();
                 let speed_before = moving.then(|| self.world.velocity_at(a, e.time).norm_sq());
                 overlap = resolve_body_wall(&mut self.world, a, b, e.time);
@@ -527,6 +538,28 @@ impl<const D: usize> Simulation<D> {
         self.stats.events += 1;
         self.stats.max_overlap = self.stats.max_overlap.max(overlap);
         out
+    }
+
+    /// Resolves wall event `e`, body `e.a` arriving at the end of the segment `e.b` it slides
+    /// on ([`resolve_slide_end`]): the record names the segment it goes on to, if any.
+    #[cold]
+    fn resolve_slide_end(&mut self, mut e: Event) -> Collision<D> {
+        let a = e.a as usize;
+        e.b = u32::try_from(resolve_slide_end(&mut self.world, a, e.b as usize, e.time))
+            .expect("wall indices fit events");
+        self.stats.wall_collisions += 1;
+        self.bodies_changed(&[a]);
+        if let Some(s) = &mut self.sensors {
+            s.body_changed(&self.world, a);
+        }
+        self.stats.events += 1;
+        let w = &self.world;
+        Collision {
+            event: e,
+            pos: [w.position(a), Vector::ZERO],
+            vel: [w.velocity(a), Vector::ZERO],
+            rests: [w.support(a).is_some(), false],
+        }
     }
 
     /// Kinetic energy of the bodies `e` involves, joules.
@@ -723,7 +756,8 @@ impl<const D: usize> Simulation<D> {
             Some(
                 Halt::Resolution { time, .. }
                 | Halt::Resting { time, .. }
-                | Halt::RestingOnBody { time, .. },
+                | Halt::RestingOnBody { time, .. }
+                | Halt::OverEdge { time, .. },
             ) if time <= t
         );
         if t > self.world.now() && !blocked {

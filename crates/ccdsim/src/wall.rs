@@ -69,10 +69,11 @@ pub fn wall_clearance<const D: usize>(wall: &Wall<D>, p: Vector<D>) -> f64 {
     }
 }
 
-/// Segments both of whose end points are shared with exactly one other segment end: the
-/// edges of closed polygons.
+/// Segments both of whose end points are shared with exactly one other segment end, on
+/// chains that close: the edges of closed polygons. The inner pieces of an open chain (a
+/// shelf drawn in pieces) are no polygon's edges.
 pub(crate) fn closed_segments<const D: usize>(walls: &[Wall<D>]) -> Vec<(Vector<D>, Vector<D>)> {
-    let segs: Vec<(Vector<D>, Vector<D>)> = walls
+    let mut segs: Vec<(Vector<D>, Vector<D>)> = walls
         .iter()
         .filter_map(|w| match *w {
             Wall::Segment { a, b } => Some((a, b)),
@@ -80,14 +81,25 @@ pub(crate) fn closed_segments<const D: usize>(walls: &[Wall<D>]) -> Vec<(Vector<
         })
         .collect();
     let bits = |v: Vector<D>| v.0.map(f64::to_bits);
-    let mut degree: HashMap<[u64; D], usize> = HashMap::new();
-    for (a, b) in &segs {
-        *degree.entry(bits(*a)).or_default() += 1;
-        *degree.entry(bits(*b)).or_default() += 1;
+    let degrees = |segs: &[(Vector<D>, Vector<D>)]| {
+        let mut degree: HashMap<[u64; D], usize> = HashMap::new();
+        for (a, b) in segs {
+            *degree.entry(bits(*a)).or_default() += 1;
+            *degree.entry(bits(*b)).or_default() += 1;
+        }
+        degree
+    };
+    let degree = degrees(&segs);
+    segs.retain(|(a, b)| degree[&bits(*a)] == 2 && degree[&bits(*b)] == 2);
+    // Peel open chains from their loose ends until only closed ones are left.
+    loop {
+        let degree = degrees(&segs);
+        let before = segs.len();
+        segs.retain(|(a, b)| degree[&bits(*a)] == 2 && degree[&bits(*b)] == 2);
+        if segs.len() == before {
+            return segs;
+        }
     }
-    segs.into_iter()
-        .filter(|(a, b)| degree[&bits(*a)] == 2 && degree[&bits(*b)] == 2)
-        .collect()
 }
 
 /// True when the point `(x, y)` lies inside the polygons formed by `segs`, by the even–odd
@@ -108,4 +120,36 @@ pub(crate) fn inside_even_odd<const D: usize>(
         }
     }
     inside
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn seg(a: [f64; 2], b: [f64; 2]) -> Wall<2> {
+        Wall::Segment {
+            a: Vector(a),
+            b: Vector(b),
+        }
+    }
+
+    #[test]
+    fn a_square_is_closed_and_a_shelf_in_pieces_is_not() {
+        let square = [
+            seg([0.0, 0.0], [1.0, 0.0]),
+            seg([1.0, 0.0], [1.0, 1.0]),
+            seg([1.0, 1.0], [0.0, 1.0]),
+            seg([0.0, 1.0], [0.0, 0.0]),
+        ];
+        assert_eq!(closed_segments(&square).len(), 4);
+        let shelf = [
+            seg([0.0, 2.0], [1.0, 2.0]),
+            seg([2.0, 2.0], [1.0, 2.0]),
+            seg([2.0, 2.0], [3.0, 2.0]),
+            seg([3.0, 2.0], [4.0, 2.0]),
+        ];
+        assert!(closed_segments(&shelf).is_empty());
+        let both: Vec<_> = square.iter().chain(&shelf).copied().collect();
+        assert_eq!(closed_segments(&both).len(), 4);
+    }
 }

@@ -21,6 +21,10 @@ use crate::wall::Wall;
 /// [`World::support`] of a body that rests on no wall, as stored.
 const NO_SUPPORT: u32 = u32::MAX;
 
+/// The bit of a stored support that says the body has just slid off that segment's end
+/// instead (see [`World::departed`]); [`NO_SUPPORT`] has it too, so one test tells a support.
+const DEPARTED: u32 = 1 << 31;
+
 /// The hot part of one body's state: its stored motion, radius, mass and change count.
 ///
 /// `repr(C)` keeps the fields in this order: the ones every time of impact reads come first.
@@ -72,9 +76,10 @@ pub struct World<const D: usize> {
     /// `settings.rest_speed`, m/s, if bodies come to rest on walls (see [`crate::resting`]).
     rest_speed: Option<f64>,
     /// Under `rest_speed`: the static wall each body rested on last, by body index
-    /// ([`NO_SUPPORT`] for none), and its change count then: the body rests on it while
-    /// the count is unchanged, so that any change of its state (which counts) lifts it off
-    /// at no cost to the code that changes it. Empty otherwise.
+    /// ([`NO_SUPPORT`] for none; with [`DEPARTED`] set, the segment it slid off), and its
+    /// change count then: the body rests on it while the count is unchanged, so that any
+    /// change of its state (which counts) lifts it off at no cost to the code that changes
+    /// it. Empty otherwise.
     supports: Vec<(u32, u64)>,
     /// Under `rest_speed`: the acceleration of a body sliding on each static wall, by wall
     /// index (`None` where no body rests); empty otherwise.
@@ -434,11 +439,33 @@ impl<const D: usize> World<D> {
     #[inline]
     pub fn support(&self, i: usize) -> Option<usize> {
         match self.supports.get(i) {
-            Some(&(w, changes)) if w != NO_SUPPORT && changes == self.bodies[i].changes => {
+            Some(&(w, changes)) if w & DEPARTED == 0 && changes == self.bodies[i].changes => {
                 Some(w as usize)
             }
             _ => None,
         }
+    }
+
+    /// The segment body `i` has just slid off over an end, flying clear of it (see
+    /// [`crate::ledge`]), while its state is still the one it left with: its next contact
+    /// with that segment is its return to the end point, not the touch it left at.
+    #[must_use]
+    pub fn departed(&self, i: usize) -> Option<usize> {
+        match self.supports.get(i) {
+            Some(&(w, changes))
+                if w != NO_SUPPORT && w & DEPARTED != 0 && changes == self.bodies[i].changes =>
+            {
+                Some((w & !DEPARTED) as usize)
+            }
+            _ => None,
+        }
+    }
+
+    /// Body `i`, whose state was just set, has slid off segment `w` over an end.
+    pub(crate) fn depart(&mut self, i: usize, w: usize) {
+        let w = u32::try_from(w).expect("fewer than 2^31 walls");
+        assert!(w & DEPARTED == 0, "fewer than 2^31 walls");
+        self.supports[i] = (w | DEPARTED, self.bodies[i].changes);
     }
 
     /// `settings.rest_speed`, m/s: bodies leaving a collision with a plane gravity presses
@@ -455,10 +482,17 @@ impl<const D: usize> World<D> {
         self.slides.get(w).copied().flatten()
     }
 
+    /// The acceleration of a body sliding on each static wall, by wall index ([`World::slide_of`]);
+    /// empty unless bodies rest on walls.
+    pub(crate) fn slides(&self) -> &[Option<Vector<D>>] {
+        &self.slides
+    }
+
     /// Body `i`, whose state was just set, rests on static wall `w` from now on.
     pub(crate) fn rest_on(&mut self, i: usize, w: usize) {
         debug_assert!(self.slide_of(w).is_some());
-        let w = u32::try_from(w).expect("fewer than 2^32 − 1 walls");
+        let w = u32::try_from(w).expect("fewer than 2^31 walls");
+        assert!(w & DEPARTED == 0, "fewer than 2^31 walls");
         self.supports[i] = (w, self.bodies[i].changes);
     }
 

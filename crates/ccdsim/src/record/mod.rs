@@ -94,13 +94,24 @@ pub const VERSION_SLOTS: u32 = 9;
 pub const VERSION_MOVING_WALLS: u32 = 10;
 /// Format version of run files of scenes where bodies rest on walls.
 pub const VERSION_RESTING: u32 = 11;
+/// Format version of run files of scenes where bodies rest on segments too: a wall record
+/// of a body with the segment it slides on is its arrival at the segment's end (see
+/// [`crate::ledge`]), flagged as resting when it goes on along the next segment, which
+/// the record then names.
+pub const VERSION_SEGMENT_RESTING: u32 = 12;
 /// The newest format version this build reads.
-pub const VERSION_NEWEST: u32 = VERSION_RESTING;
+pub const VERSION_NEWEST: u32 = VERSION_SEGMENT_RESTING;
 
 /// The format version a run of `scene` is written in.
 #[must_use]
 pub fn version_for<const D: usize>(scene: &crate::scene::Scene<D>) -> u32 {
-    if scene.settings.rest_speed.is_some() {
+    if crate::resting::slides(scene)
+        .iter()
+        .zip(&scene.walls)
+        .any(|(slide, wall)| slide.is_some() && matches!(wall, crate::wall::Wall::Segment { .. }))
+    {
+        VERSION_SEGMENT_RESTING
+    } else if scene.settings.rest_speed.is_some() {
         VERSION_RESTING
     } else if !scene.moving_walls.is_empty() {
         VERSION_MOVING_WALLS

@@ -463,15 +463,11 @@ impl<const D: usize> Verifier<D> {
         let t = c.event.time;
         let mut basis: Vec<Vector<D>> = Vec::new();
         for (s, k) in [(0, i), (1, j)] {
-            let plane = self
-                .supports
-                .get(k)
-                .copied()
-                .flatten()
-                .map(|w| self.walls[w]);
-            let (true, Some(Wall::Plane { normal, .. })) = (c.rests[s], plane) else {
+            let support = self.supports.get(k).copied().flatten();
+            let (true, Some(w), Some(g)) = (c.rests[s], support, self.gravity) else {
                 continue;
             };
+            let normal = crate::resting::support_normal(&self.walls[w], &g);
             let mut u = normal;
             for b in &basis {
                 u = u - *b * u.dot(*b);
@@ -627,6 +623,9 @@ impl<const D: usize> Verifier<D> {
             self.report.kinetic_energy_end += e1 - e0;
             return Ok(());
         }
+        if self.supports.get(i).copied().flatten() == Some(w) {
+            return self.check_slide_end(c, i, w);
+        }
         match (self.growth, wall_normal(&self.walls[w], c.pos[0])) {
             (Some(law), Some(n)) => {
                 let grow = law.speed(self.radius[i]);
@@ -640,6 +639,65 @@ impl<const D: usize> Verifier<D> {
         }
         self.report.wall_collisions += 1;
         self.report.kinetic_energy_end += e1 - e0;
+        Ok(())
+    }
+
+    /// A wall record of body `i` with the segment `w` it slides on: its arrival at an end of
+    /// `w`, flying clear of the edge with its velocity unchanged (see [`crate::ledge`]; going
+    /// on along the next segment is recorded as a landing on that one).
+    fn check_slide_end(&mut self, c: &Collision<D>, i: usize, w: usize) -> Result<(), Violation> {
+        let t = c.event.time;
+        let (Wall::Segment { a, b }, Some(g)) = (self.walls[w], self.gravity) else {
+            return Err(self.fail(t, format!("body {i} meets plane {w}, which it rests on")));
+        };
+        if c.rests[0] {
+            return Err(self.fail(
+                t,
+                format!("body {i} lands on segment {w}, which it rests on"),
+            ));
+        }
+        let v = self.vel_of(i, t);
+        let p = c.pos[0];
+        let u = b - a;
+        let len = u.norm();
+        let foot = (p - a).dot(u) / len;
+        let r = self.radius_at(i, t);
+        let tolerance = OVERLAP_TOLERANCE * r;
+        if foot > tolerance && foot < len - tolerance {
+            return Err(self.fail(
+                t,
+                format!("body {i} leaves segment {w} {foot} m from its end at a, not at an end"),
+            ));
+        }
+        let scale = 1e-9 * (1.0 + v.norm());
+        if (c.vel[0] - v).norm() > scale {
+            return Err(self.fail(
+                t,
+                format!(
+                    "body {i} leaves segment {w} with velocity {:?}, not the {:?} it slid with",
+                    c.vel[0].0, v.0
+                ),
+            ));
+        }
+        let end = crate::ledge::end_reached(a, b, p);
+        let m = Motion {
+            pos: p,
+            vel: v,
+            time: t,
+        };
+        // Rounding of the slide's position and speed, relative to `|v|²` and `r|g|`.
+        let slack = 1e-9 * (v.norm_sq() + r * g.norm());
+        if crate::ledge::edge_margin(&m, end, &g) <= -slack {
+            return Err(self.fail(
+                t,
+                format!(
+                    "body {i} flies off the end of segment {w} at {} m/s, too slowly to clear \
+                     the edge",
+                    v.norm()
+                ),
+            ));
+        }
+        self.report.wall_collisions += 1;
         Ok(())
     }
 
@@ -664,16 +722,32 @@ impl<const D: usize> Verifier<D> {
             out[s] = Some(match c.event.kind {
                 EventKind::Wall => {
                     let w = c.event.b as usize;
-                    let Some(Wall::Plane { normal, .. }) = self.walls.get(w).copied() else {
-                        return Err(self.fail(t, format!("body {i} rests on wall {w}, no plane")));
+                    let Some(wall) = self.walls.get(w).copied() else {
+                        return Err(self.fail(t, format!("body {i} rests on wall {w}, no wall")));
                     };
-                    if crate::resting::slide_acceleration(&g, &self.walls[w]).is_none() {
+                    if crate::resting::slide_acceleration(&g, &wall).is_none() {
                         return Err(self.fail(
                             t,
                             format!(
                                 "body {i} rests on wall {w}, which gravity does not press it on"
                             ),
                         ));
+                    }
+                    let normal = crate::resting::support_normal(&wall, &g);
+                    if let Wall::Segment { a, b } = wall {
+                        // Between the ends, on the side gravity presses against.
+                        let u = b - a;
+                        let foot = (c.pos[0] - a).dot(u) / u.norm();
+                        let tolerance = OVERLAP_TOLERANCE * self.radius_at(i, t);
+                        let side = (c.pos[0] - a).dot(normal) / normal.norm();
+                        if foot < -tolerance || foot > u.norm() + tolerance || side <= 0.0 {
+                            return Err(self.fail(
+                                t,
+                                format!(
+                                    "body {i} rests on segment {w} beyond its ends or under it"
+                                ),
+                            ));
+                        }
                     }
                     // The speed it would have left with: the normal velocity reflected.
                     let unit = normal * (1.0 / normal.norm());
@@ -690,7 +764,7 @@ impl<const D: usize> Verifier<D> {
                             ),
                         ));
                     }
-                    let slide = crate::resting::tangential(&self.vel_of(i, t), &normal);
+                    let slide = crate::resting::along_support(&self.vel_of(i, t), &wall);
                     if (c.vel[s] - slide).norm() > scale {
                         return Err(self.fail(
                             t,
@@ -709,10 +783,8 @@ impl<const D: usize> Verifier<D> {
                             self.fail(t, format!("body {i} goes on resting, but did not rest"))
                         );
                     };
-                    // Left as it was, or pressed into its plane: either way along it.
-                    let Wall::Plane { normal, .. } = self.walls[w] else {
-                        unreachable!("bodies rest on planes only")
-                    };
+                    // Left as it was, or pressed into its wall: either way along it.
+                    let normal = crate::resting::support_normal(&self.walls[w], &g);
                     let v = c.vel[s];
                     let scale = 1e-9 * (1.0 + v.norm() + self.vel_of(i, t).norm());
                     if v.dot(normal).abs() > scale * normal.norm() {

@@ -1,0 +1,293 @@
+//! Resting on segments and the edge model (`ccdsim::ledge`): a ball slides along a shelf,
+//! flies off its end when fast enough, goes straight on along a shelf drawn in pieces, falls
+//! back onto the top of an incline it was thrown over, and stops the run when it would roll
+//! over an edge; the same with every finder, recorded and verified, and forged runs refused.
+
+mod replay;
+
+use ccdsim::gravity::Gravity;
+use ccdsim::record::RunWriter;
+use ccdsim::{BodySpec, Collision, EventKind, Halt, Scene, Settings, Simulation, Vector, Wall};
+
+const FINDERS: [&str; 4] = ["all-pairs", "bvh", "sedgewick", "cells"];
+
+fn segment(a: [f64; 2], b: [f64; 2]) -> Wall<2> {
+    Wall::Segment {
+        a: Vector(a),
+        b: Vector(b),
+    }
+}
+
+fn floor() -> Wall<2> {
+    Wall::Plane {
+        point: Vector([0.0, 0.0]),
+        normal: Vector([0.0, 1.0]),
+    }
+}
+
+/// Restitution 0.5, gravity 10 m/s² down, resting below `rest_speed`.
+fn scene(bodies: Vec<BodySpec<2>>, walls: Vec<Wall<2>>, rest_speed: f64) -> Scene<2> {
+    Scene {
+        settings: Settings {
+            restitution: 0.5,
+            gravity: Gravity::new(&[0.0, -10.0]),
+            rest_speed: Some(rest_speed),
+            ..Settings::default()
+        },
+        bodies,
+        walls,
+        ..Scene::default()
+    }
+}
+
+/// The run of `scene` with `finder` up to `until`: its run file and its events.
+fn run(scene: &Scene<2>, finder: &str, until: f64) -> (Vec<u8>, Vec<Collision<2>>, Simulation<2>) {
+    let mut sim = Simulation::new(scene, finder).unwrap();
+    let mut file = RunWriter::new(Vec::new(), "ledge".into(), scene).unwrap();
+    let mut events = Vec::new();
+    sim.run_until_with(until, |c| {
+        file.write_event(c).unwrap();
+        events.push(*c);
+    });
+    (file.finish(sim.time()).unwrap(), events, sim)
+}
+
+/// Runs `scene` with every finder: all write the oracle's run file, which verifies; returns
+/// the oracle's events and simulation.
+fn every_finder(scene: &Scene<2>, until: f64) -> (Vec<Collision<2>>, Simulation<2>) {
+    let (oracle, events, sim) = run(scene, "all-pairs", until);
+    for finder in &FINDERS[1..] {
+        let (bytes, _, other) = run(scene, finder, until);
+        assert!(bytes == oracle, "[{finder}] writes another run file");
+        assert_eq!(other.halt(), sim.halt(), "[{finder}]");
+    }
+    let (s, recorded, end) = replay::records::<2>(&oracle);
+    replay::replay(&s, &recorded, end, true).unwrap();
+    replay::replay(&s, &recorded, end, false).unwrap();
+    (events, sim)
+}
+
+#[test]
+fn a_fast_ball_slides_along_a_shelf_and_flies_off_its_end() {
+    // Put a hair above a shelf at y = 1 from x = 0 to 2, moving right at 2 m/s: it rests at
+    // once and slides at 2 m/s; 2² > r g = 0.2 · 10, so at x = 2 it flies clear, falls
+    // 1 m onto the floor and bounces there.
+    let r = 0.2;
+    let s = scene(
+        vec![BodySpec::new(
+            Vector([0.5, 1.0 + r + 1e-6]),
+            Vector([2.0, 0.0]),
+            r,
+        )],
+        vec![floor(), segment([0.0, 1.0], [2.0, 1.0])],
+        1.0,
+    );
+    let (events, _) = every_finder(&s, 3.0);
+    let land = &events[0];
+    assert!(land.rests[0] && land.event.b == 1, "{land:?}");
+    assert_eq!(
+        land.vel[0].0,
+        [2.0, 0.0],
+        "it keeps its speed along the shelf"
+    );
+    let end = &events[1];
+    assert_eq!(
+        (end.event.kind, end.event.b, end.rests[0]),
+        (EventKind::Wall, 1, false)
+    );
+    assert!(
+        (end.pos[0][0] - 2.0).abs() < 1e-12,
+        "at the shelf's end: {end:?}"
+    );
+    let slide = (2.0 - land.pos[0][0]) / 2.0;
+    assert!((end.event.time - land.event.time - slide).abs() < 1e-12);
+    assert_eq!(end.vel[0], land.vel[0], "flying off changes no velocity");
+    // Next the floor, from 1 m up after a free fall of √(2 · 1 / 10) s.
+    let floor_hit = &events[2];
+    assert_eq!(floor_hit.event.b, 0);
+    assert!((floor_hit.event.time - end.event.time - 0.2f64.sqrt()).abs() < 1e-9);
+    assert!((floor_hit.pos[0][0] - (2.0 + 2.0 * 0.2f64.sqrt())).abs() < 1e-9);
+}
+
+#[test]
+fn a_slow_ball_at_the_end_of_a_shelf_stops_the_run() {
+    // At 1 m/s, 1² < r g = 2: at the end it would roll over the edge. Every finder stops
+    // before that event, with the same halt.
+    let r = 0.2;
+    let s = scene(
+        vec![BodySpec::new(
+            Vector([1.5, 1.0 + r + 1e-6]),
+            Vector([1.0, 0.0]),
+            r,
+        )],
+        vec![floor(), segment([0.0, 1.0], [2.0, 1.0])],
+        1.0,
+    );
+    let (events, sim) = every_finder(&s, 3.0);
+    assert_eq!(events.len(), 1, "{events:?}");
+    let Some(Halt::OverEdge { time, body, wall }) = sim.halt() else {
+        panic!("{:?}", sim.halt());
+    };
+    assert_eq!((body, wall), (0, 1));
+    let slide = 2.0 - events[0].pos[0][0];
+    assert!(
+        (time - events[0].event.time - slide).abs() < 1e-12,
+        "{time}"
+    );
+    assert!(sim
+        .halt()
+        .unwrap()
+        .to_string()
+        .contains("roll over the edge"));
+}
+
+#[test]
+fn a_shelf_drawn_in_pieces_is_one_shelf() {
+    // Three collinear pieces, the middle one drawn backwards: a ball too slow to fly off an
+    // edge slides across both joints, going on along each next piece, and stops the run only
+    // at the far end, x = 3.
+    let r = 0.2;
+    let s = scene(
+        vec![BodySpec::new(
+            Vector([0.5, 1.0 + r + 1e-6]),
+            Vector([1.0, 0.0]),
+            r,
+        )],
+        vec![
+            floor(),
+            segment([0.0, 1.0], [1.0, 1.0]),
+            segment([2.0, 1.0], [1.0, 1.0]),
+            segment([2.0, 1.0], [3.0, 1.0]),
+        ],
+        1.0,
+    );
+    let (events, sim) = every_finder(&s, 5.0);
+    let named: Vec<(u32, bool)> = events.iter().map(|c| (c.event.b, c.rests[0])).collect();
+    assert_eq!(named, [(1, true), (2, true), (3, true)], "{events:?}");
+    for c in &events {
+        assert_eq!(c.vel[0].0, [1.0, 0.0]);
+        assert_eq!(
+            c.pos[0][1], events[0].pos[0][1],
+            "on the shelf to the last bit"
+        );
+    }
+    assert!((events[1].pos[0][0] - 1.0).abs() < 1e-12);
+    assert!((events[2].pos[0][0] - 2.0).abs() < 1e-12);
+    let Some(Halt::OverEdge { time, wall: 3, .. }) = sim.halt() else {
+        panic!("{:?}", sim.halt());
+    };
+    assert!((time - events[0].event.time - (3.0 - events[0].pos[0][0])).abs() < 1e-12);
+}
+
+#[test]
+fn a_ball_thrown_over_the_top_of_an_incline_falls_back_onto_its_end() {
+    // A 10° incline 2 m long under a gravity tilted to pull hard back along it (−8.4 m/s²
+    // along it, 1.6 m/s² onto it): the ball starts on it moving up at 4.45 m/s, passes the
+    // top at √3 m/s, fast enough to fly clear (3 > r g_n) but slow enough (3 < r |g|²/g_n)
+    // for gravity to bring it back onto the end point: a contact with the end.
+    let r = 0.1;
+    let (c, s) = (10f64.to_radians().cos(), 10f64.to_radians().sin());
+    let top = [2.0 * c, 2.0 * s];
+    let normal = [-s, c];
+    let start = [
+        1.0 * c + normal[0] * (r + 1e-7),
+        1.0 * s + normal[1] * (r + 1e-7),
+    ];
+    let speed = 4.45;
+    let mut sc = scene(
+        vec![BodySpec::new(
+            Vector(start),
+            Vector([speed * c, speed * s]),
+            r,
+        )],
+        vec![floor(), segment([0.0, 0.0], top)],
+        1.0,
+    );
+    sc.settings.gravity = Gravity::new(&[-8.0, -3.0]);
+    // Until before it lands on the floor and slides into the wedge under the incline.
+    let (events, _) = every_finder(&sc, 0.9);
+    let kinds: Vec<(u32, bool)> = events.iter().map(|c| (c.event.b, c.rests[0])).collect();
+    assert_eq!(&kinds[..2], [(1, true), (1, false)], "{events:?}");
+    let back = &events[2];
+    assert_eq!(back.event.b, 1, "it comes back to the segment: {events:?}");
+    let from_top = back.pos[0] - Vector(top);
+    assert!(
+        (from_top.norm() - r).abs() < 1e-9,
+        "at the end point: {back:?}"
+    );
+    let t = back.event.time - events[1].event.time;
+    assert!(t > 0.01, "{t}");
+}
+
+#[test]
+fn verify_refuses_a_forged_slide_off() {
+    let r = 0.2;
+    let s = scene(
+        vec![BodySpec::new(
+            Vector([0.5, 1.0 + r + 1e-6]),
+            Vector([2.0, 0.0]),
+            r,
+        )],
+        vec![floor(), segment([0.0, 1.0], [2.0, 1.0])],
+        1.0,
+    );
+    let (bytes, _, _) = run(&s, "all-pairs", 3.0);
+    let (scene, events, end) = replay::records::<2>(&bytes);
+    assert!(replay::replay(&scene, &events, end, true).is_ok());
+    // Leaving the shelf half-way along it.
+    let mut early = events.clone();
+    let dt = 0.3;
+    early[1].event.time = events[0].event.time + dt;
+    early[1].pos[0] = events[0].pos[0] + events[0].vel[0] * dt;
+    let err = replay::replay(&scene, &early[..2], early[1].event.time, true).unwrap_err();
+    assert!(err.contains("not at an end"), "{err}");
+    // Leaving with a new velocity.
+    let mut kicked = events.clone();
+    kicked[1].vel[0] = Vector([2.0, 0.5]);
+    let err = replay::replay(&scene, &kicked[..2], kicked[1].event.time, true).unwrap_err();
+    assert!(err.contains("leaves segment 1 with velocity"), "{err}");
+    // Too slow to clear the edge: the same run at 1 m/s, the halt's event forged in.
+    let slow = scene_with_speed(&scene, 1.0);
+    let (bytes, slow_events, _) = run(&slow, "all-pairs", 3.0);
+    let (slow_scene, _, _) = replay::records::<2>(&bytes);
+    let mut forged = slow_events.clone();
+    let mut off = forged[0];
+    let slide = 2.0 - off.pos[0][0];
+    off.event.time += slide;
+    off.pos[0] += off.vel[0] * slide;
+    off.rests = [false; 2];
+    forged.push(off);
+    let err = replay::replay(&slow_scene, &forged, off.event.time, true).unwrap_err();
+    assert!(err.contains("too slowly to clear"), "{err}");
+}
+
+fn scene_with_speed(scene: &Scene<2>, speed: f64) -> Scene<2> {
+    let mut s = scene.clone();
+    s.bodies[0].vel = Vector([speed, 0.0]);
+    s
+}
+
+#[test]
+fn balls_do_not_rest_on_the_underside_of_a_shelf_nor_on_a_post() {
+    // Thrown up against a shelf's underside, a ball bounces off it however slowly; landing
+    // on a vertical post's top end, it does not rest on the post.
+    let r = 0.2;
+    let s = scene(
+        vec![
+            BodySpec::new(Vector([0.5, 1.0 - r - 0.05]), Vector([0.0, 1.1]), r),
+            BodySpec::new(Vector([3.0, 1.0 + r + 0.1]), Vector([0.0, 0.0]), r),
+        ],
+        vec![
+            floor(),
+            segment([0.0, 1.0], [2.0, 1.0]),
+            segment([3.0, 0.0], [3.0, 1.0]),
+        ],
+        1.0,
+    );
+    let (events, _) = every_finder(&s, 0.3);
+    assert!(
+        events.iter().all(|c| !(c.rests[0] && c.event.b >= 1)),
+        "{events:?}"
+    );
+    assert!(events.iter().any(|c| c.event.a == 0 && c.event.b == 1));
+}
