@@ -292,24 +292,13 @@ impl<const D: usize> Simulation<D> {
                 found = self.with_moving_walls(found);
             }
             let answer = match found {
-                Some(e) if self.idle.is_some_and(|idle| idle == e) => {
-                    self.halt = Some(match e.kind {
-                        EventKind::Body => Halt::RestingOnBody {
-                            time: e.time,
-                            a: e.a as usize,
-                            b: e.b as usize,
-                        },
-                        _ => Halt::Resting {
-                            time: e.time,
-                            body: e.a as usize,
-                            wall: e.b as usize,
-                        },
-                    });
-                    None
-                }
-                Some(e) if self.world.has_resting() && over_edge(&self.world, &e).is_some() => {
-                    // A slow body at the end of its segment would roll over the edge.
-                    self.halt = over_edge(&self.world, &e);
+                // Both halts of resting contacts need gravity: one test keeps them off the
+                // hot path of a world without it.
+                Some(e)
+                    if self.world.gravity().is_some()
+                        && (self.idle.is_some() || self.world.has_resting())
+                        && self.halts_before(&e) =>
+                {
                     None
                 }
                 Some(e) if self.guard.resolved(&self.world, &e) => Some(e),
@@ -325,6 +314,36 @@ impl<const D: usize> Simulation<D> {
             self.pending = Some(answer);
         }
         self.pending.flatten()
+    }
+
+    /// Under gravity, true (with [`Simulation::halt`] set) when the run stops before the
+    /// finder's event `e`: it repeats a collision that changed nothing ([`Halt::Resting`],
+    /// [`Halt::RestingOnBody`]), or brings a slow body to the end of the segment it slides
+    /// on ([`Halt::OverEdge`]).
+    #[inline(never)]
+    fn halts_before(&mut self, e: &Event) -> bool {
+        let halt = if self.idle == Some(*e) {
+            Some(match e.kind {
+                EventKind::Body => Halt::RestingOnBody {
+                    time: e.time,
+                    a: e.a as usize,
+                    b: e.b as usize,
+                },
+                _ => Halt::Resting {
+                    time: e.time,
+                    body: e.a as usize,
+                    wall: e.b as usize,
+                },
+            })
+        } else if self.world.has_resting() {
+            over_edge(&self.world, e)
+        } else {
+            None
+        };
+        if halt.is_some() {
+            self.halt = halt;
+        }
+        halt.is_some()
     }
 
     /// The next event of any source: the finder's (collision or box exit) or the thermostat's
