@@ -271,3 +271,29 @@ def test_a_ball_comes_to_rest_on_the_floor_and_slides():
     np.testing.assert_array_equal(sim.velocities[0], [0.5, 0.0])
     with pytest.raises(ValueError, match="rest_speed"):
         ccdsim.Simulation({**scene, "settings": {"rest_speed": 0.4}}, finder="cells")
+
+
+def test_a_ball_slides_along_a_shelf_and_flies_off_its_end_or_stops_the_run():
+    # Put a hair above a shelf (y = 1, x from 0 to 2) at 2 m/s: it rests at once, slides to
+    # x = 2 and, since 2^2 > r g = 0.2 * 10, flies off and falls 1 m onto the floor. At
+    # 1 m/s it would roll over the edge: the run stops there and says why.
+    def shelf(speed):
+        return {
+            "dim": 2,
+            "settings": {"restitution": 0.5, "gravity": [0.0, -10.0], "rest_speed": 1.0},
+            "bodies": [{"pos": [0.5, 1.2 + 1e-6], "vel": [speed, 0.0], "radius": 0.2}],
+            "walls": [
+                {"point": [0.0, 0.0], "normal": [0.0, 1.0]},
+                {"a": [0.0, 1.0], "b": [2.0, 1.0]},
+            ],
+        }
+
+    sim = ccdsim.Simulation(shelf(2.0), finder="cells")
+    land, off, floor = sim.step(), sim.step(), sim.step()
+    assert (land["b"], off["b"], floor["b"]) == (1, 1, 0)
+    assert off["pos"][0][0] == pytest.approx(2.0, abs=1e-12)
+    np.testing.assert_array_equal(off["vel"][0], land["vel"][0])
+    assert floor["t"] - off["t"] == pytest.approx(0.2**0.5, abs=1e-9)
+    slow = ccdsim.Simulation(shelf(1.0), finder="cells")
+    assert slow.run_until(5.0) == 1
+    assert "roll over the edge" in slow.halt
