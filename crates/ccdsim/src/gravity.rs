@@ -309,7 +309,8 @@ pub fn toi_circle_segment_falling_ends<const D: usize>(
         (0.0..=1.0).contains(&s)
     };
     let inside = h0.abs() <= r;
-    let approaching = h0 * hv < 0.0;
+    // By signs: the product of a tiny speed and a short distance may underflow to zero.
+    let approaching = (h0 < 0.0 && hv > 0.0) || (h0 > 0.0 && hv < 0.0);
     // Every way into contact with the line is a candidate, kept if its foot lies on the
     // segment: touching it now while approaching; each entry into the slab (falling through
     // +r, rising through −r), which may follow a stay in the slab beyond an end; and, in the

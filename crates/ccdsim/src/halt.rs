@@ -83,12 +83,13 @@ pub enum Halt {
         /// Its resolution error, metres.
         error: f64,
     },
-    /// Under gravity body `body` touches wall `wall` at `time` without any normal speed (a
-    /// ball come to rest on a floor): the collision there changed nothing and would repeat
-    /// at the same time for ever. Resting contacts are not simulated yet: the run stops.
+    /// Under gravity body `body` touches wall `wall` at `time` without any normal speed, and
+    /// the collision there changed nothing and would repeat at the same time for ever: a ball
+    /// come to rest on a floor where bodies do not rest (no `settings.rest_speed`, or a wall
+    /// that does not hold them), or one wedged between two walls, alternating between them
+    /// (see [`crate::resting`]). The run stops.
     #[error(
-        "at t = {time:e} s body {body} rests on wall {wall} (it touches it with no normal \
-         speed under gravity): resting contacts are not simulated yet, so the run stops"
+        "at t = {time:e} s body {body} touches wall {wall} with no normal speed under gravity, again and again at one instant (it rests there, or is wedged between two walls): such contacts are not simulated, so the run stops (settings.rest_speed lets bodies rest on single walls)"
     )]
     Resting {
         /// The time, seconds.

@@ -87,6 +87,11 @@ pub enum SimError {
     Input(String),
 }
 
+/// How many wall events of one body at one instant (under gravity) end the run
+/// ([`Halt::Resting`]): bounces in a wedge whose walls do not hold it die away geometrically,
+/// each halving its speed or so, so a thousand take any speed below the smallest float.
+pub const WEDGED_AFTER: u32 = 1000;
+
 /// An exact event-driven simulation: a [`World`] and a [`Finder`].
 ///
 /// ```
@@ -117,9 +122,17 @@ pub struct Simulation<const D: usize> {
     images: Vec<[i64; D]>,
     /// The thermostat's reset sequence, if the scene has one.
     thermostat: Option<ResetClock>,
-    /// A wall event whose collision changed nothing (a body resting on a wall under
-    /// gravity): if the finder names it again, the run halts ([`Halt::Resting`]).
-    idle: Option<Event>,
+    /// Under gravity, the last event if its collision changed no body's position or velocity
+    /// (a body come to rest on a wall, or pressed on one), and the one before if that changed
+    /// nothing either: if the finder names one of them again, the run would loop at one
+    /// instant for ever (a body wedged between two walls that hold it alternates between
+    /// them), and halts ([`Halt::Resting`], [`Halt::RestingOnBody`]).
+    idle: [Option<Event>; 2],
+    /// Under gravity: the time and body of the last wall event, and how many wall events of
+    /// that body in a row came at that very instant. Past [`WEDGED_AFTER`], a body caught in a
+    /// wedge whose speed has decayed into subnormal floats (where rounding may keep a
+    /// collision changing it in a cycle) halts the run ([`Halt::Resting`]).
+    instant: (f64, u32, u32),
     /// The scene's sensors, if it has any (see [`crate::sensor`]).
     sensors: Option<SensorTracker<D>>,
     /// Edits made since the last [`Simulation::take_edits`], as records, when
@@ -177,7 +190,8 @@ impl<const D: usize> Simulation<D> {
             pending: None,
             halt: None,
             stats,
-            idle: None,
+            idle: [None; 2],
+            instant: (f64::NAN, 0, 0),
             sensors: None,
             edits: None,
         })
@@ -296,7 +310,9 @@ impl<const D: usize> Simulation<D> {
                 // hot path of a world without it.
                 Some(e)
                     if self.world.gravity().is_some()
-                        && (self.idle.is_some() || self.world.has_resting())
+                        && (self.idle[0].is_some()
+                            || self.world.has_resting()
+                            || self.instant.2 >= WEDGED_AFTER)
                         && self.halts_before(&e) =>
                 {
                     None
@@ -322,7 +338,7 @@ impl<const D: usize> Simulation<D> {
     /// on ([`Halt::OverEdge`]).
     #[inline(never)]
     fn halts_before(&mut self, e: &Event) -> bool {
-        let halt = if self.idle == Some(*e) {
+        let halt = if self.idle[0].is_some() && self.idle.contains(&Some(*e)) {
             Some(match e.kind {
                 EventKind::Body => Halt::RestingOnBody {
                     time: e.time,
@@ -334,6 +350,15 @@ impl<const D: usize> Simulation<D> {
                     body: e.a as usize,
                     wall: e.b as usize,
                 },
+            })
+        } else if self.instant.2 >= WEDGED_AFTER
+            && e.kind == EventKind::Wall
+            && (e.time, e.a) == (self.instant.0, self.instant.1)
+        {
+            Some(Halt::Resting {
+                time: e.time,
+                body: e.a as usize,
+                wall: e.b as usize,
             })
         } else if self.world.has_resting() {
             over_edge(&self.world, e)
@@ -461,9 +486,9 @@ impl<const D: usize> Simulation<D> {
             // Every sensor event up to the collision, on the motions before it.
             s.advance_to(&self.world, e.time);
         }
-        if self.idle.is_some() {
-            self.idle = None;
-        }
+        // The no-change event before this one, if there was one; cleared for good unless this
+        // event changes nothing too.
+        let idle_before = self.idle[0].take();
         self.world.set_now(e.time.max(self.world.now()));
         let overlap;
         // Growing radii: collisions add kinetic energy, which the resolution guard must know.
@@ -491,7 +516,7 @@ impl<const D: usize> Simulation<D> {
                 let r = -contact.separation;
                 self.stats.virial += r.dot(w.velocity(a) - before) * w.mass(a);
                 if before_both.is_some_and(|s| s == states(&self.world, e.time)) {
-                    self.idle = Some(e);
+                    self.idle = [Some(e), idle_before];
                 }
                 self.bodies_changed(&[a, b]);
                 let w = &self.world;
@@ -519,15 +544,27 @@ impl<const D: usize> Simulation<D> {
                 }
                 let moving = b >= self.world.walls().len();
                 let speed_before = moving.then(|| self.world.velocity_at(a, e.time).norm_sq());
+                let rested = self.world.support(a).is_some();
                 overlap = resolve_body_wall(&mut self.world, a, b, e.time);
                 if let Some(v2) = speed_before {
                     let w = &self.world;
                     self.stats.wall_work += 0.5 * w.mass(a) * (w.velocity(a).norm_sq() - v2);
                 }
                 let rests = [self.world.support(a).is_some(), false];
-                if !rests[0] && before == Some((self.world.position(a), self.world.velocity(a))) {
-                    // Nothing changed: the same event would come again (see `Halt::Resting`).
-                    self.idle = Some(e);
+                if (!rests[0] || rested)
+                    && before == Some((self.world.position(a), self.world.velocity(a)))
+                {
+                    // Nothing changed but, perhaps, the wall it rests on: the same event would
+                    // come again, or it alternates between two walls (see `Halt::Resting`).
+                    self.idle = [Some(e), idle_before];
+                }
+                if falling {
+                    let (t, body, count) = self.instant;
+                    self.instant = if (t, body) == (e.time, e.a) {
+                        (t, body, count + 1)
+                    } else {
+                        (e.time, e.a, 1)
+                    };
                 }
                 self.stats.wall_collisions += 1;
                 self.bodies_changed(&[a]);
@@ -710,7 +747,8 @@ impl<const D: usize> Simulation<D> {
         self.guard = ResolutionGuard::new(&self.world);
         self.pending = None;
         self.halt = None;
-        self.idle = None;
+        self.idle = [None; 2];
+        self.instant = (f64::NAN, 0, 0);
         Ok(())
     }
 
@@ -905,7 +943,8 @@ impl<const D: usize> Simulation<D> {
         self.sensors_changed(i);
         self.pending = None;
         self.halt = None;
-        self.idle = None;
+        self.idle = [None; 2];
+        self.instant = (f64::NAN, 0, 0);
     }
 
     /// The first body `j ≠ skip` that a ball of radius `r` put at `pos` now would overlap,
@@ -1044,7 +1083,8 @@ impl<const D: usize> Simulation<D> {
         });
         self.pending = None;
         self.halt = None;
-        self.idle = None;
+        self.idle = [None; 2];
+        self.instant = (f64::NAN, 0, 0);
         Ok(())
     }
 

@@ -291,3 +291,74 @@ fn balls_do_not_rest_on_the_underside_of_a_shelf_nor_on_a_post() {
     );
     assert!(events.iter().any(|c| c.event.a == 0 && c.event.b == 1));
 }
+
+#[test]
+fn a_ball_wedged_in_a_trough_stops_the_run_instead_of_looping_at_one_instant() {
+    // A V of two walls that both hold it: resting on one, the ball slides into the other and
+    // rests on that, whose slide brings it back, each time at the same instant. Once its
+    // speed has died away that cycle changes nothing, and the run stops there; before the
+    // fix it looped for ever, writing a run file of tens of gigabytes.
+    let ball = || vec![BodySpec::new(Vector([0.3, 2.0]), Vector([0.0, 0.0]), 0.1)];
+    let segments = scene(
+        ball(),
+        vec![
+            segment([-1.0, 1.0], [0.0, 0.0]),
+            segment([0.0, 0.0], [1.0, 1.2]),
+        ],
+        0.5,
+    );
+    let planes = scene(
+        ball(),
+        vec![
+            Wall::Plane {
+                point: Vector([0.0, 0.0]),
+                normal: Vector([1.0, 1.0]),
+            },
+            Wall::Plane {
+                point: Vector([0.0, 0.0]),
+                normal: Vector([-1.2, 1.0]),
+            },
+        ],
+        0.5,
+    );
+    for (what, s) in [("segments", &segments), ("planes", &planes)] {
+        let (events, sim) = every_finder(s, 10.0);
+        assert!(
+            matches!(sim.halt(), Some(Halt::Resting { body: 0, .. })),
+            "{what}: {:?}",
+            sim.halt()
+        );
+        assert!(events.len() < 2000, "{what}: {} events", events.len());
+    }
+}
+
+#[test]
+fn a_ball_pushed_into_a_wedge_under_an_incline_stops_the_run() {
+    // Sliding along the floor under a tilted gravity into the acute wedge under an incline
+    // (a segment's underside, which holds nothing): it bounces between the two at one
+    // instant, ever slower, into subnormal speeds where rounding could cycle for ever; the
+    // run stops after `WEDGED_AFTER` such events.
+    let r = 0.1;
+    let (c, s) = (10f64.to_radians().cos(), 10f64.to_radians().sin());
+    let mut sc = scene(
+        vec![BodySpec::new(
+            Vector([3.0, r + 1e-7]),
+            Vector([-1.0, 0.0]),
+            r,
+        )],
+        vec![floor(), segment([0.0, 0.0], [2.0 * c, 2.0 * s])],
+        1.0,
+    );
+    sc.settings.gravity = Gravity::new(&[-8.0, -3.0]);
+    let (events, sim) = every_finder(&sc, 5.0);
+    assert!(
+        matches!(sim.halt(), Some(Halt::Resting { body: 0, .. })),
+        "{:?}",
+        sim.halt()
+    );
+    assert!(
+        events.len() <= ccdsim::sim::WEDGED_AFTER as usize + 100,
+        "{}",
+        events.len()
+    );
+}
