@@ -38,8 +38,9 @@
 //! down an incline against one resting on the floor) ends touching it without normal speed
 //! while their accelerations press them together: a stack, which needs a lasting contact
 //! between bodies. The run then stops with [`crate::Halt::RestingOnBody`], the same event for
-//! every finder. A body wedged in a corner between two planes bounces between them until it
-//! stops likewise ([`crate::Halt::Resting`]): it rests on one plane at a time.
+//! every finder. A body wedged in a corner between two walls bounces or slides between them at
+//! one instant until it stops likewise ([`crate::Halt::Resting`]): it rests on one wall at a
+//! time.
 //!
 //! **Segments end.** A body sliding on a segment reaches one of its ends: it slides on along
 //! a segment that goes straight on from there, flies off if it is fast enough to clear the

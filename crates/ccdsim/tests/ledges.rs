@@ -40,6 +40,21 @@ fn scene(bodies: Vec<BodySpec<2>>, walls: Vec<Wall<2>>, rest_speed: f64) -> Scen
     }
 }
 
+/// A ball of radius 0.2 put a hair above a shelf at y = 1 from x = 0 to 2 (over a floor),
+/// at `x` moving right at `speed` m/s; it rests on the shelf at once.
+fn on_shelf(x: f64, speed: f64) -> Scene<2> {
+    let r = 0.2;
+    scene(
+        vec![BodySpec::new(
+            Vector([x, 1.0 + r + 1e-6]),
+            Vector([speed, 0.0]),
+            r,
+        )],
+        vec![floor(), segment([0.0, 1.0], [2.0, 1.0])],
+        1.0,
+    )
+}
+
 /// The run of `scene` with `finder` up to `until`: its run file and its events.
 fn run(scene: &Scene<2>, finder: &str, until: f64) -> (Vec<u8>, Vec<Collision<2>>, Simulation<2>) {
     let mut sim = Simulation::new(scene, finder).unwrap();
@@ -72,16 +87,7 @@ fn a_fast_ball_slides_along_a_shelf_and_flies_off_its_end() {
     // Put a hair above a shelf at y = 1 from x = 0 to 2, moving right at 2 m/s: it rests at
     // once and slides at 2 m/s; 2² > r g = 0.2 · 10, so at x = 2 it flies clear, falls
     // 1 m onto the floor and bounces there.
-    let r = 0.2;
-    let s = scene(
-        vec![BodySpec::new(
-            Vector([0.5, 1.0 + r + 1e-6]),
-            Vector([2.0, 0.0]),
-            r,
-        )],
-        vec![floor(), segment([0.0, 1.0], [2.0, 1.0])],
-        1.0,
-    );
+    let s = on_shelf(0.5, 2.0);
     let (events, _) = every_finder(&s, 3.0);
     let land = &events[0];
     assert!(land.rests[0] && land.event.b == 1, "{land:?}");
@@ -113,16 +119,7 @@ fn a_fast_ball_slides_along_a_shelf_and_flies_off_its_end() {
 fn a_slow_ball_at_the_end_of_a_shelf_stops_the_run() {
     // At 1 m/s, 1² < r g = 2: at the end it would roll over the edge. Every finder stops
     // before that event, with the same halt.
-    let r = 0.2;
-    let s = scene(
-        vec![BodySpec::new(
-            Vector([1.5, 1.0 + r + 1e-6]),
-            Vector([1.0, 0.0]),
-            r,
-        )],
-        vec![floor(), segment([0.0, 1.0], [2.0, 1.0])],
-        1.0,
-    );
+    let s = on_shelf(1.5, 1.0);
     let (events, sim) = every_finder(&s, 3.0);
     assert_eq!(events.len(), 1, "{events:?}");
     let Some(Halt::OverEdge { time, body, wall }) = sim.halt() else {
@@ -221,16 +218,7 @@ fn a_ball_thrown_over_the_top_of_an_incline_falls_back_onto_its_end() {
 
 #[test]
 fn verify_refuses_a_forged_slide_off() {
-    let r = 0.2;
-    let s = scene(
-        vec![BodySpec::new(
-            Vector([0.5, 1.0 + r + 1e-6]),
-            Vector([2.0, 0.0]),
-            r,
-        )],
-        vec![floor(), segment([0.0, 1.0], [2.0, 1.0])],
-        1.0,
-    );
+    let s = on_shelf(0.5, 2.0);
     let (bytes, _, _) = run(&s, "all-pairs", 3.0);
     let (scene, events, end) = replay::records::<2>(&bytes);
     assert!(replay::replay(&scene, &events, end, true).is_ok());
@@ -247,7 +235,7 @@ fn verify_refuses_a_forged_slide_off() {
     let err = replay::replay(&scene, &kicked[..2], kicked[1].event.time, true).unwrap_err();
     assert!(err.contains("leaves segment 1 with velocity"), "{err}");
     // Too slow to clear the edge: the same run at 1 m/s, the halt's event forged in.
-    let slow = scene_with_speed(&scene, 1.0);
+    let slow = on_shelf(0.5, 1.0);
     let (bytes, slow_events, _) = run(&slow, "all-pairs", 3.0);
     let (slow_scene, _, _) = replay::records::<2>(&bytes);
     let mut forged = slow_events.clone();
@@ -259,12 +247,6 @@ fn verify_refuses_a_forged_slide_off() {
     forged.push(off);
     let err = replay::replay(&slow_scene, &forged, off.event.time, true).unwrap_err();
     assert!(err.contains("too slowly to clear"), "{err}");
-}
-
-fn scene_with_speed(scene: &Scene<2>, speed: f64) -> Scene<2> {
-    let mut s = scene.clone();
-    s.bodies[0].vel = Vector([speed, 0.0]);
-    s
 }
 
 #[test]
