@@ -3,6 +3,7 @@
 
 #![allow(dead_code)]
 
+pub mod ledges;
 pub mod resting;
 pub mod slots;
 pub mod walls;
