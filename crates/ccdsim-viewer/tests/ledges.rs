@@ -2,14 +2,17 @@
 //! `ccdsim::ledge`): a ball that slides along a shelf drawn in two pieces and flies off its
 //! end, and `examples/shelves.json`. Playback at any time (forwards, backwards, scrambled,
 //! and between each slide-off and the event after it), after any number of events, the
-//! rebuilt world, the served states and the extent follow the simulation bit for bit
-//! (`tests/common/ledges.rs` records the runs and the simulation's states).
+//! rebuilt world and the served states follow the simulation bit for bit
+//! (`tests/common/ledges.rs` records the runs and the simulation's states), the extent holds
+//! every ball, and rendered frames draw the ball on the shelf and falling past its end.
 
 mod common;
 
 use ccdsim::{Aabb, Vector};
+use ccdsim_viewer::render::colour::{self, Rgb};
+use ccdsim_viewer::render::Camera;
 use ccdsim_viewer::wire::{REST_A, REST_SECTION, STATE_HEADER};
-use ccdsim_viewer::{KeyframeOptions, Playback, Snapshot};
+use ccdsim_viewer::{render_png, KeyframeOptions, Playback, RenderOptions, Snapshot};
 use common::ledges::{
     record_ledge_run, shelf_scene, shelves_example, Ledge, LedgeRun, FLOOR, RADIUS, SHELF_END,
     SHELF_LEFT, SHELF_RIGHT, SHELF_Y,
@@ -223,6 +226,52 @@ fn a_ball_flying_off_a_shelf_is_served_as_the_simulation_had_it() {
     }
     let off = &events[2 * 13..3 * 13];
     assert_eq!((off[1], off[3], off[12]), (1.0, SHELF_RIGHT as f64, 0.0));
+}
+
+/// Pixel colour of `pm` at world point `q` under camera `cam`.
+fn pixel(pm: &tiny_skia::Pixmap, cam: &Camera, q: Vector<2>) -> Rgb {
+    let (x, y, _) = cam.project(q);
+    let c = pm.pixel(x as u32, y as u32).unwrap().demultiply();
+    [c.red(), c.green(), c.blue()]
+}
+
+#[test]
+fn a_ball_on_a_shelf_and_falling_past_its_end_is_rendered_where_the_simulation_had_it() {
+    let (path, run) = recorded("ledge-render", &shelf_scene(), 3.0, 0.05);
+    let dir = path.parent().unwrap();
+    let o = RenderOptions {
+        width: 600,
+        ..RenderOptions::default()
+    };
+    let p = Playback::<2>::open(&path, &o.keyframes).unwrap();
+    let cam = Camera::fit(&p.extent().bounds, o.width, None, o.yaw_deg, o.pitch_deg);
+    let id = colour::id_colour(colour::id_bucket(0));
+    // Sliding on the shelf's right piece: drawn on it, nothing of it under the shelf.
+    let on = run
+        .checkpoints
+        .iter()
+        .find(|cp| cp.bodies[0].support == Some(SHELF_RIGHT))
+        .unwrap();
+    // The last checkpoint of the fall, below the shelf's line by more than a radius.
+    let (falling, _) = *after_slide_offs(&run).last().unwrap();
+    let below = falling.bodies[0].pos;
+    assert!(below[1] < SHELF_Y - RADIUS, "{below:?}");
+    for (name, cp) in [("on", on), ("falling", falling)] {
+        let out = dir.join(format!("{name}.png"));
+        render_png(&path, cp.time, &out, &o).unwrap();
+        let pm = tiny_skia::Pixmap::load_png(&out).unwrap();
+        let b = cp.bodies[0].pos;
+        assert_eq!(pixel(&pm, &cam, b), id, "{name}: at its centre");
+        assert_eq!(pixel(&pm, &cam, b - Vector([0.0, 0.15])), id, "{name}");
+        // Where it would be, had it gone on at the shelf's height (falling) or sunk below
+        // the shelf under full gravity (on it), nothing.
+        let elsewhere = if name == "on" {
+            b - Vector([0.0, 2.0 * RADIUS + 0.1])
+        } else {
+            Vector([b[0], SHELF_Y + RADIUS])
+        };
+        assert_eq!(pixel(&pm, &cam, elsewhere), colour::BACKGROUND, "{name}");
+    }
 }
 
 #[test]
