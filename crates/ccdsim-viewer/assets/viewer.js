@@ -12,9 +12,10 @@
 // radius, id and kinematic flag (src/wire.rs), and edit events update them as they play.
 //
 // In a run where bodies rest on walls (meta.rest_speed), each body falls or slides with an
-// acceleration of its own, A[i]: g, or once a wall event's rest flag puts it on a plane, the
-// acceleration it slides along it with (meta.slides[wall]), which a body event's flag keeps;
-// any other event naming it without its flag makes it fall under g again. Snapshots carry
+// acceleration of its own, A[i]: g, or once a wall event's rest flag puts it on a plane or a
+// segment, the acceleration it slides along it with (meta.slides[wall]), which a body event's
+// flag keeps; any other event naming it without its flag makes it fall under g again (in
+// format 12, a ball's wall event with the segment it slides on is its flight off the end). Snapshots carry
 // every body's acceleration (src/wire.rs's rest section), events their rest flags.
 //
 // Moving walls (meta.moving_walls) are kept the same way: wall k is its scene geometry

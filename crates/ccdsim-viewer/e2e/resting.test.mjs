@@ -4,10 +4,15 @@
 // floor rests after its fourth contact (t = 1.375 s) and slides on, another slides down a 30°
 // incline and along the floor, and the first is kicked up at t = 3 s and rests again. The
 // example reports every ball's position and support every 0.05 s. Under full gravity a
-// resting ball would sink through the floor: the page must draw it on it. Run through
-// ./run.sh, which builds the example; or set REST_RUN_BIN.
+// resting ball would sink through the floor: the page must draw it on it.
+//
+// Then on the first 3 s of examples/shelves.json (format version 12: balls rest on segments
+// too, and fly off a shelf's end), recorded by `ccdsim run`: a ball sliding along a shelf is
+// drawn on it, and once it slides off the end it falls; the page's balls are where the
+// server's states put them (tests/ledges.rs checks those against the simulation). Run through
+// ./run.sh, which builds the example and the binary; or set REST_RUN_BIN and CCDSIM_BIN.
 
-import { test, before, after } from 'node:test';
+import { test, before, after, describe } from 'node:test';
 import assert from 'node:assert/strict';
 import { execFileSync } from 'node:child_process';
 import { mkdtempSync, mkdirSync, rmSync } from 'node:fs';
@@ -135,4 +140,142 @@ test('the page plays the resting run to the end without an error', async () => {
   for (const i of [0, 1]) await assertOnFloor(i, 'at the end');
   assert.deepEqual(pageErrors, []);
   assert.equal(await page.evaluate(() => window.ccdsim.error()), null);
+});
+
+describe('a format 12 run: balls on shelves fly off their ends', () => {
+  const SHELVES = path.resolve(here, '../../../examples/shelves.json');
+  const UNTIL = 3;
+  let ctx, pg, m, events, off;
+  const errors = [];
+
+  // The server's state at time t (/api/state, src/wire.rs): the events applied, and per
+  // ball its position (f32) and, from the rest section, its support (−1: none) and
+  // acceleration.
+  const serverState = (q) => pg.evaluate(async (q) => {
+    const ab = await (await fetch(`/api/state?${q}`)).arrayBuffer();
+    const head = new Float64Array(ab, 0, 8);
+    const [n, D] = [head[2], head[3]];
+    const pos = new Float32Array(ab, 64, n * D);
+    const rest = Math.ceil((64 + 8 * n * D) / 8) * 8;
+    const r = new Float64Array(ab, rest, 1 + n + n * D);
+    if (r[0] !== 3) throw new Error(`no rest section at byte ${rest}`);
+    const balls = [];
+    for (let i = 0; i < n; i++) {
+      balls.push({ pos: Array.from(pos.subarray(i * D, i * D + D)), support: r[1 + i],
+        acc: Array.from(r.subarray(1 + n + i * D, 1 + n + i * D + D)) });
+    }
+    return { applied: head[1], balls };
+  }, q);
+
+  // Every ball is drawn where the server's state at the page's time has it, within half a
+  // pixel (the page draws from f32 snapshot positions, in f64).
+  async function assertAsServer(what) {
+    const t = await pg.evaluate(() => window.ccdsim.time());
+    const s = await serverState(`t=${t}`);
+    for (let i = 0; i < s.balls.length; i++) {
+      const got = await pg.evaluate((i) => window.ccdsim.bodyOnScreen(i), i);
+      const want = await pg.evaluate((p) => window.ccdsim.onScreen(p), s.balls[i].pos);
+      assert.ok(Math.hypot(got.x - want.x, got.y - want.y) < 0.5,
+        `${what}, t = ${t}: ball ${i} drawn at (${got.x}, ${got.y}), the server has (${want.x}, ${want.y})`);
+    }
+    return s;
+  }
+
+  const ballOf = (i) => pg.evaluate((i) => window.ccdsim.bodyOnScreen(i), i);
+  const at = (p) => pg.evaluate((p) => window.ccdsim.onScreen(p), p);
+  const accelerationOf = (i) => pg.evaluate((i) => window.ccdsim.acceleration(i), i);
+
+  before(async () => {
+    const file = path.join(work, 'shelves.ccd');
+    execFileSync(BIN, ['run', SHELVES, '--until', String(UNTIL), '--record', file, '-q']);
+    const header = JSON.parse(execFileSync(BIN, ['export', file]).toString().split('\n')[0]);
+    assert.equal(header.version, 12);
+    ctx = await openViewer(BIN, file, path.join(work, 'profile-shelves'), (e) => errors.push(e.message));
+    pg = ctx.page;
+    m = await pg.evaluate(async () => (await fetch('/api/meta')).json());
+    const all = await pg.evaluate(async (count) =>
+      Array.from(new Float64Array(await (await fetch(`/api/events?from=0&count=${count}`)).arrayBuffer())), m.events);
+    const stride = 5 + 4 * m.dim;
+    events = [];
+    for (let o = 0; o < all.length; o += stride) {
+      events.push({ t: all[o], kind: all[o + 1], a: all[o + 2], b: all[o + 3], pos: all.slice(o + 4, o + 6),
+        vel: all.slice(o + 6, o + 8), rests: all[o + stride - 1] });
+    }
+    // The first slide-off off a level shelf: a wall event without its rest flag of a ball
+    // that, after the events before it, slid on that wall.
+    for (let k = 0; k < events.length && !off; k++) {
+      const e = events[k];
+      const w = m.walls[e.b];
+      if (e.kind !== 1 || e.rests & 1 || !w || !w.a || w.a[1] !== w.b[1]) continue;
+      const before = await serverState(`k=${k}`);
+      if (before.balls[e.a].support !== e.b) continue;
+      // The next event of the run, and the next one of that ball.
+      const own = events.slice(k + 1).find((f) => f.a === e.a || (f.kind === 0 && f.b === e.a));
+      const end = Math.abs(w.a[0] - e.pos[0]) < Math.abs(w.b[0] - e.pos[0]) ? w.a : w.b;
+      off = { ...e, k, next: events[k + 1].t, own: own ? own.t : Infinity, wall: w, end };
+    }
+  });
+
+  after(async () => {
+    if (ctx) {
+      await ctx.context.close();
+      ctx.server.kill();
+    }
+  });
+
+  test('meta: balls rest on the segments as on planes', () => {
+    assert.equal(m.rest_speed, 0.5);
+    assert.deepEqual(m.slides.slice(0, 3).map((s) => s === null), [false, true, true], 'floor and side walls');
+    assert.ok(m.slides.slice(3).every((s) => s !== null), 'no segment is vertical');
+    assert.ok(off, 'a ball slides off a level shelf');
+    assert.ok(off.next > off.t && off.own > off.t + 0.5 && off.t < UNTIL - 0.5, `${JSON.stringify(off)}`);
+  });
+
+  test('a ball on a shelf is drawn on it, sliding along it', async () => {
+    await goToOn(pg, off.t - 0.1);
+    const s = await assertAsServer('sliding');
+    assert.equal(s.balls[off.a].support, off.b);
+    assert.deepEqual(await accelerationOf(off.a), m.slides[off.b]);
+    // Its lowest point on the shelf's line, its centre painted.
+    const b = await ballOf(off.a);
+    const shelf = await at([s.balls[off.a].pos[0], off.wall.a[1]]);
+    assert.ok(Math.abs(b.y + b.r - shelf.y) < 1, `ball ${off.a}'s bottom at ${b.y + b.r}, the shelf at ${shelf.y}`);
+    assert.notDeepEqual(await pixelAt(pg, b.x, b.y), BACKGROUND);
+    await pg.screenshot({ path: path.join(OUT, 'viewer-shelves.png') });
+  });
+
+  test('past the end of the shelf it falls', async () => {
+    // Half-way from the slide-off to the next event of the run, and later in its fall.
+    for (const t of [(off.t + off.next) / 2, off.t + 0.3]) {
+      await goToOn(pg, t);
+      const s = await assertAsServer('falling');
+      assert.equal(s.balls[off.a].support, -1, `t = ${t}`);
+      assert.deepEqual(s.balls[off.a].acc, m.gravity);
+      assert.deepEqual(await accelerationOf(off.a), m.gravity);
+      const b = await ballOf(off.a);
+      const end = await at(off.end);
+      assert.ok((b.x - end.x) * Math.sign(off.vel[0]) > 0, `t = ${t}: ball ${off.a} at x = ${b.x}, not past the end at ${end.x}`);
+    }
+    // 0.3 s after it left, it is 0.44 m lower: its centre well below the shelf's line.
+    const low = await ballOf(off.a);
+    const end = await at(off.end);
+    assert.ok(low.y - end.y > 10, `ball ${off.a} at y = ${low.y}, the shelf's end at ${end.y}`);
+    assert.deepEqual(errors, []);
+  });
+
+  test('played across the slide-off, the balls are where the server has them', async () => {
+    await goToOn(pg, off.t - 0.2);
+    assert.deepEqual(await accelerationOf(off.a), m.slides[off.b]);
+    await setSpeedOf(pg, 0);
+    await pg.click('#play');
+    await pg.waitForFunction((to) => window.ccdsim.time() > to, off.t + 0.3, { timeout: 30000 });
+    await pg.click('#play');
+    await frames(pg);
+    const t = await pg.evaluate(() => window.ccdsim.time());
+    assert.ok(t < off.own, `played to ${t}, past ball ${off.a}'s next event at ${off.own}`);
+    await assertAsServer('played');
+    assert.deepEqual(await accelerationOf(off.a), m.gravity, 'the slide-off\'s event let it fall');
+    assert.deepEqual(errors, []);
+    assert.equal(await pg.evaluate(() => window.ccdsim.error()), null);
+  });
 });

@@ -2,9 +2,10 @@
 # End-to-end tests of the browser viewer in headless Chromium.
 #
 # Needs Debian's chromium (apt-get install -y chromium) and Node.js with npm. Builds the
-# `ccdsim` binary and the viewer's `slot_run`, `wall_run` and `rest_run` examples (which write
-# a run that adds and removes bodies, one with moving walls and one where balls rest on
-# planes), installs playwright-core from
+# `ccdsim` binary (which also records examples/shelves.json, balls resting on segments) and
+# the viewer's `slot_run`, `wall_run` and `rest_run` examples (which write a run that adds
+# and removes bodies, one with moving walls and one where balls rest on planes), installs
+# playwright-core from
 # package-lock.json, then runs node's test runner; screenshots land in e2e/out/.
 # `run.sh --which-bin` prints the binary's path and exits.
 set -euo pipefail

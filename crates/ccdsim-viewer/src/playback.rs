@@ -152,8 +152,8 @@ impl<const D: usize> Playback<D> {
     }
 
     /// True when bodies may rest on walls in the run (its scene has `settings.rest_speed`;
-    /// run files of format version 11): each body's support is kept, and the API's answers
-    /// carry it (see [`crate::wire`]).
+    /// run files of format version 11, or 12 when they rest on segments too): each body's
+    /// support is kept, and the API's answers carry it (see [`crate::wire`]).
     #[must_use]
     pub fn has_rests(&self) -> bool {
         self.scene.settings.rest_speed.is_some()
@@ -304,7 +304,7 @@ impl<const D: usize> Playback<D> {
             for i in 0..s.len() {
                 world.set_motion(i, s.motion(i));
                 if let Some(w) = s.support(i) {
-                    // A plane bodies rest on: the keyframe pass checked it.
+                    // A wall bodies rest on: the keyframe pass checked it.
                     world.set_support(i, Some(w));
                 }
             }

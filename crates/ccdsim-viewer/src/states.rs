@@ -72,13 +72,16 @@ impl SlotTable {
 /// filled are not known here: [`BodyStates::len`] counts the slots up to the last one used.
 ///
 /// In a run where bodies rest on walls (the scene's `settings.rest_speed`, run files of format
-/// version 11, see [`ccdsim::resting`]), each body also has a *support*: the static plane it
-/// rests on, if any ([`BodyStates::support`]). A resting body slides along its plane with
-/// the acceleration [`ccdsim::resting::slide_acceleration`] gives instead of `g`
+/// version 11, or 12 when they rest on 2D segments too, see [`ccdsim::resting`]), each body
+/// also has a *support*: the static plane or segment it rests on, if any
+/// ([`BodyStates::support`]). A resting body slides along its wall with the acceleration
+/// [`ccdsim::resting::slide_acceleration`] gives instead of `g`
 /// ([`BodyStates::acceleration`]). The records' flags say which bodies rest: a wall event
 /// flagged for its body puts it on that wall, a body event flagged for one of its bodies keeps
 /// that body on the wall it rested on, and any record naming a body without its flag lifts it
-/// off (it falls under `g` again).
+/// off (it falls under `g` again). So a body reaching the end of the segment it slides on
+/// (format 12, see [`ccdsim::ledge`]) flies off when that wall event has no flag, and rests
+/// on the segment going straight on when the event is flagged and names that one.
 ///
 /// The moving walls of a run (a scene's `moving_walls`, see [`ccdsim::moving_wall`]) are kept
 /// here too, since the same records move them: moving wall `k` is its scene geometry
@@ -212,9 +215,9 @@ impl<const D: usize> BodyStates<D> {
     /// `len().max(1024)`: the simulation reserves a quarter more slots at a time and fills
     /// the lowest first), and a moving wall's edit, which names one of the moving walls. An
     /// added body's id record ([`edit_code::ADD_ID`]) is checked by the caller, which knows
-    /// the record before. A body flagged as resting after the record (version 11) must rest
-    /// on a static plane bodies can rest on (a wall event's wall) or have rested before (a
-    /// body event's body).
+    /// the record before. A body flagged as resting after the record (versions 11 and 12) must
+    /// rest on a static plane or segment bodies can rest on (a wall event's wall) or have
+    /// rested before (a body event's body).
     pub fn check(&self, c: &Collision<D>) -> Result<(), String> {
         let a = c.event.a as usize;
         self.check_rests(c)?;
@@ -688,8 +691,8 @@ mod tests {
         );
         assert_eq!(s.support(1), None);
         assert_eq!(copy.support(0), Some(0));
-        // Refused: a rest on a segment or after a reset; a body event keeping a body resting
-        // that did not rest.
+        // Refused: a rest on a vertical segment (gravity runs along it) or after a reset; a
+        // body event keeping a body resting that did not rest.
         for (c, why) in [
             (
                 record(EventKind::Wall, 0, 2, 5.0, [true, false]),

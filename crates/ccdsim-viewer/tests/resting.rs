@@ -9,9 +9,7 @@ use ccdsim::{EventKind, Vector};
 use ccdsim_viewer::render::colour::{self, Rgb};
 use ccdsim_viewer::render::Camera;
 use ccdsim_viewer::wire::{REST_A, REST_B, REST_SECTION, STATE_HEADER};
-use ccdsim_viewer::{
-    render_png, serve, KeyframeOptions, Playback, RenderOptions, ServeOptions, Snapshot,
-};
+use ccdsim_viewer::{render_png, KeyframeOptions, Playback, RenderOptions, Snapshot};
 use common::resting::{record_rest_run, Checkpoint, RestRun, FLOOR, INCLINE, KICK_AT, RADIUS};
 use common::{f64s, get};
 
@@ -140,37 +138,10 @@ fn a_resting_run_is_bounded_by_its_floor_and_its_true_speeds() {
     );
 }
 
-struct Running {
-    port: u16,
-    stop: ccdsim_viewer::StopHandle,
-    thread: Option<std::thread::JoinHandle<()>>,
-}
-
-impl Drop for Running {
-    fn drop(&mut self) {
-        self.stop.stop();
-        if let Some(t) = self.thread.take() {
-            t.join().unwrap();
-        }
-    }
-}
-
-fn start(run: &std::path::Path) -> Running {
-    let options = ServeOptions {
-        keyframes: DENSE,
-        ..ServeOptions::default()
-    };
-    let server = serve(run, 0, &options).unwrap();
-    let port = server.port();
-    let stop = server.stop_handle();
-    let thread = Some(std::thread::spawn(move || server.run()));
-    Running { port, stop, thread }
-}
-
 #[test]
 fn a_resting_run_is_served_with_its_supports_accelerations_and_rest_flags() {
     let (path, run) = recorded("rest-server");
-    let s = start(&path);
+    let s = common::start(&path, DENSE);
     let meta: serde_json::Value = serde_json::from_slice(&get(s.port, "/api/meta").body).unwrap();
     assert_eq!(meta["rest_speed"], 0.4);
     let g = Vector([0.0, -10.0]);

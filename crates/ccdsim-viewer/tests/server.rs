@@ -7,40 +7,15 @@ use ccdsim_viewer::wire::STATE_HEADER;
 use ccdsim_viewer::{serve, KeyframeOptions, Playback, ServeOptions};
 use common::{f32s, f64s, get};
 
-struct Running {
-    port: u16,
-    stop: ccdsim_viewer::StopHandle,
-    thread: Option<std::thread::JoinHandle<()>>,
-}
-
-impl Drop for Running {
-    fn drop(&mut self) {
-        self.stop.stop();
-        if let Some(t) = self.thread.take() {
-            t.join().unwrap();
-        }
-    }
-}
-
-fn start(run: &std::path::Path) -> Running {
-    let options = ServeOptions {
-        keyframes: KeyframeOptions {
+/// The server of `run`, with a keyframe every 7 events at least.
+fn start(run: &std::path::Path) -> common::Running {
+    common::start(
+        run,
+        KeyframeOptions {
             min_interval: 7,
             ..KeyframeOptions::default()
         },
-        ..ServeOptions::default()
-    };
-    let server = serve(run, 0, &options).unwrap();
-    assert!(
-        server.url().starts_with("http://127.0.0.1:"),
-        "{}",
-        server.url()
-    );
-    let port = server.port();
-    assert_ne!(port, 0);
-    let stop = server.stop_handle();
-    let thread = Some(std::thread::spawn(move || server.run()));
-    Running { port, stop, thread }
+    )
 }
 
 fn recorded_break(name: &str) -> (std::path::PathBuf, u64) {

@@ -1,13 +1,16 @@
-//! Helpers shared by the viewer's integration tests: recording runs and a raw HTTP client.
+//! Helpers shared by the viewer's integration tests: recording runs, a server on a thread and
+//! a raw HTTP client.
 
 #![allow(dead_code)]
 
+pub mod ledges;
 pub mod resting;
 pub mod slots;
 pub mod walls;
 
 use ccdsim::record::RunWriter;
 use ccdsim::{Scene, Simulation};
+use ccdsim_viewer::{serve, KeyframeOptions, ServeOptions, StopHandle};
 use std::io::{Read, Write};
 use std::path::{Path, PathBuf};
 
@@ -26,6 +29,44 @@ pub fn record<const D: usize>(scene: &Scene<D>, until: f64, path: &Path) -> u64 
     let n = sim.run_until_with(until, |c| w.write_event(c).unwrap());
     w.finish(until).unwrap();
     n
+}
+
+/// A viewer server answering on a thread of its own; dropping it stops the server and joins
+/// the thread.
+pub struct Running {
+    /// The port it listens on at 127.0.0.1.
+    pub port: u16,
+    stop: StopHandle,
+    thread: Option<std::thread::JoinHandle<()>>,
+}
+
+impl Drop for Running {
+    fn drop(&mut self) {
+        self.stop.stop();
+        if let Some(t) = self.thread.take() {
+            t.join().unwrap();
+        }
+    }
+}
+
+/// Serves the run file `run` on 127.0.0.1 at a port the system picks, with keyframes per
+/// `keyframes`, on a new thread.
+pub fn start(run: &Path, keyframes: KeyframeOptions) -> Running {
+    let options = ServeOptions {
+        keyframes,
+        ..ServeOptions::default()
+    };
+    let server = serve(run, 0, &options).unwrap();
+    assert!(
+        server.url().starts_with("http://127.0.0.1:"),
+        "{}",
+        server.url()
+    );
+    let port = server.port();
+    assert_ne!(port, 0);
+    let stop = server.stop_handle();
+    let thread = Some(std::thread::spawn(move || server.run()));
+    Running { port, stop, thread }
 }
 
 /// One HTTP answer.

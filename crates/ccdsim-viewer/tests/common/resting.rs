@@ -42,6 +42,8 @@ pub struct BodyAt {
     /// Its position and velocity at the checkpoint's time.
     pub pos: Vector<2>,
     pub vel: Vector<2>,
+    /// Its acceleration until its next event (`World::gravity_of`).
+    pub acc: Option<Vector<2>>,
 }
 
 /// The simulation's state after the first `applied` records, at `time` (between events).
@@ -114,7 +116,8 @@ pub fn rest_scene() -> Scene<2> {
     }
 }
 
-fn checkpoint(sim: &Simulation<2>, applied: u64) -> Checkpoint {
+/// The simulation's bodies now, after its first `applied` records.
+pub fn checkpoint(sim: &Simulation<2>, applied: u64) -> Checkpoint {
     let (w, t) = (sim.world(), sim.time());
     Checkpoint {
         applied,
@@ -125,6 +128,7 @@ fn checkpoint(sim: &Simulation<2>, applied: u64) -> Checkpoint {
                 support: w.support(i),
                 pos: w.position_at(i, t),
                 vel: w.velocity_at(i, t),
+                acc: w.gravity_of(i),
             })
             .collect(),
     }
