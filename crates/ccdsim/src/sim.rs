@@ -338,7 +338,13 @@ impl<const D: usize> Simulation<D> {
     /// on ([`Halt::OverEdge`]).
     #[inline(never)]
     fn halts_before(&mut self, e: &Event) -> bool {
-        let halt = if self.idle[0].is_some() && self.idle.contains(&Some(*e)) {
+        // The same event again after collisions that changed nothing, or one wall event too
+        // many of a body at one instant.
+        let repeats = (self.idle[0].is_some() && self.idle.contains(&Some(*e)))
+            || (self.instant.2 >= WEDGED_AFTER
+                && e.kind == EventKind::Wall
+                && (e.time, e.a) == (self.instant.0, self.instant.1));
+        let halt = if repeats {
             Some(match e.kind {
                 EventKind::Body => Halt::RestingOnBody {
                     time: e.time,
@@ -350,15 +356,6 @@ impl<const D: usize> Simulation<D> {
                     body: e.a as usize,
                     wall: e.b as usize,
                 },
-            })
-        } else if self.instant.2 >= WEDGED_AFTER
-            && e.kind == EventKind::Wall
-            && (e.time, e.a) == (self.instant.0, self.instant.1)
-        {
-            Some(Halt::Resting {
-                time: e.time,
-                body: e.a as usize,
-                wall: e.b as usize,
             })
         } else if self.world.has_resting() {
             over_edge(&self.world, e)
@@ -531,6 +528,11 @@ impl<const D: usize> Simulation<D> {
                     },
                 }
             }
+            // A body meeting the segment it slides on: it has reached the end.
+            EventKind::Wall if self.world.has_resting() && self.world.support(a) == Some(b) => {
+                overlap = 0.0;
+                self.resolve_slide_end(e)
+            }
             EventKind::Wall => {
                 let falling = self.world.gravity().is_some();
                 let before = falling.then(|| {
@@ -539,9 +541,6 @@ impl<const D: usize> Simulation<D> {
                         self.world.velocity_at(a, e.time),
                     )
                 });
-                if self.world.has_resting() && self.world.support(a) == Some(b) {
-                    return self.resolve_slide_end(e);
-                }
                 let moving = b >= self.world.walls().len();
                 let speed_before = moving.then(|| self.world.velocity_at(a, e.time).norm_sq());
                 let rested = self.world.support(a).is_some();
@@ -550,8 +549,8 @@ impl<const D: usize> Simulation<D> {
                     let w = &self.world;
                     self.stats.wall_work += 0.5 * w.mass(a) * (w.velocity(a).norm_sq() - v2);
                 }
-                let rests = [self.world.support(a).is_some(), false];
-                if (!rests[0] || rested)
+                let rests = self.world.support(a).is_some();
+                if (!rests || rested)
                     && before == Some((self.world.position(a), self.world.velocity(a)))
                 {
                     // Nothing changed but, perhaps, the wall it rests on: the same event would
@@ -568,13 +567,7 @@ impl<const D: usize> Simulation<D> {
                 }
                 self.stats.wall_collisions += 1;
                 self.bodies_changed(&[a]);
-                let w = &self.world;
-                Collision {
-                    event: e,
-                    pos: [w.position(a), Vector::ZERO],
-                    vel: [w.velocity(a), Vector::ZERO],
-                    rests,
-                }
+                self.wall_collision(e, rests)
             }
             EventKind::Reset => {
                 overlap = 0.0;
@@ -605,16 +598,17 @@ impl<const D: usize> Simulation<D> {
             .expect("wall indices fit events");
         self.stats.wall_collisions += 1;
         self.bodies_changed(&[a]);
-        if let Some(s) = &mut self.sensors {
-            s.body_changed(&self.world, a);
-        }
-        self.stats.events += 1;
-        let w = &self.world;
+        self.wall_collision(e, self.world.support(a).is_some())
+    }
+
+    /// The record of wall event `e` just resolved: its body's new state, and whether it rests.
+    fn wall_collision(&self, e: Event, rests: bool) -> Collision<D> {
+        let (w, a) = (&self.world, e.a as usize);
         Collision {
             event: e,
             pos: [w.position(a), Vector::ZERO],
             vel: [w.velocity(a), Vector::ZERO],
-            rests: [w.support(a).is_some(), false],
+            rests: [rests, false],
         }
     }
 
