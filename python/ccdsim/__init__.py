@@ -349,7 +349,9 @@ class Simulation:
         """Adds a body at the current time and returns its index, which names it until it is
         removed (a removed body's slot may be filled again). Fields as in a scene's
         ``bodies``; ``id`` defaults to one above every id so far. Raises ValueError when a
-        field is invalid, the id is taken, or the body would overlap a body or a wall.
+        field is invalid, the id is taken, or the body would overlap a body or a wall. With
+        ``settings.growth``, ``radius`` is its radius now (it grows from then on); with
+        ``settings.thermostat``, it takes resets from now on unless it is kinematic.
 
         >>> sim = Simulation({"dim": 2, "bodies": []}, finder="cells")
         >>> a = sim.add_body([0, 0], [1, 0], 0.5)

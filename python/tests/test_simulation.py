@@ -216,6 +216,42 @@ def test_bodies_are_added_and_removed_in_stable_slots():
     assert sim.present.all()
 
 
+def test_bodies_come_and_go_under_a_thermostat_and_with_growing_radii():
+    # A thermostat resets the bodies that move freely, added ones from when they are added,
+    # removed ones never again.
+    scene = {
+        "dim": 2,
+        "periodic": [20.0, 20.0],
+        "settings": {"thermostat": {"temperature": 1.0, "rate": 2.0, "seed": 4}},
+        "bodies": [
+            {"pos": [2.0 + 4.0 * k, 10.0], "vel": [0.0, 0.0], "radius": 0.5} for k in range(4)
+        ],
+    }
+    sim = ccdsim.Simulation(scene, finder="cells")
+    sim.remove_body(0)
+    added = sim.add_body([10.0, 3.0], [0.0, 0.0], 0.5)
+    assert added == 0  # the vacated slot
+    sim.remove_body(1)
+    events = sim.advance(20.0)
+    resets = events[events["kind"] == 2]
+    assert 60 < len(resets) < 180  # 3 bodies at 2 per second for 20 s: 120
+    assert not (resets["a"] == 1).any()
+    assert (resets["a"] == added).sum() > 20
+    # Growing radii: an added body's radius is its radius when it is added.
+    growing = {
+        "dim": 2,
+        "periodic": [20.0, 20.0],
+        "settings": {"growth": {"rate": 0.1}},
+        "bodies": [{"pos": [5.0, 5.0], "vel": [1.0, 0.5], "radius": 0.5}],
+    }
+    sim = ccdsim.Simulation(growing, finder="cells")
+    sim.advance(2.0)
+    b = sim.add_body([15.0, 15.0], [0.0, 0.0], 0.5)
+    assert sim.radii[b] == pytest.approx(0.5, rel=1e-15)
+    sim.advance(1.0)
+    assert sim.radii[b] == pytest.approx(0.5 * 1.3 / 1.2, rel=1e-12)
+
+
 def test_sensors_report_enters_and_leaves():
     scene = {
         "dim": 2,

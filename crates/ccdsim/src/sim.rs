@@ -16,6 +16,8 @@ use crate::thermostat::ResetClock;
 use crate::world::World;
 
 mod body_slots;
+pub(crate) use body_slots::reserve_count;
+mod resets;
 
 /// A resolved collision: the event and the involved bodies' states right after it.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -141,6 +143,8 @@ pub struct Simulation<const D: usize> {
     /// The largest radius a body added to a vacant slot may have without the finder being
     /// re-initialised (see [`body_slots::sized_radius`]).
     sized_radius: f64,
+    /// Bodies that move freely (neither kinematic nor vacant): those the thermostat resets.
+    free_bodies: usize,
     /// Each body's next contact with a moving wall, if the world has moving walls (see
     /// [`crate::moving_wall`]).
     moving: Option<MovingWallTracker>,
@@ -185,6 +189,7 @@ impl<const D: usize> Simulation<D> {
             start_time: world.now(),
             guard: ResolutionGuard::new(&world),
             sized_radius: body_slots::sized_radius(&world),
+            free_bodies: (0..world.len()).filter(|&i| !world.is_kinematic(i)).count(),
             world,
             finder,
             pending: None,
@@ -373,7 +378,9 @@ impl<const D: usize> Simulation<D> {
     /// finder has none, or has halted after the reset's time.
     fn next_any(&mut self) -> Option<Event> {
         let found = self.next_raw();
-        let Some(clock) = &self.thermostat else {
+        // Without a free body every draw is void (see `crate::thermostat`): the clock waits,
+        // and an added body has the draws due by then judged first.
+        let Some(clock) = self.thermostat.as_ref().filter(|_| self.free_bodies > 0) else {
             return found;
         };
         let t = clock.next_time();
@@ -458,6 +465,10 @@ impl<const D: usize> Simulation<D> {
         let mut exits = 0;
         loop {
             let e = self.next_any()?;
+            if self.is_void_reset(&e) {
+                self.skip_reset(e.time);
+                continue;
+            }
             if !self.is_exit(&e) {
                 return Some(e);
             }
@@ -746,34 +757,6 @@ impl<const D: usize> Simulation<D> {
         Ok(())
     }
 
-    /// Applies the thermostat's next reset (at `time`, the current time now).
-    fn apply_reset(&mut self, time: f64) -> Collision<D> {
-        let clock = self
-            .thermostat
-            .as_mut()
-            .expect("resets come from a thermostat");
-        let i = clock.next_body();
-        let reset = clock.take::<D>(self.world.mass(i));
-        debug_assert_eq!((reset.time, reset.body), (time, i));
-        let added = 0.5
-            * self.world.mass(i)
-            * (reset.velocity.norm_sq() - self.world.velocity_at(i, time).norm_sq());
-        self.guard.add_energy(added);
-        let p = self.world.position_at(i, time);
-        self.world.set_state(i, p, reset.velocity, time);
-        self.bodies_changed(&[i]);
-        self.sensors_changed(i);
-        // The world changed: an earlier halt may no longer hold.
-        self.halt = None;
-        self.stats.resets += 1;
-        Collision {
-            event: Event::reset(time, i),
-            pos: [p, Vector::ZERO],
-            vel: [reset.velocity, Vector::ZERO],
-            rests: [false; 2],
-        }
-    }
-
     /// Resolves the next event if it happens at or before `t` and returns it; otherwise
     /// returns `None` and changes nothing after `t` (box exits up to `t` are applied).
     pub fn step_event_until(&mut self, t: f64) -> Option<Collision<D>> {
@@ -784,6 +767,10 @@ impl<const D: usize> Simulation<D> {
             }
             if self.is_exit(&e) {
                 self.apply_exit(e);
+                continue;
+            }
+            if self.is_void_reset(&e) {
+                self.skip_reset(e.time);
                 continue;
             }
             self.pending = None;

@@ -9,6 +9,19 @@
 //!
 //! Reset times are `t_{k+1} = t_k + Exp(ν N)` from the scene's start time; the reset's body is
 //! uniform over the `N` bodies. A reset at the same time as a collision comes after it.
+//!
+//! # Slots that take no reset
+//!
+//! `N` counts *slots*: kinematic bodies, whose velocity their program sets, and vacant slots
+//! (bodies removed, or room reserved for bodies to come, see
+//! [`crate::Simulation::add_body`]) are drawn like the others, and such a draw is passed over
+//! when the clock reaches it, leaving no trace. Thinning a Poisson process this way keeps it
+//! Poisson: each body that moves freely is still reset at rate `ν`, whatever the others are,
+//! and a slot filled by an added body takes its resets from the moment it is filled. A draw
+//! due at or before an edit's time is judged before the edit. When the world appends slots
+//! (at time `t`, to `N'`), the draw pending then is dropped and the sequence goes on from
+//! `t` at rate `ν N'` ([`ResetClock::grow`]); memorylessness makes that the same process.
+//! Runs without kinematic bodies or edits draw exactly the sequence they always did.
 
 use crate::geom::Vector;
 use rand::{Rng, SeedableRng};
@@ -64,8 +77,11 @@ pub struct Reset<const D: usize> {
 pub struct ResetClock {
     rng: ChaCha8Rng,
     temperature: f64,
+    /// `ν`, resets per slot per second.
+    rate: f64,
     gap: Option<Exp<f64>>,
-    bodies: usize,
+    /// `N`: the slots drawn from.
+    slots: usize,
     /// The next reset: time, body and standard normal draws (scaled by the mass when taken).
     next_time: f64,
     next_body: usize,
@@ -73,22 +89,44 @@ pub struct ResetClock {
 }
 
 impl ResetClock {
-    /// The resets of `bodies` bodies from time `start` on (none without bodies).
+    /// The resets of `slots` slots (bodies) from time `start` on (none without slots).
     #[must_use]
-    pub fn new(thermostat: &Thermostat, bodies: usize, start: f64) -> Self {
-        let total = thermostat.rate * bodies as f64;
+    pub fn new(thermostat: &Thermostat, slots: usize, start: f64) -> Self {
         let mut clock = ResetClock {
             rng: ChaCha8Rng::seed_from_u64(thermostat.seed),
             temperature: thermostat.temperature,
-            gap: (bodies > 0 && total.is_finite() && total > 0.0)
-                .then(|| Exp::new(total).expect("a positive finite rate")),
-            bodies,
+            rate: thermostat.rate,
+            gap: None,
+            slots: 0,
             next_time: start,
             next_body: 0,
             next_normals: [0.0; 3],
         };
-        clock.draw();
+        clock.restart(slots, start);
         clock
+    }
+
+    /// Draws over `slots` slots from time `now` on, dropping the pending draw: the world
+    /// appended slots at `now` (see the module docs). Nothing changes when the count does not.
+    pub fn grow(&mut self, slots: usize, now: f64) {
+        if slots != self.slots {
+            self.restart(slots, now);
+        }
+    }
+
+    fn restart(&mut self, slots: usize, now: f64) {
+        let total = self.rate * slots as f64;
+        self.gap = (slots > 0 && total.is_finite() && total > 0.0)
+            .then(|| Exp::new(total).expect("a positive finite rate"));
+        self.slots = slots;
+        self.next_time = now;
+        self.draw();
+    }
+
+    /// Passes over the next draw (its slot takes no reset, see the module docs) and draws the
+    /// one after it.
+    pub fn skip(&mut self) {
+        self.draw();
     }
 
     /// Time of the next reset, seconds (`+∞` when there is none).
@@ -125,7 +163,7 @@ impl ResetClock {
             return;
         };
         self.next_time += gap.sample(&mut self.rng);
-        self.next_body = self.rng.random_range(0..self.bodies);
+        self.next_body = self.rng.random_range(0..self.slots);
         for x in &mut self.next_normals {
             *x = StandardNormal.sample(&mut self.rng);
         }

@@ -1845,9 +1845,17 @@ fn bodies_added_and_removed() {
     // add_body and remove_body: bodies come and go in stable slots, vacant slots are passed
     // by, new slots are appended (a finder rebuild) and larger bodies re-size the finders;
     // every finder still gives the oracle's events, in walled and periodic worlds (every
-    // cells mode), under gravity, with kinematic bodies and filters, after events and at the
-    // ends of frames.
+    // cells mode), under gravity, with kinematic bodies and filters, with a thermostat (whose
+    // draws for kinematic bodies and vacant slots are void) and with growing radii, after
+    // events and at the ends of frames.
     let s2 = gas_scene::<2>(100, 0.3, (0.2, 0.6), SMALL_SEEDS[0]);
+    let mut heated = with_kinematic(s2.clone(), 4);
+    heated.settings.thermostat = Some(ccdsim::thermostat::Thermostat {
+        temperature: 1.0,
+        rate: 0.5,
+        seed: 3,
+    });
+    let grown = growing(s2.clone(), 0.02);
     let s3 = gas_scene::<3>(60, 0.15, (0.3, 0.5), SMALL_SEEDS[1]);
     let f2 = with_kinematic(falling(s2.clone(), [0.0, -9.81]), 3);
     let board = peg_board(5, 32, SMALL_SEEDS[2]);
@@ -1863,6 +1871,8 @@ fn bodies_added_and_removed() {
             ("slots gravity kinematic 2D", &f2),
             ("slots peg board", &board),
             ("slots filtered 2D", &filtered),
+            ("slots thermostat kinematic 2D", &heated),
+            ("slots growth 2D", &grown),
         ] {
             let oracle = reference(label, scene, 1500, drive);
             for (name, options) in variants() {
@@ -1875,6 +1885,12 @@ fn bodies_added_and_removed() {
         }
         check_periodic("slots periodic 2D", &p2, 1500, drive);
         check_periodic("slots periodic 3D", &p3, 1200, drive);
+        check_periodic(
+            "slots periodic growth 2D",
+            &growing(p2.clone(), 0.02),
+            1500,
+            drive,
+        );
     }
 }
 

@@ -197,3 +197,74 @@ fn bad_compressions_are_refused() {
     let err = compress(&open, "cells", &CompressConfig::default(), |_| {}).unwrap_err();
     assert!(err.to_string().contains("volume"), "{err}");
 }
+
+/// A periodic growing packing in which, every 0.1 s, a body is taken out and a body of its
+/// current radius put back where it was, moving the other way: the run file of `finder`.
+fn refilled_run(finder: &str) -> (Vec<u8>, Vec<(f64, f64, f64)>) {
+    let scene = growing::<2>(60, true, 0.05);
+    let mut sim = Simulation::new(&scene, finder).unwrap();
+    let mut run = RunWriter::new_steered(Vec::new(), finder.into(), &scene).unwrap();
+    sim.record_edits(true);
+    let mut radii = Vec::new();
+    for frame in 0..30u32 {
+        for c in sim.advance(0.1) {
+            run.write_event(&c).unwrap();
+        }
+        let i = (frame as usize * 7) % 60;
+        let (pos, vel, r) = (
+            sim.position(i),
+            sim.world().velocity_at(i, sim.time()),
+            sim.radius(i),
+        );
+        sim.remove_body(i).unwrap();
+        let spec = ccdsim::BodySpec::new(pos, -vel, r);
+        assert_eq!(
+            sim.add_body(spec).unwrap(),
+            i,
+            "the slot just vacated is filled"
+        );
+        radii.push((sim.time(), r, sim.radius(i)));
+        for c in sim.take_edits() {
+            run.write_event(&c).unwrap();
+        }
+    }
+    let end = sim.time();
+    for c in sim.advance(0.5) {
+        run.write_event(&c).unwrap();
+    }
+    let last = sim.radius(29 * 7 % 60);
+    radii.push((end, last, sim.radius(29 * 7 % 60)));
+    (run.finish(sim.time()).unwrap(), radii)
+}
+
+#[test]
+fn bodies_added_to_a_growing_packing_grow_with_it_and_every_finder_agrees() {
+    let (want, radii) = refilled_run("all-pairs");
+    for &(t, given, now) in &radii[..radii.len() - 1] {
+        // The added body's radius is the one given, up to the rounding of the stored one.
+        assert!(
+            (now - given).abs() <= 4.0 * f64::EPSILON * given,
+            "{t}: {given} {now}"
+        );
+    }
+    // From then on it grows with every other: by the growth factor 1 + 0.05 t, relatively.
+    let &(t1, r1, _) = &radii[radii.len() - 2];
+    let &(t2, _, r2) = radii.last().unwrap();
+    let ratio = (1.0 + 0.05 * (t2 + 0.5)) / (1.0 + 0.05 * t1);
+    assert!((r2 / r1 - ratio).abs() < 1e-12, "{} vs {ratio}", r2 / r1);
+    for finder in ["bvh", "sedgewick", "cells"] {
+        assert!(
+            refilled_run(finder).0 == want,
+            "[{finder}] run files differ"
+        );
+    }
+    let (scene, events, end) = records::<2>(&want);
+    let adds = events
+        .iter()
+        .filter(|c| c.event.kind == ccdsim::EventKind::Edit && c.event.b == 1)
+        .count();
+    assert_eq!(adds, 30);
+    for all_pairs in [false, true] {
+        replay(&scene, &events, end, all_pairs).unwrap();
+    }
+}

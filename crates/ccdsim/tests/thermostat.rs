@@ -161,3 +161,73 @@ fn bad_thermostat_settings_are_refused() {
                   "bodies": []}"#;
     assert!(Scene::<2>::from_json(json).is_err());
 }
+
+#[test]
+fn kinematic_bodies_and_removed_ones_take_no_resets_and_the_others_keep_their_rate() {
+    // 400 bodies in walls; every fourth held still as a kinematic obstacle, and a hundred of
+    // the others removed at the start: 200 bodies move freely.
+    let mut scene = thermostatted::<2>(400, false, 2.0, 0.5);
+    for (k, b) in scene.bodies.iter_mut().enumerate() {
+        if k % 4 == 0 {
+            b.kinematic = true;
+            b.vel = ccdsim::Vector::ZERO;
+        }
+    }
+    let removed: Vec<usize> = (0..400).filter(|k| k % 4 == 1).take(100).collect();
+    for finder in ["all-pairs", "cells"] {
+        let mut sim = Simulation::new(&scene, finder).unwrap();
+        for &i in &removed {
+            sim.remove_body(i).unwrap();
+        }
+        let mut per_body = vec![0u32; 400];
+        let (mut sum, mut samples) = (0.0, 0);
+        for k in 1..=160 {
+            sim.run_until_with(0.25 * f64::from(k), |c| {
+                if c.event.kind == EventKind::Reset {
+                    per_body[c.event.a as usize] += 1;
+                }
+            });
+            if k > 40 {
+                sum += ccdsim::observables::temperature(sim.world());
+                samples += 1;
+            }
+        }
+        for (k, &resets) in per_body.iter().enumerate() {
+            if k % 4 == 0 || removed.contains(&k) {
+                assert_eq!(resets, 0, "[{finder}] body {k} was reset");
+            }
+        }
+        // ν · 200 bodies · 40 s = 4000 resets, standard deviation 63.
+        let total: u32 = per_body.iter().sum();
+        assert!((3800..=4200).contains(&total), "[{finder}] {total} resets");
+        // The temperature is that of the bodies that move, held at the set kT.
+        let mean = sum / f64::from(samples);
+        assert!((mean - 2.0).abs() < 0.1, "[{finder}] ⟨kT⟩ = {mean}");
+    }
+}
+
+#[test]
+fn a_world_of_kinematic_bodies_waits_for_one_that_moves() {
+    // Only kinematic bodies: every draw is void, so no event ever comes; an added free body
+    // takes resets from the moment it is added.
+    let mut scene = thermostatted::<2>(10, false, 1.0, 2.0);
+    for b in &mut scene.bodies {
+        b.kinematic = true;
+        b.vel = ccdsim::Vector::ZERO;
+    }
+    let mut sim = Simulation::new(&scene, "cells").unwrap();
+    assert!(sim.step_event().is_none());
+    assert_eq!(sim.run_until(5.0), 0);
+    let spare = scene.bodies[0].pos + ccdsim::Vector([0.0, 3.0 * scene.bodies[0].radius]);
+    let i = (0..40)
+        .find_map(|k| {
+            let pos = spare + ccdsim::Vector([0.1 * f64::from(k), 0.0]);
+            let spec = ccdsim::BodySpec::new(pos, ccdsim::Vector::ZERO, 0.1);
+            sim.add_body(spec).ok()
+        })
+        .expect("room for a small body");
+    let first = sim.step_event().unwrap();
+    assert_eq!(first.event.kind, EventKind::Reset);
+    assert_eq!(first.event.a as usize, i);
+    assert!(first.event.time > 5.0);
+}

@@ -49,18 +49,25 @@ pub fn world_volume<const D: usize>(world: &World<D>) -> Option<f64> {
 }
 
 /// Kinetic temperature `kT` of the world now (centre-of-mass frame in periodic worlds).
+///
+/// Over the bodies that move freely: kinematic bodies and vacant slots have no temperature.
 #[must_use]
 pub fn temperature<const D: usize>(world: &World<D>) -> f64 {
-    let n = world.len();
+    let n = free_bodies(world);
     if n == 0 {
         return 0.0;
     }
     let mut k = world.kinetic_energy_at(world.now());
     if world.periodic().is_some() {
-        let m: f64 = world.masses().sum();
+        let m: f64 = world.masses().filter(|m| m.is_finite()).sum();
         k -= 0.5 * world.momentum().norm_sq() / m;
     }
     2.0 * k.max(0.0) / (D as f64 * n as f64)
+}
+
+/// Number of bodies that move freely: neither kinematic nor vacant slots.
+fn free_bodies<const D: usize>(world: &World<D>) -> usize {
+    world.masses().filter(|m| m.is_finite()).count()
 }
 
 /// The observables of `world` over a stretch of `duration` seconds during which
@@ -72,7 +79,7 @@ pub fn observables<const D: usize>(
     virial: f64,
     duration: f64,
 ) -> Observables {
-    let n = world.len() as f64;
+    let n = free_bodies(world) as f64;
     let kt = temperature(world);
     let collision_rate = if n > 0.0 && duration > 0.0 {
         2.0 * body_collisions as f64 / (n * duration)

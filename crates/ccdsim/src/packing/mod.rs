@@ -132,11 +132,13 @@ pub enum CompressError {
 }
 
 /// Fraction of the world's volume (periodic box, or the box bounding the walls) that the
-/// bodies fill at time `t`; `None` for a world without a volume.
+/// bodies (kinematic ones too, not vacant slots) fill at time `t`; `None` for a world without
+/// a volume.
 #[must_use]
 pub fn packing_fraction<const D: usize>(world: &World<D>, t: f64) -> Option<f64> {
     let v = world_volume(world)?;
     let filled: f64 = (0..world.len())
+        .filter(|&i| !world.is_vacant(i))
         .map(|i| ball_volume::<D>(world.radius_at(i, t)))
         .sum();
     Some(filled / v)

@@ -17,6 +17,12 @@ use crate::geom::Vector;
 use crate::scene::{BodySpec, Settings};
 use crate::world::World;
 
+/// How many vacant slots the world appends when a body is added and none is left, to `n`
+/// slots: a quarter more, at least one. (`verify` follows the thermostat's draws over them.)
+pub(crate) fn reserve_count(n: usize) -> usize {
+    (n / 4).max(1)
+}
+
 /// The largest radius a body may take in a vacant slot without the finder being
 /// re-initialised: the second-largest radius of the slots when it was. (A grid sized for
 /// contact distance `r₁ + r₂` of the two largest radii still covers every pair then.)
@@ -25,31 +31,19 @@ pub(super) fn sized_radius<const D: usize>(world: &World<D>) -> f64 {
 }
 
 impl<const D: usize> Simulation<D> {
-    /// Refuses `what` (adding or removing bodies) in worlds it does not serve yet: growing
-    /// radii and a thermostat, which act on every slot, vacant ones too. (A periodic box is
-    /// served: its vacant slots, at rest, never leave it, though it takes no kinematic body
-    /// that moves.)
-    fn check_slots_supported(&self, what: &str) -> Result<(), SimError> {
-        let why = if self.world.growth().is_some() {
-            "growing radii"
-        } else if self.world.thermostat().is_some() {
-            "a thermostat"
-        } else {
-            return Ok(());
-        };
-        Err(SimError::Input(format!(
-            "{what} is not supported yet in a world with {why}"
-        )))
-    }
-
     /// Adds the body `spec` at the current time (its `pos` and `vel` hold now) and returns
     /// its index, which names it until it is removed. Its id is `spec.id`, or the next id
     /// above every id so far ([`World::next_id`]).
     ///
-    /// Refused, leaving everything as it was, when a field is invalid (as in a scene), the id
-    /// is taken, the body would overlap a body it collides with, cross a wall or lie outside
-    /// the table (as for [`Simulation::set_position`]) or the periodic box, or the world has
-    /// growing radii or a thermostat. See the module docs for the cost.
+    /// Refused, leaving everything as it was, when a field is invalid or the world's settings
+    /// refuse it (as in a scene), the id is taken, or the body would overlap a body it
+    /// collides with, cross a wall or lie outside the table (as for
+    /// [`Simulation::set_position`]) or the periodic box. See the module docs for the cost.
+    ///
+    /// With growing radii, `spec.radius` is the body's radius now: it grows from now on like
+    /// every other (its stored radius, that at the growth's origin, is `spec.radius` divided
+    /// by the growth factor now). With a thermostat, the body takes resets from now on unless
+    /// it is kinematic (see [`crate::thermostat`]).
     ///
     /// ```
     /// use ccdsim::{BodySpec, Scene, Simulation, Vector};
@@ -63,10 +57,16 @@ impl<const D: usize> Simulation<D> {
     /// assert!(sim.step_event().is_none()); // b flies off alone
     /// ```
     pub fn add_body(&mut self, spec: BodySpec<D>) -> Result<usize, SimError> {
-        self.check_slots_supported("add_body")?;
         let slot = self.world.free_slot().unwrap_or(self.world.len());
+        // The settings a body's fields are checked against (growth and a thermostat refuse
+        // some kinds of body), as a scene's would be.
         let settings = Settings {
             restitution: self.world.restitution(),
+            growth: self
+                .world
+                .growth()
+                .map(|law| crate::growth::Growth { rate: law.rate }),
+            thermostat: self.world.thermostat().copied(),
             ..Settings::default()
         };
         spec.check_fields(slot, &settings, self.world.periodic().is_some())
@@ -94,12 +94,13 @@ impl<const D: usize> Simulation<D> {
                 spec.pos.0
             )));
         }
+        self.judge_due_resets();
         let laws = self.world.laws().copied();
         let appended = self.world.free_slot().is_none();
+        let now = self.world.now();
         if appended {
             let n = self.world.len();
-            let now = self.world.now();
-            let count = (n / 4).max(1);
+            let count = reserve_count(n);
             let world = &self.world;
             // Parked among the bodies, one per body at most, so that no cell of a grid
             // finder fills up with them.
@@ -117,12 +118,24 @@ impl<const D: usize> Simulation<D> {
             if !self.images.is_empty() {
                 self.images.resize(self.world.len(), [0; D]);
             }
+            if let Some(clock) = &mut self.thermostat {
+                clock.grow(self.world.len(), now);
+            }
         }
-        let i = self.world.occupy(&spec, id);
+        // Growing radii: the stored radius is the one at the growth's origin.
+        let stored = BodySpec {
+            radius: self
+                .world
+                .growth()
+                .map_or(spec.radius, |law| spec.radius / law.scale(now)),
+            ..spec
+        };
+        let i = self.world.occupy(&stored, id);
         if !self.images.is_empty() {
             self.images[i] = [0; D];
         }
         if !spec.kinematic {
+            self.free_bodies += 1;
             self.guard
                 .add_energy(0.5 * self.world.mass(i) * spec.vel.norm_sq());
         }
@@ -134,12 +147,12 @@ impl<const D: usize> Simulation<D> {
             id,
             pos: spec.pos,
             vel: spec.vel,
-            radius: spec.radius,
+            radius: stored.radius,
             mass: self.world.mass(i),
             filter,
             restitution: spec.restitution,
         });
-        if appended || laws != self.world.laws().copied() || spec.radius > self.sized_radius {
+        if appended || laws != self.world.laws().copied() || stored.radius > self.sized_radius {
             self.rebuild()?;
         } else {
             self.edited(i);
@@ -149,11 +162,13 @@ impl<const D: usize> Simulation<D> {
 
     /// Removes body `i` at the current time: it stops where it is and its slot becomes
     /// vacant (a later [`Simulation::add_body`] may fill it); every other body keeps its
-    /// index. A body inside a sensor leaves it now. Refused for an index that names no body,
-    /// or in a world with growing radii or a thermostat.
+    /// index. A body inside a sensor leaves it now. Refused for an index that names no body.
     pub fn remove_body(&mut self, i: usize) -> Result<(), SimError> {
-        self.check_slots_supported("remove_body")?;
         self.check_body(i)?;
+        self.judge_due_resets();
+        if !self.world.is_kinematic(i) {
+            self.free_bodies -= 1;
+        }
         let laws = self.world.laws().copied();
         self.world.vacate(i);
         if !self.images.is_empty() {

@@ -115,7 +115,18 @@ impl<const D: usize> Verifier<D> {
                 format!("body {i} is added with radius {radius}, mass {mass}, velocity {vel:?}"),
             ));
         }
-        while self.motion.len() <= i {
+        let n = self.motion.len();
+        // Past the last slot, the simulation appended `reserve_count` slots (vacant but the
+        // first), and the thermostat draws over all of them from now on.
+        let slots = if i < n {
+            n
+        } else {
+            (i + 1).max(n + crate::sim::reserve_count(n))
+        };
+        if let Some(clock) = self.resets.as_mut().filter(|_| slots > n) {
+            clock.grow(slots, t);
+        }
+        while self.motion.len() < slots {
             // Slots the simulation reserved: vacant until filled.
             let k = self.motion.len();
             self.motion.push(Motion {
