@@ -199,6 +199,38 @@ mod tests {
     }
 
     #[test]
+    fn growing_the_slots_restarts_the_sequence_from_then_over_all_of_them() {
+        let th = Thermostat {
+            temperature: 1.0,
+            rate: 0.5,
+            seed: 8,
+        };
+        let mut clock = ResetClock::new(&th, 10, 0.0);
+        let same = ResetClock::new(&th, 10, 0.0);
+        clock.grow(10, 3.0); // the same count: nothing changes
+        assert_eq!(
+            (clock.next_time(), clock.next_body()),
+            (same.next_time(), same.next_body())
+        );
+        clock.grow(40, 3.0);
+        let (k, mut last, mut seen_high) = (8000, 3.0, false);
+        for _ in 0..k {
+            let r = clock.take::<2>(1.0);
+            assert!(r.time > last && r.body < 40);
+            seen_high |= r.body >= 10;
+            last = r.time;
+        }
+        assert!(seen_high);
+        // Mean gap 1 / (ν · 40) = 0.05 s.
+        let mean_gap = (last - 3.0) / f64::from(k);
+        assert!((mean_gap - 0.05).abs() < 0.05 * 0.04, "{mean_gap}");
+        // Skipping a draw moves on to the next one.
+        let before = clock.next_time();
+        clock.skip();
+        assert!(clock.next_time() > before);
+    }
+
+    #[test]
     fn no_bodies_no_resets() {
         let th = Thermostat {
             temperature: 1.0,
