@@ -286,6 +286,23 @@ pub fn toi_pair_shifted<const D: usize>(
     }
 }
 
+/// [`toi_pair_shifted`] of the records of bodies `a` and `b` (lower index first), the partner
+/// seen through `shift` (a periodic image), or none for two kinematic bodies, which pass
+/// through each other: the pair function of periodic worlds (no gravity there).
+#[must_use]
+#[inline(always)]
+pub fn toi_bodies_shifted<const D: usize>(
+    a: &Body<D>,
+    b: &Body<D>,
+    shift: Vector<D>,
+    laws: Option<&Laws<D>>,
+) -> Option<f64> {
+    if laws.is_some_and(|l| l.kinematic) && a.is_kinematic() && b.is_kinematic() {
+        return None;
+    }
+    toi_pair_shifted(&a.motion, a.radius, &b.motion, b.radius, shift, laws)
+}
+
 /// The pair function under laws in force: gravity's ([`toi_circle_circle_falling`]; scenes
 /// with gravity have fixed radii) or growth's ([`toi_circle_circle_growing`]).
 #[inline]

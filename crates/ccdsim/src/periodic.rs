@@ -188,6 +188,23 @@ pub fn toi_circle_circle_periodic<const D: usize>(
     }
 }
 
+/// Time of impact of bodies `a` and `b` (lower index first) in a periodic box as every finder
+/// evaluates it: [`toi_pair_periodic`] of their records, or none for two kinematic bodies,
+/// which pass through each other.
+#[must_use]
+#[inline]
+pub fn toi_bodies_periodic<const D: usize>(
+    a: &crate::world::Body<D>,
+    b: &crate::world::Body<D>,
+    size: &Vector<D>,
+    laws: Option<&Laws<D>>,
+) -> Option<f64> {
+    if laws.is_some_and(|l| l.kinematic) && a.is_kinematic() && b.is_kinematic() {
+        return None;
+    }
+    toi_pair_periodic(&a.motion, a.radius, &b.motion, b.radius, size, laws)
+}
+
 /// [`toi_circle_circle_periodic`], or in a growing world its growing form (every image
 /// tried). Periodic worlds have no gravity (scenes refuse it).
 #[must_use]

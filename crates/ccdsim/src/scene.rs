@@ -75,15 +75,10 @@ impl<const D: usize> BodySpec<D> {
         CollisionFilter::of(self.group, self.mask)
     }
 
-    /// Checks this body's own fields as body `i` of a scene with `settings`, periodic or not:
+    /// Checks this body's own fields as body `i` of a scene with `settings`:
     /// finite position and velocity, a positive radius and mass, a restitution in `[0, 1]`, and
     /// nothing the scene's settings cannot be combined with. Errors name `bodies[i]`.
-    pub fn check_fields(
-        &self,
-        i: usize,
-        settings: &Settings,
-        periodic: bool,
-    ) -> Result<(), SceneError> {
+    pub fn check_fields(&self, i: usize, settings: &Settings) -> Result<(), SceneError> {
         let f = |name: &str| format!("bodies[{i}].{name}");
         if !self.pos.is_finite() {
             return Err(SceneError::NonFinite(f("pos")));
@@ -123,9 +118,6 @@ impl<const D: usize> BodySpec<D> {
             };
             if self.mass.is_some() {
                 return refuse("a kinematic body has infinite mass: drop its `mass`");
-            }
-            if periodic {
-                return refuse("kinematic bodies are not supported in a periodic box yet");
             }
             if settings.growth.is_some() {
                 return refuse("kinematic bodies cannot be combined with settings.growth yet");
@@ -474,7 +466,7 @@ impl<const D: usize> Scene<D> {
             validate_wall(w, wall)?;
         }
         for (i, b) in self.bodies.iter().enumerate() {
-            b.check_fields(i, &self.settings, self.periodic.is_some())?;
+            b.check_fields(i, &self.settings)?;
         }
         self.validate_moving_walls()?;
         self.validate_resolution()?;

@@ -1714,17 +1714,35 @@ fn kinematic_bodies() {
         check_all(&format!("kinematic gravity 2D seed {seed}"), &f2, 1500);
         check_all(&format!("kinematic gravity 3D seed {seed}"), &f3, 1200);
         check_all(&format!("kinematic peg board seed {seed}"), &board, 1500);
+        // In a periodic box kinematic bodies leave through a face and come back through the
+        // opposite one, like the others.
+        let p2 = with_kinematic(periodic_gas::<2>(100, 0.35, (0.3, 0.5), seed), 5);
+        let p3 = with_kinematic(periodic_gas::<3>(60, 0.2, (0.5, 0.5), seed), 4);
+        check_periodic(
+            &format!("kinematic periodic 2D seed {seed}"),
+            &p2,
+            1500,
+            Drive::Events,
+        );
+        check_periodic(
+            &format!("kinematic periodic 3D seed {seed}"),
+            &p3,
+            1200,
+            Drive::Events,
+        );
     }
     let o = FinderOptions::default();
     let s2 = falling(
         with_kinematic(gas_scene::<2>(80, 0.3, (0.2, 0.6), SMALL_SEEDS[1]), 5),
         [0.0, -3.0],
     );
+    let p2 = with_kinematic(periodic_gas::<2>(100, 0.35, (0.3, 0.5), SMALL_SEEDS[2]), 5);
     for drive in [Drive::Kicks { every: 3 }, Drive::Frames { dt: 1.0 / 60.0 }] {
         let oracle = reference("kinematic edits", &s2, 1500, drive);
         for name in finders() {
             check_run("kinematic edits", &s2, name, &o, 1500, drive, &oracle);
         }
+        check_periodic("kinematic edits periodic 2D", &p2, 1500, drive);
     }
 }
 

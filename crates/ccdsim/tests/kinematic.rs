@@ -161,8 +161,58 @@ fn kinematic_bodies_are_validated() {
         e.contains("bodies[0].kinematic") && e.contains("mass"),
         "{e}"
     );
-    let e = scene(r#", "kinematic": true"#, r#", "periodic": [10, 10]"#).unwrap_err();
-    assert!(e.contains("periodic"), "{e}");
+    assert_eq!(
+        scene(r#", "kinematic": true"#, r#", "periodic": [10, 10]"#),
+        Ok(())
+    );
     let e = scene(r#", "kinematic": 1"#, "").unwrap_err();
     assert!(e.contains("kinematic"), "{e}");
+}
+
+#[test]
+fn in_a_periodic_box_a_paddle_wraps_round_and_meets_bodies_across_the_faces() {
+    // A 10 m box. The paddle at x = 9 moves right at 1 m/s, leaves through x = 10 at t = 1 and
+    // comes back at x = 0; the puck at x = 1.5 rests. Centres 1 m apart when the paddle is at
+    // x = 0.5 (image 10.5): at t = 1.5, across the face. The second paddle, moving left,
+    // passes through the first one without a collision.
+    let scene = Scene::<2> {
+        bodies: vec![
+            paddle([9.0, 5.0], [1.0, 0.0]),
+            BodySpec::new(Vector([1.5, 5.0]), Vector([0.0, 0.0]), 0.5),
+            paddle([5.0, 5.0], [-3.0, 0.0]),
+        ],
+        periodic: Some(Vector([10.0, 10.0])),
+        ..Scene::default()
+    };
+    for finder in ["all-pairs", "bvh", "sedgewick", "cells"] {
+        let mut sim = Simulation::new(&scene, finder).unwrap();
+        let mut run = RunWriter::new(Vec::new(), finder.into(), &scene).unwrap();
+        let mut hits = Vec::new();
+        sim.run_until_with(3.0, |c| {
+            run.write_event(c).unwrap();
+            hits.push((c.event.time, c.event.a, c.event.b));
+        });
+        // The second paddle meets the puck first, their centres 1 m apart when it is at
+        // x = 2.5: t = 5/6.
+        let (t, a, b) = hits[0];
+        assert!(
+            (t - 2.5 / 3.0).abs() < 1e-12 && (a, b) == (1, 2),
+            "[{finder}] {hits:?}"
+        );
+        assert!(hits.len() >= 3, "[{finder}] {hits:?}");
+        // The puck leaves at −6 m/s (twice the paddle's speed), wraps and meets the first
+        // paddle; every hit is with a paddle, never between the paddles.
+        assert!(
+            hits.iter().all(|&(_, a, b)| (a, b) != (0, 2)),
+            "[{finder}] {hits:?}"
+        );
+        let bytes = run.finish(sim.time()).unwrap();
+        let mut reader = ccdsim::record::RunReader::<_, 2>::new(&bytes[..], "run".into()).unwrap();
+        let (events, end) = reader.read_events().unwrap();
+        let mut v = Verifier::new(&scene);
+        for c in &events {
+            v.check(c).unwrap_or_else(|e| panic!("[{finder}] {e}"));
+        }
+        v.finish(end.unwrap()).unwrap();
+    }
 }

@@ -3,7 +3,7 @@
 use super::{finite_event, Finder, FinderError};
 use crate::event::Event;
 use crate::narrow::{toi_bodies_in, toi_body_wall_in};
-use crate::periodic::{toi_box_exit, toi_pair_periodic};
+use crate::periodic::{toi_bodies_periodic, toi_box_exit};
 use crate::world::World;
 
 /// Checks every body pair and every (body, wall) pair on every query: O(n²) per event,
@@ -26,7 +26,7 @@ impl AllPairs {
 /// [`crate::periodic::toi_circle_circle_periodic`], and every body's box exit is an event too (a wall event
 /// naming face `f` as wall `walls.len() + f`). Pairs whose collision filters keep them apart
 /// ([`World::collides`]) have no event. In a growing world (see [`crate::growth`]) the
-/// functions are the growing forms ([`toi_pair`], [`toi_pair_periodic`], [`toi_body_wall`]).
+/// functions are the growing forms ([`toi_pair`], [`toi_bodies_periodic`], [`toi_body_wall`]).
 #[must_use]
 pub fn all_pairs_next_event<const D: usize>(world: &World<D>) -> Option<Event> {
     let n = world.len();
@@ -40,10 +40,8 @@ pub fn all_pairs_next_event<const D: usize>(world: &World<D>) -> Option<Event> {
                 if !world.collides(i, j) {
                     continue;
                 }
-                let mj = world.motion(j);
-                if let Some(t) =
-                    toi_pair_periodic(&mi, world.radius(i), &mj, world.radius(j), &size, laws)
-                {
+                let bodies = world.bodies();
+                if let Some(t) = toi_bodies_periodic(&bodies[i], &bodies[j], &size, laws) {
                     best = Event::earliest(best, Some(Event::body(t, i, j)));
                 }
             }

@@ -26,7 +26,7 @@
 use super::{finite_event, Finder, FinderError, FinderMemory};
 use crate::event::{Event, EventKind};
 use crate::narrow::{toi_bodies_in, toi_body_wall_in};
-use crate::periodic::{toi_box_exit, toi_pair_periodic};
+use crate::periodic::{toi_bodies_periodic, toi_box_exit};
 use crate::world::World;
 use std::cmp::Reverse;
 use std::collections::BinaryHeap;
@@ -159,15 +159,12 @@ impl Sedgewick {
             }
             // The oracle's argument order: lower index first.
             let (a, b) = if i < j { (i, j) } else { (j, i) };
-            let (ma, mb) = if i < j {
-                (mi, world.motion(j))
-            } else {
-                (world.motion(j), mi)
-            };
-            let (ra, rb) = (world.radius(a), world.radius(b));
             let t = match &period {
                 None => toi_bodies_in(world, a, b),
-                Some(size) => toi_pair_periodic(&ma, ra, &mb, rb, size, world.laws()),
+                Some(size) => {
+                    let bodies = world.bodies();
+                    toi_bodies_periodic(&bodies[a], &bodies[b], size, world.laws())
+                }
             };
             if let Some(t) = t {
                 self.push(Entry::new(

@@ -69,7 +69,7 @@ impl<const D: usize> Simulation<D> {
             thermostat: self.world.thermostat().copied(),
             ..Settings::default()
         };
-        spec.check_fields(slot, &settings, self.world.periodic().is_some())
+        spec.check_fields(slot, &settings)
             .map_err(|e| SimError::Input(format!("add_body: {e}")))?;
         let id = spec.id.unwrap_or(self.world.next_id());
         if let Some(j) = self.world.index_of(id) {

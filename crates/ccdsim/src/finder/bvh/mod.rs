@@ -108,7 +108,7 @@ pub use validate::InvalidTree;
 use super::{finite_event, DebugBox, Finder, FinderError, FinderOptions};
 use crate::event::Event;
 use crate::narrow::toi_bodies_in;
-use crate::periodic::toi_pair_periodic;
+use crate::periodic::toi_bodies_periodic;
 use crate::world::World;
 use tree::{children, l1, SweptTree};
 use walls::WallCache;
@@ -265,15 +265,14 @@ impl<const D: usize> BvhFinder<D> {
         self.stats.exhaustive += 1;
         let mut best = None;
         for i in 0..world.len() {
-            let mi = world.motion(i);
             for j in i + 1..world.len() {
                 if !world.collides(i, j) {
                     continue;
                 }
-                let (mj, ri, rj) = (world.motion(j), world.radius(i), world.radius(j));
+                let bodies = world.bodies();
                 let t = match world.periodic() {
                     None => toi_bodies_in(world, i, j),
-                    Some(size) => toi_pair_periodic(&mi, ri, &mj, rj, &size, world.laws()),
+                    Some(size) => toi_bodies_periodic(&bodies[i], &bodies[j], &size, world.laws()),
                 };
                 if let Some(t) = t {
                     best = Event::earliest(best, Some(Event::body(t, i, j)));

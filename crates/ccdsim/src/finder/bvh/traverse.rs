@@ -6,7 +6,7 @@ use super::tree::{children, SweptTree, ROUND_PAD};
 use crate::event::Event;
 use crate::geom::{Aabb, Vector};
 use crate::narrow::toi_bodies_in;
-use crate::periodic::toi_pair_periodic;
+use crate::periodic::toi_bodies_periodic;
 use crate::world::World;
 
 /// What one traversal found and how much work it took.
@@ -175,11 +175,12 @@ impl<const D: usize> Check<'_, D> {
             return;
         }
         self.out.narrow_calls += 1;
-        let (mi, ri) = (self.world.motion(i), self.world.radius(i));
-        let (mj, rj) = (self.world.motion(j), self.world.radius(j));
         let t = match &self.period {
             None => toi_bodies_in(self.world, i, j),
-            Some(size) => toi_pair_periodic(&mi, ri, &mj, rj, size, self.world.laws()),
+            Some(size) => {
+                let bodies = self.world.bodies();
+                toi_bodies_periodic(&bodies[i], &bodies[j], size, self.world.laws())
+            }
         };
         let Some(t) = t else {
             return;

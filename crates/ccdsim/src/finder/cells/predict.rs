@@ -10,8 +10,8 @@ use crate::collision_filter::{pair_collides, CollisionFilter};
 use crate::geom::Vector;
 use crate::laws::Laws;
 use crate::narrow::{
-    toi_body_wall_of, toi_body_wall_resting, toi_pair_accelerated, toi_pair_bodies,
-    toi_pair_shifted, Motion,
+    toi_bodies_shifted, toi_body_wall_of, toi_body_wall_resting, toi_pair_accelerated,
+    toi_pair_bodies, Motion,
 };
 use crate::narrow_lanes::Side;
 use crate::periodic::toi_box_exit;
@@ -162,8 +162,7 @@ impl<const D: usize> Cells<D> {
         }
         if self.periodic {
             let s = if i < j { *shift } else { Vector::ZERO - *shift };
-            let law = self.laws.as_ref();
-            toi_pair_shifted(&a.motion, a.radius, &b.motion, b.radius, s, law)
+            toi_bodies_shifted(a, b, s, self.laws.as_ref())
         } else {
             toi_pair_bodies(a, b, self.laws.as_ref())
         }
@@ -175,7 +174,8 @@ impl<const D: usize> Cells<D> {
     ///
     /// Times come from the oracle's narrow phase with the oracle's arguments, lower index
     /// first: [`toi_circle_circle`] in open worlds, [`toi_circle_circle_shifted`] in periodic
-    /// ones (`PERIODIC`), the shift negated when the partner comes first (`0 − s` keeps zero
+    /// ones (`PERIODIC`, through [`toi_bodies_shifted`], which passes kinematic pairs by), the
+    /// shift negated when the partner comes first (`0 − s` keeps zero
     /// components +0 where `−s` would make them −0). The order is chosen by selecting
     /// references, not by branching on data. `law` is the world's growth law, if radii grow.
     #[inline(always)]
@@ -200,7 +200,7 @@ impl<const D: usize> Cells<D> {
         let (a, c) = if probe_first { (&p.b, bj) } else { (bj, &p.b) };
         let t = if PERIODIC {
             let s = if probe_first { *shift } else { *neg };
-            toi_pair_shifted(&a.motion, a.radius, &c.motion, c.radius, s, law)
+            toi_bodies_shifted(a, c, s, law)
         } else {
             toi_pair_bodies(a, c, law)
         };

@@ -10,7 +10,7 @@ use super::super::{Cells, Mode, KEY_IS_CROSSING};
 use super::*;
 use crate::collision_filter::{colliding_lanes, pair_collides};
 use crate::geom::Vector;
-use crate::narrow::{toi_pair, toi_pair_shifted};
+use crate::narrow::{toi_bodies_shifted, toi_pair};
 use crate::narrow_lanes::{
     first_lanes, toi_sides, toi_sides_growing, vector_lanes, Lanes, PairArgs, Side, ALL_LANES,
     LANES,
@@ -103,9 +103,15 @@ impl<const D: usize> Cells<D> {
                 let q = std::array::from_fn(|l| entries[(k + l).min(n - 1)]);
                 (q, (1 << (n - k)) - 1)
             };
-            // Collision filters drop the lanes of pairs that pass through each other.
+            // Collision filters drop the lanes of pairs that pass through each other, and so
+            // does a kinematic probe the lanes of its kinematic partners.
             let valid = if GROW && !self.filters.is_empty() {
                 valid & colliding_lanes(&self.filters, p.i, quad.map(|e| entry_body(e) as u32))
+            } else {
+                valid
+            };
+            let valid = if GROW && self.kinematic.get(p.i).copied().unwrap_or(false) {
+                valid & self.moving_lanes(quad)
             } else {
                 valid
             };
@@ -119,6 +125,16 @@ impl<const D: usize> Cells<D> {
             }
             k += LANES;
         }
+    }
+
+    /// The lane mask of the entries of `quad` whose bodies are not kinematic (a kinematic
+    /// probe meets only those, see [`toi_bodies_shifted`]).
+    #[cold]
+    #[inline(never)]
+    fn moving_lanes(&self, quad: [u32; LANES]) -> u32 {
+        (0..LANES)
+            .filter(|&l| !self.kinematic[entry_body(quad[l])])
+            .fold(0, |mask, l| mask | 1 << l)
     }
 
     /// Offers body `p` (in all lanes of `probe`) the pairs of the list entries `quad` whose
@@ -263,14 +279,7 @@ impl<const D: usize> Cells<D> {
                 } else {
                     Vector::ZERO - shift
                 };
-                toi_pair_shifted(
-                    &a.motion,
-                    a.radius,
-                    &c.motion,
-                    c.radius,
-                    s,
-                    self.laws.as_ref(),
-                )
+                toi_bodies_shifted(a, c, s, self.laws.as_ref())
             } else {
                 toi_pair(&a.motion, a.radius, &c.motion, c.radius, self.laws.as_ref())
             };
