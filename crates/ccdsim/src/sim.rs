@@ -482,6 +482,7 @@ impl<const D: usize> Simulation<D> {
 
     /// Resolves the next event and returns it, or `None` when no event will ever happen (see
     /// [`Simulation::peek_event`] for periodic worlds).
+    #[inline]
     pub fn step_event(&mut self) -> Option<Collision<D>> {
         let event = self.peek_event()?;
         self.pending = None;

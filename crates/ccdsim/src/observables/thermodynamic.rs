@@ -53,13 +53,15 @@ pub fn world_volume<const D: usize>(world: &World<D>) -> Option<f64> {
 /// Over the bodies that move freely: kinematic bodies and vacant slots have no temperature.
 #[must_use]
 pub fn temperature<const D: usize>(world: &World<D>) -> f64 {
-    let n = free_bodies(world);
+    let (n, m) = world
+        .masses()
+        .filter(|m| m.is_finite())
+        .fold((0usize, 0.0), |(n, sum), m| (n + 1, sum + m));
     if n == 0 {
         return 0.0;
     }
     let mut k = world.kinetic_energy_at(world.now());
     if world.periodic().is_some() {
-        let m: f64 = world.masses().filter(|m| m.is_finite()).sum();
         k -= 0.5 * world.momentum().norm_sq() / m;
     }
     2.0 * k.max(0.0) / (D as f64 * n as f64)

@@ -9,11 +9,15 @@ use crate::geom::Vector;
 impl<const D: usize> Simulation<D> {
     /// True for a thermostat draw that resets nothing: its slot holds a kinematic body or
     /// none.
+    #[inline(always)]
     pub(super) fn is_void_reset(&self, e: &Event) -> bool {
         e.kind == EventKind::Reset && self.world.is_kinematic(e.a as usize)
     }
 
     /// Passes over the void draw due at `time`: the clock, and the current time, reach it.
+    /// Out of line: drawing is long, and the event loop stays as tight as it was without it.
+    #[cold]
+    #[inline(never)]
     pub(super) fn skip_reset(&mut self, time: f64) {
         self.world.set_now(time.max(self.world.now()));
         if let Some(clock) = &mut self.thermostat {
