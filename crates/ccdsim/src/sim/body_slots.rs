@@ -15,6 +15,7 @@ use super::{SimError, Simulation};
 use crate::edit::Edit;
 use crate::geom::Vector;
 use crate::scene::{BodySpec, Settings};
+use crate::sensor::sensor_fits_box;
 use crate::world::World;
 
 /// The largest radius a body may take in a vacant slot without the finder being
@@ -48,8 +49,9 @@ impl<const D: usize> Simulation<D> {
     ///
     /// Refused, leaving everything as it was, when a field is invalid (as in a scene), the id
     /// is taken, the body would overlap a body it collides with, cross a wall or lie outside
-    /// the table (as for [`Simulation::set_position`]) or the periodic box, or the world has
-    /// growing radii or a thermostat. See the module docs for the cost.
+    /// the table (as for [`Simulation::set_position`]) or the periodic box, it is too large
+    /// for a sensor in the periodic box (`2·(R + r) < L` on every axis, as scenes require, see
+    /// [`crate::sensor::sensor_fits_box`]), or the world has growing radii or a thermostat. See the module docs for the cost.
     ///
     /// ```
     /// use ccdsim::{BodySpec, Scene, Simulation, Vector};
@@ -71,6 +73,13 @@ impl<const D: usize> Simulation<D> {
         };
         spec.check_fields(slot, &settings, self.world.periodic().is_some())
             .map_err(|e| SimError::Input(format!("add_body: {e}")))?;
+        if let (Some(size), Some(sensors)) = (self.world.periodic(), &self.sensors) {
+            // A body larger than the scene's could overlap two images of a sensor.
+            for (k, sensor) in sensors.sensors().iter().enumerate() {
+                sensor_fits_box(sensor.radius, spec.radius, &size)
+                    .map_err(|why| SimError::Input(format!("add_body: sensors[{k}]: {why}")))?;
+            }
+        }
         let id = spec.id.unwrap_or(self.world.next_id());
         if let Some(j) = self.world.index_of(id) {
             return Err(SimError::Input(format!(
