@@ -676,7 +676,7 @@ impl<const D: usize> Scene<D> {
                     ),
                 });
             }
-            if let Err(why) = sensor_fits_box(s.radius, r_max, &size) {
+            if let Err(why) = sensor_fits_box(s.radius, r_max, "the largest body radius", &size) {
                 return Err(SceneError::Periodic {
                     field: f("radius"),
                     why,

@@ -45,22 +45,23 @@ pub struct Sensor<const D: usize> {
 }
 
 /// Refuses a sensor of radius `sensor_radius` (metres) in a periodic box of sides `size`
-/// alongside bodies of radius up to `body_radius`, unless `2·(R + r) < L` on every axis: then
-/// a body overlaps at most one image of the sensor at a time, and the sensor's images do not
-/// overlap one another, so the sensor is one ball seen through the box. The error says why,
-/// naming the side.
+/// alongside bodies of radius up to `body_radius` (metres; `body` names it in the error),
+/// unless `2·(R + r) < L` on every axis: then a body overlaps at most one image of the sensor
+/// at a time, and the sensor's images do not overlap one another, so the sensor is one ball
+/// seen through the box. The error says why, naming the side.
 pub fn sensor_fits_box<const D: usize>(
     sensor_radius: f64,
     body_radius: f64,
+    body: &str,
     size: &Vector<D>,
 ) -> Result<(), String> {
     let reach = sensor_radius + body_radius;
     match (0..D).find(|&d| 2.0 * reach >= size[d]) {
         None => Ok(()),
         Some(d) => Err(format!(
-            "the sensor's radius {sensor_radius} plus the body radius {body_radius} must be \
-             less than half the periodic box's side {} (axis {d}), or a body could overlap two \
-             images of the sensor at once",
+            "the sensor's radius {sensor_radius} plus {body} {body_radius} must be less than \
+             half the periodic box's side {} (axis {d}), or a body could overlap two images \
+             of the sensor at once",
             size[d]
         )),
     }

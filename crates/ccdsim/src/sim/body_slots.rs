@@ -76,7 +76,7 @@ impl<const D: usize> Simulation<D> {
         if let (Some(size), Some(sensors)) = (self.world.periodic(), &self.sensors) {
             // A body larger than the scene's could overlap two images of a sensor.
             for (k, sensor) in sensors.sensors().iter().enumerate() {
-                sensor_fits_box(sensor.radius, spec.radius, &size)
+                sensor_fits_box(sensor.radius, spec.radius, "the added body's radius", &size)
                     .map_err(|why| SimError::Input(format!("add_body: sensors[{k}]: {why}")))?;
             }
         }
