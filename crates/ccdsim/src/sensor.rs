@@ -28,6 +28,7 @@
 
 use crate::accelerated_contact::{first_contact_accelerating, first_exit_accelerating};
 use crate::geom::Vector;
+use crate::narrow::Motion;
 use crate::sensor_crossing::{enter_time, leave_time, nearest_image};
 use crate::world::World;
 use serde::{Deserialize, Serialize};
@@ -182,19 +183,30 @@ impl<const D: usize> SensorTracker<D> {
         std::mem::take(&mut self.out)
     }
 
-    /// Body `i`'s stored motion was replaced (a collision, an edit): its next sensor event
-    /// is computed anew from its reference time, where a body found strictly inside a sensor
-    /// it is not known to overlap enters it at once, and one found strictly outside a sensor
-    /// it is known to overlap leaves it at once. A removed body (a vacant slot) leaves every
-    /// sensor at once. (On the sphere, the contact and exit
-    /// functions decide, as they do at every crossing: the two rules never disagree, so
-    /// events at one instant cannot repeat.)
+    /// Body `i`'s stored motion was replaced (a collision, an edit), or what it meets changed
+    /// (its radius, when growth stops; the finder rebuilt): its next sensor event is computed
+    /// anew from [`SensorTracker::origin`] (its reference time, or the current time if that is
+    /// later), where a body found strictly inside a sensor it is not known to overlap enters it
+    /// at once, and one found strictly outside a sensor it is known to overlap leaves it at
+    /// once. A removed body (a vacant slot) leaves every sensor at once. (On the sphere, the
+    /// contact and exit functions decide, as they do at every crossing: the two rules never
+    /// disagree, so events at one instant cannot repeat.)
     pub fn body_changed(&mut self, world: &World<D>, i: usize) {
-        let m = world.motion(i);
+        let mut m = world.motion(i);
         if world.is_vacant(i) {
             return self.body_removed(i, m.time);
         }
-        // The radius now (it grows in a growing world); in a periodic box the nearest image
+        let t = Self::origin(world, i);
+        if t > m.time {
+            // What the tracker holds is true now: the body may have entered or left a sensor
+            // since its reference time, and must not be found where it was then.
+            m = Motion {
+                pos: world.position_at(i, t),
+                vel: world.velocity_at(i, t),
+                time: t,
+            };
+        }
+        // The radius then (it grows in a growing world); in a periodic box the nearest image
         // decides, the only one a body can overlap while `2·(R + r) < L`.
         let r = world.radius_at(i, m.time);
         let period = world.periodic();
@@ -256,6 +268,13 @@ impl<const D: usize> SensorTracker<D> {
             }
         }?;
         Some(t0 + dt).filter(|t| t.is_finite())
+    }
+
+    /// The instant from which [`SensorTracker::body_changed`] looks at body `i`: its reference
+    /// time, or the current time when that is later (the tracker has been advanced to it, so
+    /// what it holds is true then).
+    fn origin(world: &World<D>, i: usize) -> f64 {
+        world.time(i).max(world.now())
     }
 
     /// Body `i` left the periodic box through a face and came back through the opposite one
@@ -359,9 +378,9 @@ impl<const D: usize> SensorTracker<D> {
                     SensorChange::Enter
                 },
             });
-            if time == world.time(i) {
-                // Still at the instant the motion began: other sensors may disagree with the
-                // geometry there too.
+            if time == Self::origin(world, i) {
+                // Still at the instant the body was last looked at anew: other sensors may
+                // disagree with the geometry there too.
                 self.body_changed(world, i);
                 continue;
             }

@@ -777,3 +777,63 @@ fn a_growing_body_handed_from_a_sensor_to_its_image_never_leaves() {
         assert!(sim.sensors().unwrap().is_inside(0, 0));
     }
 }
+
+#[test]
+fn rebuilding_the_finder_reports_no_sensor_events_of_the_past() {
+    // The body entered the sensor at 1.25, after its motion began (at 0). Adding a body
+    // that needs new slots re-initialises the finder and recomputes every body's sensor
+    // events: from now, not from the motion's start (where the body was still outside).
+    for finder in FINDERS {
+        let scene = table(
+            vec![BodySpec::new(Vector([1.0, 2.0]), Vector([2.0, 0.0]), 0.5)],
+            vec![sensor([5.0, 2.0], 1.0)],
+        );
+        let mut sim = Simulation::new(&scene, finder).unwrap();
+        sim.run_until(2.0);
+        assert_eq!(sim.take_sensor_events(), vec![enter(1.25, 0, 0)]);
+        sim.add_body(BodySpec::new(Vector([1.0, 1.0]), Vector::ZERO, 0.2))
+            .unwrap();
+        sim.run_until(3.0);
+        assert_eq!(
+            sim.take_sensor_events(),
+            vec![leave(2.75, 0, 0)],
+            "[{finder}]"
+        );
+    }
+}
+
+#[test]
+fn stopping_the_growth_or_cooling_reports_no_sensor_events_of_the_past() {
+    // Growing at Γ = 0.5, the body of radius 0.5 at rest 3 m from the sensor's centre
+    // (σ = 1.5 + 0.25·t) enters at 6. Body 2, 2 m from it and moving away at 0.5 m/s, stays
+    // out (2 + 0.5·t > σ), though with the radius of t = 7 it would have been in where its
+    // motion began. Stopping the growth at 7 (and cooling) must not find it there.
+    for finder in FINDERS {
+        let mut scene = table(
+            vec![
+                BodySpec::new(Vector([7.0, 10.0]), Vector([0.0, 0.0]), 0.5),
+                BodySpec::new(Vector([14.0, 10.0]), Vector([0.0, 0.0]), 0.25),
+                BodySpec::new(Vector([10.0, 8.0]), Vector([0.0, -0.5]), 0.5),
+            ],
+            vec![sensor([10.0, 10.0], 1.0)],
+        );
+        // Room for the radii to grow to 2.25 m and 1.125 m without meeting the walls.
+        scene.walls = box_walls(Vector([20.0, 20.0]));
+        scene.settings.growth = Some(Growth { rate: 0.5 });
+        let mut sim = Simulation::new(&scene, finder).unwrap();
+        sim.run_until(7.0);
+        let events = sim.take_sensor_events();
+        assert_eq!(events.len(), 1, "[{finder}] {events:?}");
+        assert_eq!((events[0].body, events[0].change), (0, SensorChange::Enter));
+        assert!((events[0].time - 6.0).abs() < 1e-14, "{events:?}");
+        sim.stop_growth().unwrap();
+        sim.run_until(10.0);
+        assert_eq!(sim.take_sensor_events(), vec![], "[{finder}]");
+        sim.rescale_velocities(2.0).unwrap();
+        // Body 2 (radius 2.25 now, at y = 3 moving down at 1 m/s) bounces off the floor at
+        // 10.75, far from the sensor.
+        sim.run_until(11.0);
+        assert_eq!(sim.take_sensor_events(), vec![], "[{finder}]");
+        assert_eq!(sim.sensors().unwrap().bodies_in(0), vec![0]);
+    }
+}
