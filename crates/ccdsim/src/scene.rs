@@ -649,7 +649,6 @@ impl<const D: usize> Scene<D> {
         Ok(())
     }
 
-    /// Every body resolved at the start time (see [`crate::resolution`]).
     /// Sensors: finite centres, finite positive radii; in a periodic box, centres inside the
     /// box and every sensor small enough that a body overlaps at most one of its images
     /// ([`sensor_fits_box`]).
@@ -686,6 +685,7 @@ impl<const D: usize> Scene<D> {
         Ok(())
     }
 
+    /// Every body resolved at the start time (see [`crate::resolution`]).
     fn validate_resolution(&self) -> Result<(), SceneError> {
         let t = self.start_time;
         for (i, b) in self.bodies.iter().enumerate() {

@@ -51,7 +51,8 @@ impl<const D: usize> Simulation<D> {
     /// is taken, the body would overlap a body it collides with, cross a wall or lie outside
     /// the table (as for [`Simulation::set_position`]) or the periodic box, it is too large
     /// for a sensor in the periodic box (`2·(R + r) < L` on every axis, as scenes require, see
-    /// [`crate::sensor::sensor_fits_box`]), or the world has growing radii or a thermostat. See the module docs for the cost.
+    /// [`crate::sensor::sensor_fits_box`]), or the world has growing radii or a thermostat.
+    /// See the module docs for the cost.
     ///
     /// ```
     /// use ccdsim::{BodySpec, Scene, Simulation, Vector};
