@@ -422,13 +422,15 @@ mod tests {
         /// gap zero there within rounding; `None` only when it stays inside.
         #[test]
         fn the_exit_is_the_first_root_going_out(
-            dp in proptest::array::uniform2(-3.0..3.0f64),
+            angle in 0.0..std::f64::consts::TAU,
+            depth in 0.0..0.999f64,
             dv in proptest::array::uniform2(-3.0..3.0f64),
             sigma in 0.5..5.0f64,
             sigma_dot in 0.0..3.0f64,
         ) {
-            let (dp, dv) = (Vector(dp), Vector(dv));
-            proptest::prop_assume!(dp.norm() < sigma * 0.999);
+            // A point inside the sphere: `depth` of the way out from the centre.
+            let dp = Vector([angle.cos(), angle.sin()]) * (depth * sigma);
+            let dv = Vector(dv);
             let gap = |t: f64| (dp + dv * t).norm() - (sigma + sigma_dot * t);
             let tol = |t: f64| 1e-9 * (1.0 + t) * (sigma + sigma_dot * t + (dp + dv * t).norm());
             match first_exit_growing(dp, dv, sigma, sigma_dot) {
