@@ -143,6 +143,57 @@ pub fn first_contact_growing<const D: usize>(
     Some(c / q).filter(|t| t.is_finite())
 }
 
+/// Time `t ≥ 0` after which a point at offset `dp` moving at relative velocity `dv` is first
+/// at least `sigma + sigma_dot·t` from the origin while moving away from that sphere: the time
+/// it leaves a growing ball (a body leaving a sensor while it grows, see [`crate::sensor`]).
+/// `None` when it never does.
+///
+/// [`crate::accelerated_contact::first_exit`]'s contract for the quadratic of
+/// [`first_contact_growing`], `f(t) = C + 2B·t + A·t²`: `0` when the point is out (`C ≥ 0`)
+/// and moving away (`B > 0`); otherwise the first root where `f` turns positive. For `A > 0`
+/// that is the later root, `(−B + √(B² − AC)) / A`, computed without cancellation; for
+/// `A = 0`, `−C / 2B` when `B > 0`; for `A < 0` (the sphere outgrows the point) never.
+#[must_use]
+#[inline]
+pub fn first_exit_growing<const D: usize>(
+    dp: Vector<D>,
+    dv: Vector<D>,
+    sigma: f64,
+    sigma_dot: f64,
+) -> Option<f64> {
+    let b = dp.dot(dv) - sigma * sigma_dot;
+    let c = dp.norm_sq() - sigma * sigma;
+    if c >= 0.0 && b > 0.0 {
+        return Some(0.0);
+    }
+    let a = dv.norm_sq() - sigma_dot * sigma_dot;
+    let t = if a > 0.0 {
+        let disc = b * b - a * c;
+        // A path that misses the sphere (possible only when the point is out): it is out and
+        // passes by, as `first_exit` has it.
+        if disc.is_nan() || disc < 0.0 {
+            return Some(0.0);
+        }
+        let root = disc.sqrt();
+        if b <= 0.0 {
+            (root - b) / a
+        } else {
+            -c / (b + root)
+        }
+    } else if a == 0.0 {
+        // `f` is linear: it turns positive only while rising.
+        if b <= 0.0 {
+            return (c >= 0.0 && b == 0.0).then_some(0.0);
+        }
+        -c / (2.0 * b)
+    } else {
+        // The sphere grows faster than the point moves (`|dv| < σ̇`): a point on or inside it
+        // stays inside, `|x(t)| ≤ |x| + |dv|·t < σ + σ̇·t`.
+        return None;
+    };
+    Some(t.max(0.0)).filter(|t| t.is_finite())
+}
+
 /// Time of impact of two growing balls (stored radii `ra`, `rb`), ball `b` displaced by
 /// `shift` (a periodic image; zero otherwise), evaluated from `T = max(a.time, b.time)` as
 /// [`crate::narrow::toi_circle_circle_shifted`] is for fixed radii.
@@ -335,6 +386,72 @@ mod tests {
         let m = m2([5.0, 3.0], [0.0, 0.0], 0.0);
         let t = toi_circle_wall_growing(&m, 1.0, &seg, &LAW).unwrap();
         assert!((t - 8.0).abs() < 1e-12, "{t}");
+    }
+
+    #[test]
+    fn exits_from_a_growing_ball() {
+        let dp = Vector([1.0, 0.0]);
+        // Sphere 2 growing at 0.5, point moving out at 1: |x| − σ = −1 + 0.5·t, out at 2.
+        let t = first_exit_growing(dp, Vector([1.0, 0.0]), 2.0, 0.5).unwrap();
+        assert!((t - 2.0).abs() < 1e-15, "{t}");
+        // Moving out at the growth speed or slower: never.
+        assert_eq!(first_exit_growing(dp, Vector([0.5, 0.0]), 2.0, 0.5), None);
+        assert_eq!(first_exit_growing(dp, Vector([0.25, 0.0]), 2.0, 0.5), None);
+        // Passing sideways through a slowly growing sphere: out at the later root of
+        // 1 + t² = (2 + 0.1·t)², i.e. 0.99·t² − 0.4·t − 3 = 0.
+        let t = first_exit_growing(dp, Vector([0.0, 1.0]), 2.0, 0.1).unwrap();
+        let want = (0.4 + (0.16f64 + 4.0 * 0.99 * 3.0).sqrt()) / (2.0 * 0.99);
+        assert!((t - want).abs() < 1e-14, "{t} {want}");
+        // Out and moving away: at once; out and approaching a sphere that outgrows it: never.
+        assert_eq!(
+            first_exit_growing(Vector([3.0, 0.0]), Vector([1.0, 0.0]), 2.0, 0.5),
+            Some(0.0)
+        );
+        assert_eq!(
+            first_exit_growing(Vector([3.0, 0.0]), Vector([-1.0, 0.0]), 2.0, 2.0),
+            None
+        );
+        // Inside, moving out faster than the sphere grows, in 1D: |x| = 1 + 2·t reaches
+        // σ = 1.5 + t at 0.5.
+        let t = first_exit_growing(Vector([1.0]), Vector([2.0]), 1.5, 1.0).unwrap();
+        assert!((t - 0.5).abs() < 1e-15, "{t}");
+    }
+
+    proptest::proptest! {
+        /// The exit time is a root where the point goes out: inside (gap < 0) until then, the
+        /// gap zero there within rounding; `None` only when it stays inside.
+        #[test]
+        fn the_exit_is_the_first_root_going_out(
+            angle in 0.0..std::f64::consts::TAU,
+            depth in 0.0..0.999f64,
+            dv in proptest::array::uniform2(-3.0..3.0f64),
+            sigma in 0.5..5.0f64,
+            sigma_dot in 0.0..3.0f64,
+        ) {
+            // A point inside the sphere: `depth` of the way out from the centre.
+            let dp = Vector([angle.cos(), angle.sin()]) * (depth * sigma);
+            let dv = Vector(dv);
+            let gap = |t: f64| (dp + dv * t).norm() - (sigma + sigma_dot * t);
+            let tol = |t: f64| 1e-9 * (1.0 + t) * (sigma + sigma_dot * t + (dp + dv * t).norm());
+            match first_exit_growing(dp, dv, sigma, sigma_dot) {
+                Some(t) => {
+                    proptest::prop_assert!(gap(t).abs() <= tol(t), "gap {} at {t}", gap(t));
+                    for k in 0..200 {
+                        let s = t * k as f64 / 200.0;
+                        proptest::prop_assert!(gap(s) < tol(s), "out at {s} before {t}");
+                    }
+                    // And it goes out: a little later the gap is positive.
+                    let later = t * (1.0 + 1e-6) + 1e-6;
+                    proptest::prop_assert!(gap(later) > -tol(later), "{}", gap(later));
+                }
+                None => {
+                    for k in 0..2000 {
+                        let s = k as f64 * 0.05;
+                        proptest::prop_assert!(gap(s) < tol(s), "missed an exit near {s}");
+                    }
+                }
+            }
+        }
     }
 
     proptest::proptest! {

@@ -45,6 +45,7 @@ pub mod resolve;
 pub mod resting;
 pub mod scene;
 pub mod sensor;
+pub mod sensor_crossing;
 pub mod sim;
 pub mod thermostat;
 pub mod trajectory;

@@ -9,7 +9,7 @@ use crate::gravity::Gravity;
 use crate::growth::Growth;
 use crate::moving_wall::MovingWall;
 use crate::resolution::{resolution_error, resolves, ulp, RESOLUTION_LIMIT};
-use crate::sensor::Sensor;
+use crate::sensor::{sensor_fits_box, Sensor};
 use crate::thermostat::Thermostat;
 use crate::wall::{closed_segments, inside_even_odd};
 pub use crate::wall::{wall_clearance, Wall};
@@ -418,8 +418,9 @@ impl<const D: usize> Scene<D> {
     /// Checks every rule a run relies on: finite numbers, positive radii and masses,
     /// restitution in `[0, 1]`, unique ids, non-degenerate walls, no body overlapping another
     /// body or a wall, (2D) every body inside the closed table the walls form, if any, and for
-    /// periodic scenes: no walls, sides finite and above `4 · r_max`, bodies inside the box,
-    /// overlaps measured between nearest images.
+    /// periodic scenes: no walls, sides finite and above `4 · r_max`, bodies and sensors'
+    /// centres inside the box, every sensor's `2 · (R + r_max)` below every side, overlaps
+    /// measured between nearest images.
     pub fn validate(&self) -> Result<(), SceneError> {
         let r = self.settings.restitution;
         if !r.is_finite() {
@@ -637,9 +638,11 @@ impl<const D: usize> Scene<D> {
         Ok(())
     }
 
-    /// Every body resolved at the start time (see [`crate::resolution`]).
-    /// Sensors: finite centres, finite positive radii; not in periodic or growing scenes.
+    /// Sensors: finite centres, finite positive radii; in a periodic box, centres inside the
+    /// box and every sensor small enough that a body overlaps at most one of its images
+    /// ([`sensor_fits_box`]).
     fn validate_sensors(&self) -> Result<(), SceneError> {
+        let r_max = self.bodies.iter().map(|b| b.radius).fold(0.0, f64::max);
         for (k, s) in self.sensors.iter().enumerate() {
             let f = |field: &str| format!("sensors[{k}].{field}");
             if !s.center.is_finite() {
@@ -651,22 +654,27 @@ impl<const D: usize> Scene<D> {
             if s.radius <= 0.0 {
                 return Err(SceneError::NonPositive(f("radius")));
             }
-            let refuse = |why: &str| {
-                Err(SceneError::Unsupported {
-                    field: format!("sensors[{k}]"),
-                    why: why.into(),
-                })
-            };
-            if self.periodic.is_some() {
-                return refuse("sensors are not supported in a periodic box yet");
+            let Some(size) = self.periodic else { continue };
+            if (0..D).any(|d| !(0.0..size[d]).contains(&s.center[d])) {
+                return Err(SceneError::Periodic {
+                    field: f("center"),
+                    why: format!(
+                        "{:?} is outside the periodic box [0, L) (give the image inside it)",
+                        s.center.0
+                    ),
+                });
             }
-            if self.settings.growth.is_some() {
-                return refuse("sensors cannot be combined with settings.growth yet");
+            if let Err(why) = sensor_fits_box(s.radius, r_max, "the largest body radius", &size) {
+                return Err(SceneError::Periodic {
+                    field: f("radius"),
+                    why,
+                });
             }
         }
         Ok(())
     }
 
+    /// Every body resolved at the start time (see [`crate::resolution`]).
     fn validate_resolution(&self) -> Result<(), SceneError> {
         let t = self.start_time;
         for (i, b) in self.bodies.iter().enumerate() {

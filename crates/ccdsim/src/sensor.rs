@@ -9,6 +9,18 @@
 //! root skipped; each narrowed to adjacent floats). A body that starts inside a sensor, or is
 //! put there by an edit, enters it at that instant.
 //!
+//! In a periodic box of sides `L` a sensor is seen through its images: a body overlaps it
+//! while its centre is within `R + r` of `c + k·L` for some integer vector `k`. Scenes keep
+//! the centre in the box and `2·(R + r) < L` on every axis, `r` the largest body radius
+//! ([`sensor_fits_box`]; [`crate::Simulation::add_body`] checks bodies added later), so that
+//! a body overlaps at most one image at a time. A box exit moves a body by a period without
+//! moving it in space: what it overlaps is kept, and a body crossing a face inside a sensor
+//! that straddles it neither leaves nor enters there. With growing radii
+//! ([`crate::growth`]) the contact distance `R + r(t)` is linear in time and the overlap
+//! starts and ends at roots of a quadratic, as for a pair of growing balls. Both are the
+//! functions of [`crate::sensor_crossing`], which also follows a body from image to image
+//! should growth make it overlap two at once.
+//!
 //! Sensors change no motion, so they are not seen by the finders: the simulation keeps, per
 //! body, its next sensor event in a priority queue, computed when the body's motion changes
 //! (O(sensors) per change) or when it crosses a sensor, and reports the events in time order
@@ -16,6 +28,8 @@
 
 use crate::accelerated_contact::{first_contact_accelerating, first_exit_accelerating};
 use crate::geom::Vector;
+use crate::narrow::Motion;
+use crate::sensor_crossing::{enter_time, leave_time, nearest_image};
 use crate::world::World;
 use serde::{Deserialize, Serialize};
 use std::cmp::Reverse;
@@ -29,6 +43,29 @@ pub struct Sensor<const D: usize> {
     pub center: Vector<D>,
     /// Radius, metres; strictly positive.
     pub radius: f64,
+}
+
+/// Refuses a sensor of radius `sensor_radius` (metres) in a periodic box of sides `size`
+/// alongside bodies of radius up to `body_radius` (metres; `body` names it in the error),
+/// unless `2·(R + r) < L` on every axis: then a body overlaps at most one image of the sensor
+/// at a time, and the sensor's images do not overlap one another, so the sensor is one ball
+/// seen through the box. The error says why, naming the side.
+pub fn sensor_fits_box<const D: usize>(
+    sensor_radius: f64,
+    body_radius: f64,
+    body: &str,
+    size: &Vector<D>,
+) -> Result<(), String> {
+    let reach = sensor_radius + body_radius;
+    match (0..D).find(|&d| 2.0 * reach >= size[d]) {
+        None => Ok(()),
+        Some(d) => Err(format!(
+            "the sensor's radius {sensor_radius} plus {body} {body_radius} must be less than \
+             half the periodic box's side {} (axis {d}), or a body could overlap two images \
+             of the sensor at once",
+            size[d]
+        )),
+    }
 }
 
 /// Whether a body started or stopped overlapping a sensor.
@@ -146,23 +183,37 @@ impl<const D: usize> SensorTracker<D> {
         std::mem::take(&mut self.out)
     }
 
-    /// Body `i`'s stored motion was replaced (a collision, an edit): its next sensor event
-    /// is computed anew from its reference time, where a body found strictly inside a sensor
-    /// it is not known to overlap enters it at once, and one found strictly outside a sensor
-    /// it is known to overlap leaves it at once. A removed body (a vacant slot) leaves every
-    /// sensor at once. (On the sphere, the contact and exit
-    /// functions decide, as they do at every crossing: the two rules never disagree, so
-    /// events at one instant cannot repeat.)
+    /// Body `i`'s stored motion was replaced (a collision, an edit), or what it meets changed
+    /// (its radius, when growth stops; the finder rebuilt): its next sensor event is computed
+    /// anew from [`SensorTracker::origin`] (its reference time, or the current time if that is
+    /// later), where a body found strictly inside a sensor it is not known to overlap enters it
+    /// at once, and one found strictly outside a sensor it is known to overlap leaves it at
+    /// once. A removed body (a vacant slot) leaves every sensor at once. (On the sphere, the
+    /// contact and exit functions decide, as they do at every crossing: the two rules never
+    /// disagree, so events at one instant cannot repeat.)
     pub fn body_changed(&mut self, world: &World<D>, i: usize) {
-        let m = world.motion(i);
+        let mut m = world.motion(i);
         if world.is_vacant(i) {
             return self.body_removed(i, m.time);
         }
-        let r = world.radius(i);
+        let t = Self::origin(world, i);
+        if t > m.time {
+            // What the tracker holds is true now: the body may have entered or left a sensor
+            // since its reference time, and must not be found where it was then.
+            m = Motion {
+                pos: world.position_at(i, t),
+                vel: world.velocity_at(i, t),
+                time: t,
+            };
+        }
+        // The radius then (it grows in a growing world); in a periodic box the nearest image
+        // decides, the only one a body can overlap while `2·(R + r) < L`.
+        let r = world.radius_at(i, m.time);
+        let period = world.periodic();
         let s = self.sensors.len();
         let mut best: Option<(f64, usize)> = None;
         for (k, sensor) in self.sensors.iter().enumerate() {
-            let dp = m.pos - sensor.center;
+            let dp = nearest_image(m.pos - sensor.center, period.as_ref());
             let sigma = sensor.radius + r;
             let c = dp.norm_sq() - sigma * sigma;
             let inside = self.inside[i * s + k];
@@ -192,15 +243,72 @@ impl<const D: usize> SensorTracker<D> {
         t0: f64,
     ) -> Option<f64> {
         let sensor = &self.sensors[k];
-        let dp = pos - sensor.center;
-        let sigma = sensor.radius + world.radius(i);
-        let acc = world.gravity_of(i).unwrap_or(Vector::ZERO);
-        let dt = if self.inside[i * self.sensors.len() + k] {
-            first_exit_accelerating(dp, vel, acc, sigma)
+        let inside = self.inside[i * self.sensors.len() + k];
+        let raw = pos - sensor.center;
+        let period = world.periodic();
+        let growth = world.growth();
+        let dt = if period.is_none() && growth.is_none() {
+            let sigma = sensor.radius + world.radius(i);
+            let acc = world.gravity_of(i).unwrap_or(Vector::ZERO);
+            if inside {
+                first_exit_accelerating(raw, vel, acc, sigma)
+            } else {
+                first_contact_accelerating(raw, vel, acc, sigma)
+            }
         } else {
-            first_contact_accelerating(dp, vel, acc, sigma)
+            // Periodic boxes and growth have no gravity (scenes refuse it): straight lines,
+            // seen through the box's images, with a contact distance that may grow.
+            debug_assert!(world.gravity().is_none());
+            let sigma = sensor.radius + world.radius_at(i, t0);
+            let sigma_dot = growth.map_or(0.0, |law| law.speed(world.radius(i)));
+            if inside {
+                leave_time(raw, vel, sigma, sigma_dot, period.as_ref())
+            } else {
+                enter_time(raw, vel, sigma, sigma_dot, period.as_ref())
+            }
         }?;
         Some(t0 + dt).filter(|t| t.is_finite())
+    }
+
+    /// The instant from which [`SensorTracker::body_changed`] looks at body `i`: its reference
+    /// time, or the current time when that is later (the tracker has been advanced to it, so
+    /// what it holds is true then).
+    fn origin(world: &World<D>, i: usize) -> f64 {
+        world.time(i).max(world.now())
+    }
+
+    /// Body `i` left the periodic box through a face and came back through the opposite one
+    /// (its stored position moved by a period, its path the same): its next event is computed
+    /// anew from its new stored state, on what it overlaps now. Unlike
+    /// [`SensorTracker::body_changed`], nothing is entered or left at once: the body is where
+    /// it was, so a sensor straddling the face it crossed is neither left nor entered there
+    /// (the crossing functions decide a body on a sensor's sphere, as at every crossing).
+    /// Call [`SensorTracker::advance_to`] the exit's time first.
+    pub fn body_wrapped(&mut self, world: &World<D>, i: usize) {
+        let m = world.motion(i);
+        let next = self.next_crossing(world, i, m.pos, m.vel, m.time);
+        self.queue_next(i, next);
+    }
+
+    /// Body `i`'s first crossing of any sensor, at `pos` with velocity `vel` at time `t0`, on
+    /// the inside flags as they are: `(time, sensor)`, the lower sensor index on a tie.
+    fn next_crossing(
+        &self,
+        world: &World<D>,
+        i: usize,
+        pos: Vector<D>,
+        vel: Vector<D>,
+        t0: f64,
+    ) -> Option<(f64, usize)> {
+        let mut best: Option<(f64, usize)> = None;
+        for k in 0..self.sensors.len() {
+            if let Some(t) = self.crossing(world, i, k, pos, vel, t0) {
+                if best.is_none_or(|(b, _)| t < b) {
+                    best = Some((t, k));
+                }
+            }
+        }
+        best
     }
 
     /// Makes room for `n` body slots (bodies added to a running simulation); new slots are
@@ -270,23 +378,16 @@ impl<const D: usize> SensorTracker<D> {
                     SensorChange::Enter
                 },
             });
-            if time == world.time(i) {
-                // Still at the instant the motion began: other sensors may disagree with the
-                // geometry there too.
+            if time == Self::origin(world, i) {
+                // Still at the instant the body was last looked at anew: other sensors may
+                // disagree with the geometry there too.
                 self.body_changed(world, i);
                 continue;
             }
             // The next event from here on, on the same motion.
             let (pos, vel) = (world.position_at(i, time), world.velocity_at(i, time));
-            let mut best: Option<(f64, usize)> = None;
-            for k in 0..s {
-                if let Some(t) = self.crossing(world, i, k, pos, vel, time) {
-                    if best.is_none_or(|(b, _)| t < b) {
-                        best = Some((t, k));
-                    }
-                }
-            }
-            self.queue_next(i, best);
+            let next = self.next_crossing(world, i, pos, vel, time);
+            self.queue_next(i, next);
         }
     }
 }

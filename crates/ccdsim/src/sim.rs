@@ -442,9 +442,14 @@ impl<const D: usize> Simulation<D> {
     }
 
     /// Applies a box exit: the body re-enters through the opposite face; the current time
-    /// becomes the exit's.
+    /// becomes the exit's. Sensor events up to the exit are reported on the path before it,
+    /// and the body's next one is sought on the path after it, with what it overlaps kept
+    /// (the body has not moved: see [`SensorTracker::body_wrapped`]).
     fn apply_exit(&mut self, e: Event) {
         self.pending = None;
+        if let Some(s) = &mut self.sensors {
+            s.advance_to(&self.world, e.time);
+        }
         self.world.set_now(e.time.max(self.world.now()));
         let face = e.b as usize - self.world.walls().len();
         resolve_exit(&mut self.world, e.a as usize, face, e.time);
@@ -452,6 +457,9 @@ impl<const D: usize> Simulation<D> {
         let image = &mut self.images[e.a as usize][face / 2];
         *image += if face % 2 == 1 { 1 } else { -1 };
         self.bodies_changed(&[e.a as usize]);
+        if let Some(s) = &mut self.sensors {
+            s.body_wrapped(&self.world, e.a as usize);
+        }
         self.stats.exits += 1;
     }
 

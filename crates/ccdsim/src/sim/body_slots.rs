@@ -15,6 +15,7 @@ use super::{SimError, Simulation};
 use crate::edit::Edit;
 use crate::geom::Vector;
 use crate::scene::{BodySpec, Settings};
+use crate::sensor::sensor_fits_box;
 use crate::world::World;
 
 /// How many vacant slots the world appends when a body is added and none is left, to `n`
@@ -36,9 +37,11 @@ impl<const D: usize> Simulation<D> {
     /// above every id so far ([`World::next_id`]).
     ///
     /// Refused, leaving everything as it was, when a field is invalid or the world's settings
-    /// refuse it (as in a scene), the id is taken, or the body would overlap a body it
-    /// collides with, cross a wall or lie outside the table (as for
-    /// [`Simulation::set_position`]) or the periodic box. See the module docs for the cost.
+    /// refuse it (as in a scene), the id is taken, the body would overlap a body it collides
+    /// with, cross a wall or lie outside the table (as for [`Simulation::set_position`]) or
+    /// the periodic box, or it is too large for a sensor in the periodic box
+    /// (`2·(R + r) < L` on every axis, as scenes require, see
+    /// [`crate::sensor::sensor_fits_box`]). See the module docs for the cost.
     ///
     /// With growing radii, `spec.radius` is the body's radius now: it grows from now on like
     /// every other (its stored radius, that at the growth's origin, is `spec.radius` divided
@@ -71,6 +74,13 @@ impl<const D: usize> Simulation<D> {
         };
         spec.check_fields(slot, &settings)
             .map_err(|e| SimError::Input(format!("add_body: {e}")))?;
+        if let (Some(size), Some(sensors)) = (self.world.periodic(), &self.sensors) {
+            // A body larger than the scene's could overlap two images of a sensor.
+            for (k, sensor) in sensors.sensors().iter().enumerate() {
+                sensor_fits_box(sensor.radius, spec.radius, "the added body's radius", &size)
+                    .map_err(|why| SimError::Input(format!("add_body: sensors[{k}]: {why}")))?;
+            }
+        }
         let id = spec.id.unwrap_or(self.world.next_id());
         if let Some(j) = self.world.index_of(id) {
             return Err(SimError::Input(format!(
