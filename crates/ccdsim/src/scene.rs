@@ -603,7 +603,7 @@ impl<const D: usize> Scene<D> {
     }
 
     /// Moving walls: finite, non-degenerate, a finite velocity; not in periodic scenes, nor
-    /// with growing radii, nor (under gravity) 3D segments; no body crossing one at the start.
+    /// (under gravity) 3D segments; no body crossing one at the start.
     fn validate_moving_walls(&self) -> Result<(), SceneError> {
         let first = self.walls.len();
         for (k, m) in self.moving_walls.iter().enumerate() {
@@ -616,9 +616,6 @@ impl<const D: usize> Scene<D> {
             };
             if self.periodic.is_some() {
                 return unsupported("a periodic scene has no walls, moving or not");
-            }
-            if self.settings.growth.is_some() {
-                return unsupported("moving walls cannot be combined with settings.growth yet");
             }
             if D == 3 && self.settings.gravity.is_some() && matches!(m.wall, Wall::Segment { .. }) {
                 return unsupported(

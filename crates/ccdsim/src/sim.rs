@@ -66,7 +66,8 @@ pub struct Stats {
     /// Thermostat resets applied (see [`crate::thermostat`]); counted in `events` too.
     pub resets: u64,
     /// Work the moving walls did on the bodies at their collisions, joules (see
-    /// [`crate::moving_wall`]); 0 without moving walls.
+    /// [`crate::moving_wall`]): the kinetic energy those collisions changed, which under
+    /// growing radii includes what the growth rule adds at them; 0 without moving walls.
     pub wall_work: f64,
     /// Periodic worlds: box exits applied (a body leaving through a face and re-entering
     /// through the opposite one). Not events: never returned, recorded or counted above.

@@ -1561,6 +1561,50 @@ fn growing_radii_with_edits_and_rescales() {
     }
 }
 
+/// Replays `run`, a recorded run of `scene`, through `verify`, panicking on a violation.
+fn assert_verifies<const D: usize>(label: &str, scene: &Scene<D>, run: &Recorded) {
+    let mut r =
+        ccdsim::record::RunReader::<_, D>::new(&run.bytes[..], label.into()).expect("header");
+    let (events, end) = r.read_events().expect("records");
+    let mut v = ccdsim::verify::Verifier::new(scene);
+    for c in &events {
+        v.check(c)
+            .unwrap_or_else(|e| panic!("{label}: the oracle's run fails verify: {e}"));
+    }
+    v.finish(end.expect("an end record"))
+        .unwrap_or_else(|e| panic!("{label}: the oracle's run fails verify: {e}"));
+}
+
+#[test]
+fn growing_radii_with_moving_walls() {
+    // A piston and a paddle, left at their velocities or steered every frame, against
+    // growing bodies: their contacts are the growing ones in the walls' frames, the bounces
+    // reverse the surfaces' approach there; run files equal the oracle's, which verify.
+    for (k, &seed) in SMALL_SEEDS[..2].iter().enumerate() {
+        let rate = [0.05, 0.2][k];
+        let s2 = growing(
+            with_moving_walls(gas_scene::<2>(80, 0.3, (0.2, 0.6), seed)),
+            rate,
+        );
+        let s3 = growing(
+            with_moving_walls(gas_scene::<3>(50, 0.15, (0.5, 0.5), seed)),
+            rate,
+        );
+        for drive in [Drive::Events, Drive::FrameWalls { dt: 0.05 }] {
+            let label = format!("growing moving walls 2D seed {seed} {drive:?}");
+            let oracle = check_all_driven(&label, &s2, 1200, drive);
+            assert_verifies(&label, &s2, &oracle);
+            let hits = moving_wall_hits(&s2, &oracle);
+            assert!(hits.iter().all(|&h| h >= 3), "{label}: few hits {hits:?}");
+            let label = format!("growing moving walls 3D seed {seed} {drive:?}");
+            let oracle = check_all_driven(&label, &s3, 1000, drive);
+            assert_verifies(&label, &s3, &oracle);
+            let hits = moving_wall_hits(&s3, &oracle);
+            assert!(hits.iter().all(|&h| h >= 3), "{label}: few hits {hits:?}");
+        }
+    }
+}
+
 /// `scene` under uniform gravity `g` (see `ccdsim::gravity`).
 fn falling<const D: usize>(mut scene: Scene<D>, g: [f64; D]) -> Scene<D> {
     scene.settings.gravity = ccdsim::gravity::Gravity::new(&g);

@@ -1,11 +1,13 @@
 //! Growing radii (Lubachevsky–Stillinger): run files (format version 3) that `verify`
-//! checks with the growth rule, scene validation, and compression to jammed packings.
+//! checks with the growth rule, scene validation, compression to jammed packings, and growth
+//! combined with moving walls.
 
 use ccdsim::generate::{gas, GasConfig};
 use ccdsim::growth::Growth;
 use ccdsim::packing::{compress, dilute_start, CompressConfig, CompressStop, SizeMix};
 use ccdsim::record::RunWriter;
-use ccdsim::{Scene, SceneError, Simulation};
+use ccdsim::verify::VerifyReport;
+use ccdsim::{BodySpec, EventKind, MovingWall, Scene, SceneError, Simulation, Vector, Wall};
 use replay::{records, replay};
 
 mod replay;
@@ -196,4 +198,241 @@ fn bad_compressions_are_refused() {
     open.periodic = None;
     let err = compress(&open, "cells", &CompressConfig::default(), |_| {}).unwrap_err();
     assert!(err.to_string().contains("volume"), "{err}");
+}
+
+/// Every finder, for the runs that must agree bit for bit.
+const FINDERS: [&str; 4] = ["all-pairs", "bvh", "sedgewick", "cells"];
+
+/// A 2D moving wall: a plane through `point` facing `normal`, translating at `velocity`.
+fn moving_plane(point: [f64; 2], normal: [f64; 2], velocity: [f64; 2]) -> MovingWall<2> {
+    MovingWall {
+        wall: Wall::Plane {
+            point: Vector(point),
+            normal: Vector(normal),
+        },
+        velocity: Vector(velocity),
+    }
+}
+
+/// `scene`'s radii growing at `rate` per second.
+fn with_growth<const D: usize>(mut scene: Scene<D>, rate: f64) -> Scene<D> {
+    scene.settings.growth = Some(Growth { rate });
+    scene
+}
+
+#[test]
+fn a_growing_ball_meets_a_receding_piston_when_it_outgrows_it() {
+    // Radius 1 growing at Γ·r = 0.5 m/s, at rest at x = 0; the piston's face at x = 4 recedes
+    // at 0.25 m/s: the gap 4 + 0.25 t − (1 + 0.5 t) closes at t = 12.
+    let scene = with_growth(
+        Scene::<2> {
+            bodies: vec![BodySpec::new(Vector([0.0, 0.0]), Vector([0.0, 0.0]), 1.0)],
+            moving_walls: vec![moving_plane([4.0, 0.0], [-1.0, 0.0], [0.25, 0.0])],
+            ..Scene::default()
+        },
+        0.5,
+    );
+    for finder in FINDERS {
+        let mut sim = Simulation::new(&scene, finder).unwrap();
+        let hit = sim.step_event().unwrap();
+        assert_eq!(
+            (hit.event.kind, hit.event.b),
+            (EventKind::Wall, 0),
+            "[{finder}]"
+        );
+        assert_eq!(hit.event.time, 12.0, "[{finder}]");
+        // The surface approached the piston at σ̇ − u = 0.5 − 0.25 and leaves it at 0.25:
+        // u' = 2σ̇ − u = 0.75 relative to the piston, so the ball moves at −0.5.
+        assert_eq!(hit.vel[0].0, [-0.5, 0.0], "[{finder}]");
+        assert_eq!(sim.radius(0), 7.0, "[{finder}]");
+        // It now recedes at 0.75 from a piston it outgrows at 0.5 m/s only: they never meet.
+        assert!(sim.step_event().is_none(), "[{finder}]");
+    }
+}
+
+#[test]
+fn a_growing_ball_between_a_wall_and_a_closing_piston() {
+    // Radius 0.5 growing at 0.25 m/s, moving right at 1 m/s from x = 5; a fixed wall at x = 0
+    // and a piston at x = 14.5 closing at 0.25 m/s. Every time and speed below is exact.
+    let scene = with_growth(
+        Scene::<2> {
+            bodies: vec![BodySpec::new(Vector([5.0, 0.0]), Vector([1.0, 0.0]), 0.5)],
+            walls: vec![Wall::Plane {
+                point: Vector([0.0, 0.0]),
+                normal: Vector([1.0, 0.0]),
+            }],
+            moving_walls: vec![moving_plane([14.5, 0.0], [-1.0, 0.0], [-0.25, 0.0])],
+            ..Scene::default()
+        },
+        0.5,
+    );
+    // (time, wall, velocity after): the right edge 5.5 + 1.25 t meets the piston at
+    // 14.5 − 0.25 t at t = 6 (u = −1.25 relative to it, u' = 2·0.25 + 1.25 = 1.75); the left
+    // edge 11 − 2.25 (t − 6) meets the wall at t = 10 (u = −2, u' = 2.5); the right edge
+    // 6 + 2.75 (t − 10) meets the piston at 12 − 0.25 (t − 10) at t = 12 (u = −2.75,
+    // u' = 3.25 relative to the piston: −3.5 in the lab).
+    let expected = [(6.0, 1, -2.0), (10.0, 0, 2.5), (12.0, 1, -3.5)];
+    let mut files = Vec::new();
+    for finder in FINDERS {
+        let mut sim = Simulation::new(&scene, finder).unwrap();
+        let mut w = RunWriter::new(Vec::new(), finder.into(), &scene).unwrap();
+        for (t, wall, v) in expected {
+            let hit = sim.step_event().unwrap();
+            w.write_event(&hit).unwrap();
+            assert_eq!(
+                (hit.event.time, hit.event.b, hit.vel[0].0),
+                (t, wall, [v, 0.0]),
+                "[{finder}]"
+            );
+        }
+        files.push(w.finish(sim.time()).unwrap());
+    }
+    let (back, events, end) = records::<2>(&files[0]);
+    let report = replay(&back, &events, end, true).unwrap();
+    // The piston did work on the ball, the growth too: kinetic energy only grew, and the
+    // moving wall's collisions account for their share.
+    let m = scene.bodies[0].effective_mass();
+    let end_energy = 0.5 * m * 3.5 * 3.5;
+    assert!((report.kinetic_energy_end - end_energy).abs() < 1e-12 * end_energy);
+    let work = 0.5 * m * ((2.0f64 * 2.0 - 1.0) + (3.5 * 3.5 - 2.5 * 2.5));
+    assert!((report.wall_work - work).abs() < 1e-12 * work, "{report:?}");
+    assert!(files.windows(2).all(|f| f[0] == f[1]));
+}
+
+#[test]
+fn a_growing_ball_meets_the_end_of_a_moving_segment() {
+    // A segment from (8, 3) up to (8, 10) sweeps left at 0.5 m/s towards a ball of radius 1
+    // at rest at the origin, growing at 0.5 m/s. In the segment's frame the ball moves right
+    // at 0.5: it would reach the segment's line at t = 7, below the segment's end, so the
+    // end point, at distance √(64 − 8t + t²/4 + 9) = 1 + t/2, comes first: t = 8, at radius 5,
+    // with the end at (4, 3) from the ball.
+    let scene = with_growth(
+        Scene::<2> {
+            bodies: vec![BodySpec::new(Vector([0.0, 0.0]), Vector([0.0, 0.0]), 1.0)],
+            moving_walls: vec![MovingWall {
+                wall: Wall::Segment {
+                    a: Vector([8.0, 3.0]),
+                    b: Vector([8.0, 10.0]),
+                },
+                velocity: Vector([-0.5, 0.0]),
+            }],
+            ..Scene::default()
+        },
+        0.5,
+    );
+    for finder in FINDERS {
+        let mut sim = Simulation::new(&scene, finder).unwrap();
+        let hit = sim.step_event().unwrap();
+        assert_eq!((hit.event.time, hit.event.b), (8.0, 0), "[{finder}]");
+        // Along n = −(4, 3)/5 (from the end to the ball): u = (v − w)·n = −0.4 and σ̇ = 0.5,
+        // so the surface approached at 0.9 and leaves at 0.9: u' = 1.4, v' = 1.8 n.
+        let n = Vector([-0.8, -0.6]);
+        let v = hit.vel[0];
+        assert!((v - n * 1.8).norm() < 1e-12, "[{finder}] {v:?}");
+        let parting = (v - Vector([-0.5, 0.0])).dot(n) - 0.5;
+        assert!((parting - 0.9).abs() < 1e-12, "[{finder}] {parting}");
+    }
+}
+
+/// A gas of `n` growing bodies in a walled box with a piston (a plane closing from the top)
+/// and, in 2D, a paddle (a segment sweeping across).
+fn growing_gas_with_moving_walls<const D: usize>(n: usize, seed: u64) -> Scene<D> {
+    let mut scene = gas::<D>(&GasConfig {
+        n,
+        packing: 0.2,
+        radius_min: 0.3,
+        radius_max: 0.6,
+        seed,
+        ..Default::default()
+    })
+    .unwrap();
+    let (lo, hi) = ccdsim::wall::walls_bounds(&scene.walls).unwrap();
+    let top = D - 1;
+    let mut normal = Vector::<D>::ZERO;
+    normal[top] = -1.0;
+    let mut point = lo;
+    point[top] = hi[top];
+    scene.moving_walls.push(MovingWall {
+        wall: Wall::Plane { point, normal },
+        velocity: normal * 0.3,
+    });
+    if D == 2 {
+        let (mut a, mut b) = (lo, lo);
+        a[1] = lo[1] + 0.5 * (hi[1] - lo[1]);
+        b[1] = lo[1] + 0.8 * (hi[1] - lo[1]);
+        let mut v = Vector::<D>::ZERO;
+        v[0] = 0.4;
+        scene.moving_walls.push(MovingWall {
+            wall: Wall::Segment { a, b },
+            velocity: v,
+        });
+    }
+    with_growth(scene, 0.05)
+}
+
+/// The run files of `events` events of `scene` with every finder, after asserting that they
+/// are byte-identical, and the all-pairs one verified in grid and all-pairs mode.
+fn same_run_with_every_finder<const D: usize>(scene: &Scene<D>, events: u64) -> VerifyReport {
+    let files: Vec<Vec<u8>> = FINDERS.iter().map(|f| run_file(scene, f, events)).collect();
+    for (f, bytes) in FINDERS.iter().zip(&files) {
+        assert!(bytes == &files[0], "[{f}] run file differs from all-pairs'");
+    }
+    let (back, recorded, end) = records::<D>(&files[0]);
+    assert_eq!(recorded.len() as u64, events);
+    replay(&back, &recorded, end, true).unwrap();
+    replay(&back, &recorded, end, false).unwrap()
+}
+
+#[test]
+fn growing_gases_with_moving_walls_run_alike_with_every_finder_and_verify() {
+    for seed in [3, 8] {
+        let s2 = growing_gas_with_moving_walls::<2>(60, seed);
+        let report = same_run_with_every_finder(&s2, 3000);
+        assert!(report.wall_work != 0.0, "the walls were met");
+        let s3 = growing_gas_with_moving_walls::<3>(40, seed);
+        let report = same_run_with_every_finder(&s3, 2000);
+        assert!(report.wall_work != 0.0, "the piston was met");
+    }
+}
+
+#[test]
+fn verify_rejects_a_moving_wall_bounce_that_ignores_the_growth() {
+    let scene = growing_gas_with_moving_walls::<2>(60, 3);
+    let (scene, events, end) = records::<2>(&run_file(&scene, "cells", 3000));
+    let first_moving = scene.walls.len() as u32;
+    let k = events
+        .iter()
+        .position(|c| c.event.kind == EventKind::Wall && c.event.b >= first_moving)
+        .expect("a moving wall is met");
+    // The bounce of fixed radii: the centre's velocity relative to the wall reflected, which
+    // keeps the kinetic energy in the wall's frame but leaves the surfaces approaching.
+    let c = events[k];
+    let i = c.event.a as usize;
+    let m = ccdsim::moving_wall::start_motions(&scene.moving_walls, scene.start_time)
+        [(c.event.b - first_moving) as usize];
+    let wall = ccdsim::moving_wall::translated(
+        &scene.moving_walls[(c.event.b - first_moving) as usize].wall,
+        m.offset_at(c.event.time),
+    );
+    let n = ccdsim::narrow::wall_normal(&wall, c.pos[0]).unwrap();
+    let before = events[..k]
+        .iter()
+        .rev()
+        .find_map(|p| match p.event.kind {
+            EventKind::Body if p.event.a as usize == i => Some(p.vel[0]),
+            EventKind::Body if p.event.b as usize == i => Some(p.vel[1]),
+            EventKind::Wall if p.event.a as usize == i => Some(p.vel[0]),
+            _ => None,
+        })
+        .unwrap_or(scene.bodies[i].vel);
+    let relative = before - m.velocity;
+    let mut forged = events.clone();
+    forged[k].vel[0] = before - n * (2.0 * relative.dot(n));
+    let err = replay(&scene, &forged, end, false).unwrap_err();
+    assert!(
+        err.contains("growth rule") && err.contains(&format!("event {k}")),
+        "{err}"
+    );
+    // The run as recorded passes.
+    replay(&scene, &events, end, false).unwrap();
 }

@@ -18,7 +18,8 @@
 //! check minimises the distance less the growth (a convex function of time) by golden-section
 //! search, and kinetic energy, which growth collisions add, is not checked: instead the
 //! impulse must lie along the line of centres (the wall's normal) and give the normal
-//! relative velocity the growth rule asks for, `u' = (1 + e)·σ̇ − e·u`.
+//! relative velocity the growth rule asks for, `u' = (1 + e)·σ̇ − e·u` (at a moving wall,
+//! relative to the wall).
 //!
 //! Under uniform gravity ([`crate::gravity`]) bodies follow parabolas between events: the
 //! expected positions are the falling ones and velocities just before an event are the stored
@@ -84,8 +85,9 @@ pub struct VerifyReport {
     /// energy drift, less this, is what its collisions changed.
     pub edit_energy: f64,
     /// Work the moving walls did on the bodies at their collisions, joules (see
-    /// [`crate::moving_wall`]): the run's energy drift, less this and the edits' energy, is
-    /// what its other collisions changed.
+    /// [`crate::moving_wall`]; under growing radii, with what the growth added at them): the
+    /// run's energy drift, less this and the edits' energy, is what its other collisions
+    /// changed.
     pub wall_work: f64,
     /// Largest overlap seen (relative to the contact distance), at events or in between.
     pub max_overlap: f64,
@@ -613,29 +615,30 @@ impl<const D: usize> Verifier<D> {
         let before = self.vel_of(i, t);
         let e0 = 0.5 * m * before.norm_sq();
         let e1 = 0.5 * m * c.vel[0].norm_sq();
-        if w >= self.walls.len() {
-            // In the moving wall's frame the collision is a static wall's.
-            let e0_there = 0.5 * m * (before - wall_velocity).norm_sq();
-            let e1_there = 0.5 * m * (c.vel[0] - wall_velocity).norm_sq();
-            self.check_energy(t, e0_there, e1_there, &format!("body {i} at wall {w}"))?;
-            self.report.wall_work += e1 - e0;
-            self.report.wall_collisions += 1;
-            self.report.kinetic_energy_end += e1 - e0;
-            return Ok(());
-        }
-        if self.supports.get(i).copied().flatten() == Some(w) {
+        let moving = w >= self.walls.len();
+        if !moving && self.supports.get(i).copied().flatten() == Some(w) {
             return self.check_slide_end(c, i, w);
         }
-        match (self.growth, wall_normal(&self.walls[w], c.pos[0])) {
+        // In a moving wall's frame the collision is a static wall's (a static wall's velocity
+        // is zero, and `v − 0` is `v`).
+        let (v0, v1) = (before - wall_velocity, c.vel[0] - wall_velocity);
+        let who = format!("body {i} at wall {w}");
+        match (self.growth, wall_normal(&wall, c.pos[0])) {
             (Some(law), Some(n)) => {
                 let grow = law.speed(self.radius[i]);
-                let (v0, v1) = (before, c.vel[0]);
-                self.check_growth_rule(t, n, v0, v1, grow, &format!("body {i} at wall {w}"))?;
+                self.check_growth_rule(t, n, v0, v1, grow, &who)?;
             }
             (Some(_), None) => {}
             // Coming to rest: `check_rests` checks the velocity along the wall.
             (None, _) if c.rests[0] => {}
-            (None, _) => self.check_energy(t, e0, e1, &format!("body {i} at wall {w}"))?,
+            (None, _) => {
+                self.check_energy(t, 0.5 * m * v0.norm_sq(), 0.5 * m * v1.norm_sq(), &who)?;
+            }
+        }
+        if moving {
+            // The kinetic energy the collision changed, the growth's share included under
+            // growing radii (see `crate::moving_wall`).
+            self.report.wall_work += e1 - e0;
         }
         self.report.wall_collisions += 1;
         self.report.kinetic_energy_end += e1 - e0;
