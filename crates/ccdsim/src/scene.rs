@@ -107,12 +107,6 @@ impl<const D: usize> BodySpec<D> {
                     message: format!("{e} is outside [0, 1]"),
                 });
             }
-            if settings.growth.is_some() {
-                return Err(SceneError::Unsupported {
-                    field: f("restitution"),
-                    why: "per-body restitution cannot be combined with settings.growth yet".into(),
-                });
-            }
         }
         if self.kinematic {
             let refuse = |why: &str| {

@@ -1605,6 +1605,49 @@ fn growing_radii_with_moving_walls() {
     }
 }
 
+/// `scene` with restitution 0.8, bodies' own restitutions from 0.2 to 1 and, with `tc`, the
+/// TC model.
+fn inelastic<const D: usize>(mut scene: Scene<D>, tc: Option<f64>) -> Scene<D> {
+    scene.settings.restitution = 0.8;
+    scene.settings.tc = tc;
+    for (k, b) in scene.bodies.iter_mut().enumerate() {
+        b.restitution = [Some(0.2), Some(0.9), None, Some(1.0), Some(0.5)][k % 5];
+    }
+    scene
+}
+
+#[test]
+fn growing_radii_with_per_body_restitution() {
+    // Growth bounces with each pair's restitution (the mean of the bodies'; 1 under the TC
+    // model soon after another), at walls with the body's own, plain and kicked: run files
+    // equal the oracle's, which verify.
+    for (k, &seed) in SMALL_SEEDS[..2].iter().enumerate() {
+        let tc = [None, Some(1e-3)][k];
+        let s2 = growing(
+            inelastic(gas_scene::<2>(100, 0.3, (0.2, 0.6), seed), tc),
+            0.1,
+        );
+        let s3 = growing(
+            inelastic(gas_scene::<3>(60, 0.15, (0.5, 0.5), seed), tc),
+            0.1,
+        );
+        let p2 = growing(
+            inelastic(periodic_gas::<2>(100, 0.35, (0.3, 0.42), seed), tc),
+            0.2,
+        );
+        for drive in [Drive::Events, Drive::Kicks { every: 11 }] {
+            let label = format!("growing restitution 2D seed {seed} {drive:?}");
+            let oracle = check_all_driven(&label, &s2, 1500, drive);
+            assert_verifies(&label, &s2, &oracle);
+            let label = format!("growing restitution 3D seed {seed} {drive:?}");
+            let oracle = check_all_driven(&label, &s3, 1200, drive);
+            assert_verifies(&label, &s3, &oracle);
+        }
+        let label = format!("growing restitution periodic 2D seed {seed}");
+        check_periodic(&label, &p2, 1500, Drive::Events);
+    }
+}
+
 /// `scene` under uniform gravity `g` (see `ccdsim::gravity`).
 fn falling<const D: usize>(mut scene: Scene<D>, g: [f64; D]) -> Scene<D> {
     scene.settings.gravity = ccdsim::gravity::Gravity::new(&g);

@@ -1,6 +1,6 @@
 //! Growing radii (Lubachevsky–Stillinger): run files (format version 3) that `verify`
 //! checks with the growth rule, scene validation, compression to jammed packings, and growth
-//! combined with moving walls.
+//! combined with moving walls and per-body restitution.
 
 use ccdsim::generate::{gas, GasConfig};
 use ccdsim::growth::Growth;
@@ -435,4 +435,108 @@ fn verify_rejects_a_moving_wall_bounce_that_ignores_the_growth() {
     );
     // The run as recorded passes.
     replay(&scene, &events, end, false).unwrap();
+}
+
+/// Two growing balls (radius 0.5, growing at 0.25 m/s each) approaching head on at 1 m/s
+/// between planes at x = ±4.125, with restitutions 0.5 and 1.
+fn inelastic_pair() -> Scene<2> {
+    let ball = |x: f64, v: f64, e: f64| BodySpec {
+        restitution: Some(e),
+        ..BodySpec::new(Vector([x, 0.0]), Vector([v, 0.0]), 0.5)
+    };
+    let plane = |x: f64, nx: f64| Wall::Plane {
+        point: Vector([x, 0.0]),
+        normal: Vector([nx, 0.0]),
+    };
+    with_growth(
+        Scene::<2> {
+            bodies: vec![ball(-2.0, 0.5, 0.5), ball(2.0, -0.5, 1.0)],
+            walls: vec![plane(-4.125, 1.0), plane(4.125, -1.0)],
+            ..Scene::default()
+        },
+        0.5,
+    )
+}
+
+#[test]
+fn growth_bounces_take_each_pair_restitution() {
+    let scene = inelastic_pair();
+    // (time, kind, body, velocities after). The gap 4 − t between the centres meets the
+    // contact distance 1 + 0.5 t at t = 2; with u = −1, σ̇ = 0.5 and the pair's e = 0.75,
+    // u' = 1.75·0.5 + 0.75 = 1.625: ±0.8125. Each ball, radius 1 then, meets its wall
+    // 2.125 m away at t = 4 (closing at 0.8125 + 0.25); ball 0 (e = 0.5) leaves at
+    // 1.5·0.25 + 0.5·0.8125 = 0.78125, ball 1 (e = 1) at 2·0.25 + 0.8125 = 1.3125.
+    let expected = [
+        (2.0, EventKind::Body, 0, [-0.8125, 0.8125]),
+        (4.0, EventKind::Wall, 0, [0.78125, 0.0]),
+        (4.0, EventKind::Wall, 1, [-1.3125, 0.0]),
+    ];
+    let mut files = Vec::new();
+    for finder in FINDERS {
+        let mut sim = Simulation::new(&scene, finder).unwrap();
+        let mut w = RunWriter::new(Vec::new(), finder.into(), &scene).unwrap();
+        for (t, kind, a, v) in expected {
+            let c = sim.step_event().unwrap();
+            w.write_event(&c).unwrap();
+            assert_eq!(
+                (c.event.time, c.event.kind, c.event.a),
+                (t, kind, a),
+                "[{finder}]"
+            );
+            assert_eq!([c.vel[0][0], c.vel[1][0]], v, "[{finder}]");
+        }
+        files.push(w.finish(sim.time()).unwrap());
+    }
+    assert!(files.windows(2).all(|f| f[0] == f[1]));
+    let (back, events, end) = records::<2>(&files[0]);
+    replay(&back, &events, end, true).unwrap();
+    // Read with the scene's restitution for every collision, the pair's bounce breaks the
+    // growth rule.
+    let mut one = back.clone();
+    for b in &mut one.bodies {
+        b.restitution = None;
+    }
+    let err = replay(&one, &events, end, true).unwrap_err();
+    assert!(
+        err.contains("event 0") && err.contains("growth rule"),
+        "{err}"
+    );
+    // And with ball 1's restitution for ball 0, its wall bounce does.
+    let mut swapped = back.clone();
+    swapped.bodies[0].restitution = Some(1.0);
+    swapped.bodies[1].restitution = Some(0.5);
+    let err = replay(&swapped, &events[..2], end, true).unwrap_err();
+    assert!(
+        err.contains("event 1") && err.contains("growth rule"),
+        "{err}"
+    );
+}
+
+/// A growing gas whose bodies have restitutions 0.3 to 1, and the TC model.
+fn inelastic_growing_gas<const D: usize>(n: usize, seed: u64) -> Scene<D> {
+    let mut scene = gas::<D>(&GasConfig {
+        n,
+        packing: 0.25,
+        radius_min: 0.3,
+        radius_max: 0.6,
+        seed,
+        ..Default::default()
+    })
+    .unwrap();
+    scene.settings.restitution = 0.9;
+    scene.settings.tc = Some(1e-3);
+    for (k, b) in scene.bodies.iter_mut().enumerate() {
+        b.restitution = [Some(0.3), None, Some(1.0), Some(0.7)][k % 4];
+    }
+    with_growth(scene, 0.1)
+}
+
+#[test]
+fn inelastic_growing_gases_run_alike_with_every_finder_and_verify() {
+    for seed in [5, 9] {
+        let s2 = inelastic_growing_gas::<2>(80, seed);
+        same_run_with_every_finder(&s2, 4000);
+        let s3 = inelastic_growing_gas::<3>(50, seed);
+        same_run_with_every_finder(&s3, 3000);
+    }
 }

@@ -19,7 +19,8 @@
 //! search, and kinetic energy, which growth collisions add, is not checked: instead the
 //! impulse must lie along the line of centres (the wall's normal) and give the normal
 //! relative velocity the growth rule asks for, `u' = (1 + e)·σ̇ − e·u` (at a moving wall,
-//! relative to the wall).
+//! relative to the wall), with `e` the collision's restitution as the simulation chose it:
+//! the pair's mean of the bodies' own, or 1 under the TC model ([`restitution`]).
 //!
 //! Under uniform gravity ([`crate::gravity`]) bodies follow parabolas between events: the
 //! expected positions are the falling ones and velocities just before an event are the stored
@@ -34,6 +35,7 @@ mod closest;
 mod falling;
 mod moving_walls;
 mod proximity;
+mod restitution;
 mod slots;
 
 use crate::collision_filter::CollisionFilter;
@@ -49,6 +51,7 @@ use crate::wall::{wall_clearance, Wall};
 use closest::{closest_approach, closest_approach_growing, closest_to_wall};
 use falling::{closest_to_point_falling, closest_to_wall_falling};
 use proximity::Proximity;
+use restitution::Restitutions;
 
 /// Allowed overlap relative to the contact distance.
 pub const OVERLAP_TOLERANCE: f64 = 1e-9;
@@ -128,7 +131,8 @@ pub struct Verifier<const D: usize> {
     moving: Vec<Wall<D>>,
     wall_motion: Vec<crate::moving_wall::WallMotion<D>>,
     period: Option<Vector<D>>,
-    restitution: f64,
+    /// Each collision's coefficient of restitution, as the simulation chooses it.
+    restitutions: Restitutions,
     /// Which bodies are kinematic (infinite mass, straight lines, no walls, no other
     /// kinematic body); empty when none is.
     kinematic: Vec<bool>,
@@ -232,7 +236,7 @@ impl<const D: usize> Verifier<D> {
             moving: scene.moving_walls.iter().map(|m| m.wall).collect(),
             wall_motion: crate::moving_wall::start_motions(&scene.moving_walls, scene.start_time),
             period: scene.periodic,
-            restitution: scene.settings.restitution,
+            restitutions: Restitutions::new(scene),
             kinematic,
             filters: scene.filters(),
             last_time: scene.start_time,
@@ -402,6 +406,10 @@ impl<const D: usize> Verifier<D> {
         let (mi, mj) = (self.mass[i], self.mass[j]);
         // Just before the collision: under gravity the stored velocities have changed since.
         let (vi, vj) = (self.vel_of(i, t), self.vel_of(j, t));
+        // Chosen before the collision counts for the TC model, as the simulation does.
+        let e = self.restitutions.pair(i, j, t);
+        self.restitutions.note(i, t);
+        self.restitutions.note(j, t);
         if self.is_kinematic(i) || self.is_kinematic(j) {
             // A kinematic body (infinite mass) is a moving wall: neither momentum nor energy
             // is kept, and two of them never meet.
@@ -439,11 +447,11 @@ impl<const D: usize> Verifier<D> {
                 n,
                 vi - vj,
                 c.vel[0] - c.vel[1],
-                -grow,
+                (-grow, e),
                 &format!("bodies {i} and {j}"),
             )?;
         } else {
-            self.check_energy(t, e0, e1, &format!("bodies {i} and {j}"))?;
+            self.check_energy(t, e0, e1, e, &format!("bodies {i} and {j}"))?;
         }
         self.report.body_collisions += 1;
         self.report.kinetic_energy_end += e1 - e0;
@@ -619,6 +627,9 @@ impl<const D: usize> Verifier<D> {
         if !moving && self.supports.get(i).copied().flatten() == Some(w) {
             return self.check_slide_end(c, i, w);
         }
+        // Chosen before the collision counts for the TC model, as the simulation does.
+        let e = self.restitutions.wall(i, t);
+        self.restitutions.note(i, t);
         // In a moving wall's frame the collision is a static wall's (a static wall's velocity
         // is zero, and `v − 0` is `v`).
         let (v0, v1) = (before - wall_velocity, c.vel[0] - wall_velocity);
@@ -626,13 +637,14 @@ impl<const D: usize> Verifier<D> {
         match (self.growth, wall_normal(&wall, c.pos[0])) {
             (Some(law), Some(n)) => {
                 let grow = law.speed(self.radius[i]);
-                self.check_growth_rule(t, n, v0, v1, grow, &who)?;
+                self.check_growth_rule(t, n, v0, v1, (grow, e), &who)?;
             }
             (Some(_), None) => {}
             // Coming to rest: `check_rests` checks the velocity along the wall.
             (None, _) if c.rests[0] => {}
             (None, _) => {
-                self.check_energy(t, 0.5 * m * v0.norm_sq(), 0.5 * m * v1.norm_sq(), &who)?;
+                let (e0, e1) = (0.5 * m * v0.norm_sq(), 0.5 * m * v1.norm_sq());
+                self.check_energy(t, e0, e1, e, &who)?;
             }
         }
         if moving {
@@ -804,9 +816,11 @@ impl<const D: usize> Verifier<D> {
         Ok(out)
     }
 
-    fn check_energy(&self, t: f64, e0: f64, e1: f64, who: &str) -> Result<(), Violation> {
+    /// A collision of restitution `e` took the kinetic energy of `who` from `e0` to `e1`: an
+    /// elastic one keeps it, to rounding; an inelastic one does not add to it.
+    fn check_energy(&self, t: f64, e0: f64, e1: f64, e: f64, who: &str) -> Result<(), Violation> {
         let tol = CONSERVATION_TOLERANCE * e0 + f64::MIN_POSITIVE;
-        let bad = if self.restitution == 1.0 {
+        let bad = if e == 1.0 {
             (e1 - e0).abs() > tol
         } else {
             e1 - e0 > tol
@@ -823,19 +837,19 @@ impl<const D: usize> Verifier<D> {
     /// Growing radii: a collision's change of velocity `v0 → v1` (of the first body less the
     /// second; of the body alone at a wall) lies along `n` and turns the normal velocity `u`
     /// (along `n`, which points towards the first body) into `(1 + e)·σ̇ − e·u` when `u < σ̇`,
-    /// where `σ̇ = grow` (negated for pairs, whose `n` points the other way).
+    /// where `σ̇ = grow` (negated for pairs, whose `n` points the other way) and `e` is the
+    /// collision's restitution.
     fn check_growth_rule(
         &self,
         t: f64,
         n: Vector<D>,
         v0: Vector<D>,
         v1: Vector<D>,
-        grow: f64,
+        (grow, e): (f64, f64),
         who: &str,
     ) -> Result<(), Violation> {
         let n = n * (1.0 / n.norm());
         let (u0, u1) = (v0.dot(n), v1.dot(n));
-        let e = self.restitution;
         let (u0, u1, g) = if grow < 0.0 {
             (-u0, -u1, -grow)
         } else {
@@ -849,7 +863,8 @@ impl<const D: usize> Verifier<D> {
             return Err(self.fail(
                 t,
                 format!(
-                    "{who}: normal velocity {u0} becomes {u1}, the growth rule asks for {want}                      (and no change across the normal; found {sideways:e})"
+                    "{who}: normal velocity {u0} becomes {u1}, the growth rule asks for {want} \
+                     (and no change across the normal; found {sideways:e})"
                 ),
             ));
         }
