@@ -121,11 +121,8 @@ impl<const D: usize> BodySpec<D> {
             if periodic {
                 return refuse("kinematic bodies are not supported in a periodic box yet");
             }
-            if settings.growth.is_some() || settings.thermostat.is_some() {
-                return refuse(
-                    "kinematic bodies cannot be combined with settings.growth or \
-                     settings.thermostat",
-                );
+            if settings.thermostat.is_some() {
+                return refuse("kinematic bodies cannot be combined with settings.thermostat");
             }
             return Ok(());
         }

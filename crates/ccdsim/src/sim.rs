@@ -613,10 +613,16 @@ impl<const D: usize> Simulation<D> {
         }
     }
 
-    /// Kinetic energy of the bodies `e` involves, joules.
+    /// Kinetic energy of the bodies `e` involves, joules; a kinematic body has none to count
+    /// (its infinite mass would make it ∞, or NaN at rest), as in [`World::kinetic_energy`].
     fn involved_energy(&self, e: &Event) -> f64 {
-        let k =
-            |i: u32| 0.5 * self.world.mass(i as usize) * self.world.velocity(i as usize).norm_sq();
+        let k = |i: u32| {
+            let i = i as usize;
+            if self.world.is_kinematic(i) {
+                return 0.0;
+            }
+            0.5 * self.world.mass(i) * self.world.velocity(i).norm_sq()
+        };
         match e.kind {
             EventKind::Body => k(e.a) + k(e.b),
             EventKind::Wall | EventKind::Reset | EventKind::Edit => k(e.a),

@@ -9,7 +9,8 @@
 //! body, no walls, everything at rest, simultaneous collisions, touching bodies, Newton's
 //! cradle, the billiard break, exact ties, a lattice of equal bodies, grazing contacts, far
 //! from the origin, inelastic, velocity kicks, frame-by-frame stepping, non-default finder
-//! options).
+//! options); and growing radii alone and with moving walls, per-body restitution and
+//! kinematic bodies.
 
 use ccdsim::finder::{all_pairs_next_event, make_finder, FinderOptions, FINDER_NAMES};
 use ccdsim::generate::{
@@ -1812,6 +1813,47 @@ fn kinematic_bodies() {
         for name in finders() {
             check_run("kinematic edits", &s2, name, &o, 1500, drive, &oracle);
         }
+    }
+}
+
+#[test]
+fn growing_radii_with_kinematic_bodies() {
+    // Kinematic bodies grow like the others and push growing bodies by the growth rule;
+    // kicks steer them (kinematic ones included), frames interleave; run files equal the
+    // oracle's, which verify.
+    for (k, &seed) in SMALL_SEEDS[..2].iter().enumerate() {
+        let rate = [0.05, 0.2][k];
+        let s2 = growing(
+            with_kinematic(gas_scene::<2>(80, 0.3, (0.2, 0.6), seed), 4),
+            rate,
+        );
+        let s3 = growing(
+            with_kinematic(gas_scene::<3>(50, 0.15, (0.3, 0.5), seed), 3),
+            rate,
+        );
+        let walled = growing(
+            with_moving_walls(with_kinematic(
+                inelastic(gas_scene::<2>(80, 0.3, (0.2, 0.6), seed), Some(1e-3)),
+                3,
+            )),
+            rate,
+        );
+        for drive in [
+            Drive::Events,
+            Drive::Kicks { every: 5 },
+            Drive::Frames { dt: 0.05 },
+        ] {
+            let label = format!("growing kinematic 2D seed {seed} {drive:?}");
+            let oracle = check_all_driven(&label, &s2, 1500, drive);
+            assert_verifies(&label, &s2, &oracle);
+            let label = format!("growing kinematic 3D seed {seed} {drive:?}");
+            let oracle = check_all_driven(&label, &s3, 1200, drive);
+            assert_verifies(&label, &s3, &oracle);
+        }
+        // All three together: kinematic bodies, per-body restitution with tc, moving walls.
+        let label = format!("growing kinematic restitution moving walls seed {seed}");
+        let oracle = check_all_driven(&label, &walled, 1500, Drive::FrameWalls { dt: 0.05 });
+        assert_verifies(&label, &walled, &oracle);
     }
 }
 

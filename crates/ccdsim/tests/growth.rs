@@ -1,6 +1,6 @@
 //! Growing radii (Lubachevsky–Stillinger): run files (format version 3) that `verify`
 //! checks with the growth rule, scene validation, compression to jammed packings, and growth
-//! combined with moving walls and per-body restitution.
+//! combined with moving walls, per-body restitution and kinematic bodies.
 
 use ccdsim::generate::{gas, GasConfig};
 use ccdsim::growth::Growth;
@@ -538,5 +538,106 @@ fn inelastic_growing_gases_run_alike_with_every_finder_and_verify() {
         same_run_with_every_finder(&s2, 4000);
         let s3 = inelastic_growing_gas::<3>(50, seed);
         same_run_with_every_finder(&s3, 3000);
+    }
+}
+
+/// A kinematic ball (radius 0.5, from x = 0 at 1 m/s) overtaking a ball at rest at x = 4,
+/// both growing at 0.25 m/s, in front of a plane at x = 8.25.
+fn kinematic_push() -> Scene<2> {
+    with_growth(
+        Scene::<2> {
+            bodies: vec![
+                BodySpec {
+                    kinematic: true,
+                    ..BodySpec::new(Vector([0.0, 0.0]), Vector([1.0, 0.0]), 0.5)
+                },
+                BodySpec::new(Vector([4.0, 0.0]), Vector([0.0, 0.0]), 0.5),
+            ],
+            walls: vec![Wall::Plane {
+                point: Vector([8.25, 0.0]),
+                normal: Vector([-1.0, 0.0]),
+            }],
+            ..Scene::default()
+        },
+        0.5,
+    )
+}
+
+#[test]
+fn a_kinematic_body_pushes_a_growing_ball_by_the_growth_rule() {
+    let scene = kinematic_push();
+    // The gap 4 − t meets the contact distance 1 + 0.5 t at t = 2: u = −1, σ̇ = 0.5, so
+    // u' = 2σ̇ − u = 2 and the ball, taking all of the change, leaves at 3 m/s; the
+    // kinematic ball keeps its 1 m/s. The ball, radius 1, then meets the plane 3.25 m away
+    // at t = 3 (closing at 3 + 0.25) and leaves at −(2·0.25 + 3) = −3.5.
+    let mut files = Vec::new();
+    for finder in FINDERS {
+        let mut sim = Simulation::new(&scene, finder).unwrap();
+        let mut w = RunWriter::new(Vec::new(), finder.into(), &scene).unwrap();
+        let push = sim.step_event().unwrap();
+        assert_eq!(
+            (
+                push.event.time,
+                push.event.kind,
+                push.vel[0].0,
+                push.vel[1].0
+            ),
+            (2.0, EventKind::Body, [1.0, 0.0], [3.0, 0.0]),
+            "[{finder}]"
+        );
+        // The surfaces part as fast as they approached: 3 − 1 − 0.5 = σ̇ − u = 1.5.
+        assert_eq!(
+            sim.radius(0),
+            1.0,
+            "[{finder}] the kinematic ball grows too"
+        );
+        let bounce = sim.step_event().unwrap();
+        assert_eq!(
+            (bounce.event.time, bounce.event.kind, bounce.vel[0].0),
+            (3.0, EventKind::Wall, [-3.5, 0.0]),
+            "[{finder}]"
+        );
+        w.write_event(&push).unwrap();
+        w.write_event(&bounce).unwrap();
+        sim.run_events_with(200, |c| w.write_event(c).unwrap());
+        files.push(w.finish(sim.time()).unwrap());
+    }
+    assert!(files.windows(2).all(|f| f[0] == f[1]));
+    let (back, events, end) = records::<2>(&files[0]);
+    assert!(events.len() > 5, "the kinematic ball keeps pushing");
+    replay(&back, &events, end, true).unwrap();
+    // A forged push that moves the kinematic ball, or that reverses the centres' approach
+    // (u' = 1: the ball at 2 m/s), is rejected.
+    let mut moved = events.clone();
+    moved[0].vel[0] = Vector([0.5, 0.0]);
+    let err = replay(&back, &moved, end, true).unwrap_err();
+    assert!(err.contains("kinematic body 0 changes velocity"), "{err}");
+    let mut fixed = events.clone();
+    fixed[0].vel[1] = Vector([2.0, 0.0]);
+    let err = replay(&back, &fixed[..1], end, true).unwrap_err();
+    assert!(
+        err.contains("event 0") && err.contains("growth rule"),
+        "{err}"
+    );
+}
+
+#[test]
+fn growing_gases_with_kinematic_bodies_run_alike_with_every_finder_and_verify() {
+    // Kinematic bodies as fast as the others, and three times as fast.
+    for speed_up in [1.0, 3.0] {
+        let mut s2 = growing::<2>(80, false, 0.1);
+        let mut s3 = growing::<3>(50, false, 0.1);
+        for b in s2.bodies.iter_mut().take(4) {
+            b.kinematic = true;
+            b.vel = b.vel * speed_up;
+        }
+        for b in s3.bodies.iter_mut().take(3) {
+            b.kinematic = true;
+            b.vel = b.vel * speed_up;
+        }
+        let (events2, events3) = (3000, 2000);
+        let report = same_run_with_every_finder(&s2, events2);
+        assert!(report.body_collisions > 0);
+        same_run_with_every_finder(&s3, events3);
     }
 }

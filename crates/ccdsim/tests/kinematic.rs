@@ -165,4 +165,13 @@ fn kinematic_bodies_are_validated() {
     assert!(e.contains("periodic"), "{e}");
     let e = scene(r#", "kinematic": 1"#, "").unwrap_err();
     assert!(e.contains("kinematic"), "{e}");
+    // Growing radii take kinematic bodies (see tests/growth.rs); a thermostat does not yet.
+    let growth = r#", "settings": {"growth": {"rate": 0.1}}"#;
+    assert_eq!(scene(r#", "kinematic": true"#, growth), Ok(()));
+    let thermostat = r#", "settings": {"thermostat": {"temperature": 1, "rate": 1}}"#;
+    let e = scene(r#", "kinematic": true"#, thermostat).unwrap_err();
+    assert!(
+        e.contains("bodies[0].kinematic") && e.contains("settings.thermostat"),
+        "{e}"
+    );
 }

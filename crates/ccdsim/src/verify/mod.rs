@@ -412,9 +412,38 @@ impl<const D: usize> Verifier<D> {
         self.restitutions.note(j, t);
         if self.is_kinematic(i) || self.is_kinematic(j) {
             // A kinematic body (infinite mass) is a moving wall: neither momentum nor energy
-            // is kept, and two of them never meet.
+            // is kept, and two of them never meet. Under growth the bounce still obeys the
+            // growth rule, and the kinematic body keeps its velocity.
             if self.is_kinematic(i) && self.is_kinematic(j) {
                 return Err(self.fail(t, format!("kinematic bodies {i} and {j} collide")));
+            }
+            if let Some(law) = self.growth {
+                // The growth rule on the relative velocity, all of whose change the dynamic
+                // body takes: the kinematic one keeps its velocity.
+                let (k, v0, v1) = if self.is_kinematic(i) {
+                    (i, vi, c.vel[0])
+                } else {
+                    (j, vj, c.vel[1])
+                };
+                if (v1 - v0).norm() > 1e-9 * (v0.norm() + v1.norm() + f64::MIN_POSITIVE) {
+                    return Err(self.fail(
+                        t,
+                        format!(
+                            "kinematic body {k} changes velocity from {:?} to {:?}",
+                            v0.0, v1.0
+                        ),
+                    ));
+                }
+                let n = self.image(c.pos[1] - c.pos[0]);
+                let grow = law.speed(self.radius[i] + self.radius[j]);
+                self.check_growth_rule(
+                    t,
+                    n,
+                    vi - vj,
+                    c.vel[0] - c.vel[1],
+                    (-grow, e),
+                    &format!("bodies {i} and {j}"),
+                )?;
             }
             let e0 = 0.5 * (mi * vi.norm_sq() + mj * vj.norm_sq());
             let e1 = 0.5 * (mi * c.vel[0].norm_sq() + mj * c.vel[1].norm_sq());
