@@ -499,3 +499,62 @@ fn a_piston_heats_the_gas_by_the_work_it_does_and_verify_agrees() {
         "{text}"
     );
 }
+
+#[test]
+fn growing_runs_with_moving_walls_kinematic_bodies_and_own_restitution_verify() {
+    // Growth with a piston and a paddle, a kinematic ball, bodies with their own restitution
+    // and the TC model: recorded from the command line, `verify` accepts the run and rejects
+    // it once a bounce off a moving wall is forged.
+    let scene = format!(
+        r#"{{"dim": 2, "walls": {walls},
+        "settings": {{"growth": {{"rate": 0.05}}, "restitution": 0.95, "tc": 0.001}},
+        "bodies": [
+          {{"pos": [2, 2], "vel": [1, 0.5], "radius": 0.4, "restitution": 0.6}},
+          {{"pos": [5, 3], "vel": [-0.5, 0.8], "radius": 0.5}},
+          {{"pos": [8, 2], "vel": [-1, -0.3], "radius": 0.3, "kinematic": true}},
+          {{"pos": [3, 4.5], "vel": [0.7, -0.9], "radius": 0.4, "restitution": 0.9}}
+        ],
+        "moving_walls": [
+          {{"point": [0, 6], "normal": [0, -1], "velocity": [0, -0.2]}},
+          {{"a": [0, 2.5], "b": [0, 3.5], "velocity": [0.4, 0]}}
+        ]}}"#,
+        walls = r#"[{"a": [0,0], "b": [10,0]}, {"a": [10,0], "b": [10,6]}, {"a": [10,6], "b": [0,6]}, {"a": [0,6], "b": [0,0]}]"#
+    );
+    let path = tmp("growing_combined.json");
+    std::fs::write(&path, scene).unwrap();
+    let rec = tmp("growing_combined.ccd");
+    run_ok(
+        ccdsim()
+            .arg("run")
+            .arg(&path)
+            .args(["--until", "10", "--record"])
+            .arg(&rec),
+    );
+    let out = run_ok(ccdsim().arg("verify").arg(&rec));
+    let text = String::from_utf8(out.stdout).unwrap();
+    assert!(text.starts_with("OK "), "{text}");
+
+    // The first bounce off a moving wall (wall 4 or 5), its velocity scaled by 1.01.
+    let mut bytes = std::fs::read(&rec).unwrap();
+    let len = 21 + 32 * 2;
+    let k = (data_start(&bytes)..bytes.len() - len + 1)
+        .step_by(len)
+        .find(|&at| bytes[at] & 0x3f == 2 && bytes[at + 5] >= 4)
+        .expect("a moving wall is met");
+    for d in 0..2 {
+        let at = k + 17 + 16 + 8 * d;
+        let v = f64::from_le_bytes(bytes[at..at + 8].try_into().unwrap()) * 1.01;
+        bytes[at..at + 8].copy_from_slice(&v.to_le_bytes());
+    }
+    let sum = fnv1a(&bytes[k..k + len - 4]);
+    bytes[k + len - 4..k + len].copy_from_slice(&sum.to_le_bytes());
+    let forged = tmp("growing_combined_forged.ccd");
+    std::fs::write(&forged, &bytes).unwrap();
+    let out = ccdsim().arg("verify").arg(&forged).output().unwrap();
+    let text = String::from_utf8(out.stdout).unwrap();
+    assert_eq!(out.status.code(), Some(1), "{text}");
+    assert!(
+        text.contains("FAIL") && text.contains("growth rule"),
+        "{text}"
+    );
+}

@@ -26,8 +26,13 @@
 //! the collision `u' − σ̇ = −e·(u − σ̇)`, so `u' = (1 + e)·σ̇ − e·u` (elastic: `2σ̇ − u`). A pair
 //! therefore parts faster than it grows and the packing heats up: compression rescales the
 //! velocities now and then ([`crate::Simulation::rescale_velocities`]). Against a wall the
-//! same rule holds with `σ̇ = Γ·r`. Momentum is conserved by pair collisions, kinetic energy is
-//! not (it grows by the work of the growth).
+//! same rule holds with `σ̇ = Γ·r`, against a moving wall in the wall's frame (`u` relative to
+//! its velocity, see [`crate::moving_wall`]). `e` is the collision's restitution as for fixed
+//! radii: the mean of the pair's own (the body's own at a wall), or 1 under the TC model
+//! ([`crate::World::pair_restitution`]). A kinematic body (infinite mass) grows like every
+//! body and keeps its velocity: the other body takes the whole change. Momentum is conserved
+//! by pair collisions of dynamic bodies, kinetic energy is not (it grows by the work of the
+//! growth).
 //!
 //! # Exactness
 //!

@@ -15,6 +15,15 @@
 //! velocity (it has infinite mass), so the body's kinetic energy changes by the work the
 //! wall does.
 //!
+//! **Growing radii** ([`crate::growth`]) change nothing in that frame: the ball grows as it
+//! would against a static wall, so against a plane the distance of its centre, linear in
+//! time, meets its radius, linear in time, and against a segment the growing-pair quadratic
+//! finds the contact with the line or an end point (a point of radius zero). The collision
+//! reverses the speed at which the surface approaches the wall in the wall's frame: with
+//! `u = (v − w)·n` and `σ̇ = Γ·r`, `u' = (1 + e)·σ̇ − e·u`. The kinetic energy such a
+//! collision changes (summed as the walls' work in the statistics and by `verify`) then
+//! includes what the growth adds.
+//!
 //! Moving walls are not seen by the finders: the simulation keeps, per body, its next
 //! contact with a moving wall in a priority queue ([`crate::moving_wall_tracker`]), as it
 //! does for sensors, and takes whichever of the finder's event and the queue's comes first

@@ -169,7 +169,9 @@ fn resolve_resting_pair<const D: usize>(
 /// Resolves a collision of body `i` with wall `w` at time `t`: the body is moved to `t` and
 /// the normal component of its velocity relative to the wall reflected (scaled by the
 /// restitution); the wall, static or moving (`w ≥ walls().len()`, see
-/// [`crate::moving_wall`]), has infinite mass and keeps its velocity.
+/// [`crate::moving_wall`]), has infinite mass and keeps its velocity. Under growing radii
+/// the speed reflected is that of the body's surface relative to the wall, `(v − w)·n − Γ·r`
+/// (see [`crate::growth`]).
 ///
 /// Under `settings.rest_speed` a body that leaves a static wall gravity presses it on at a
 /// normal speed of at most that speed comes to rest on it instead, its normal velocity

@@ -102,12 +102,6 @@ impl<const D: usize> BodySpec<D> {
                     message: format!("{e} is outside [0, 1]"),
                 });
             }
-            if settings.growth.is_some() {
-                return Err(SceneError::Unsupported {
-                    field: f("restitution"),
-                    why: "per-body restitution cannot be combined with settings.growth yet".into(),
-                });
-            }
         }
         if self.kinematic {
             let refuse = |why: &str| {
@@ -118,9 +112,6 @@ impl<const D: usize> BodySpec<D> {
             };
             if self.mass.is_some() {
                 return refuse("a kinematic body has infinite mass: drop its `mass`");
-            }
-            if settings.growth.is_some() {
-                return refuse("kinematic bodies cannot be combined with settings.growth yet");
             }
             return Ok(());
         }
@@ -593,7 +584,7 @@ impl<const D: usize> Scene<D> {
     }
 
     /// Moving walls: finite, non-degenerate, a finite velocity; not in periodic scenes, nor
-    /// with growing radii, nor (under gravity) 3D segments; no body crossing one at the start.
+    /// (under gravity) 3D segments; no body crossing one at the start.
     fn validate_moving_walls(&self) -> Result<(), SceneError> {
         let first = self.walls.len();
         for (k, m) in self.moving_walls.iter().enumerate() {
@@ -606,9 +597,6 @@ impl<const D: usize> Scene<D> {
             };
             if self.periodic.is_some() {
                 return unsupported("a periodic scene has no walls, moving or not");
-            }
-            if self.settings.growth.is_some() {
-                return unsupported("moving walls cannot be combined with settings.growth yet");
             }
             if D == 3 && self.settings.gravity.is_some() && matches!(m.wall, Wall::Segment { .. }) {
                 return unsupported(

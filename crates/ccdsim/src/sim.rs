@@ -68,7 +68,8 @@ pub struct Stats {
     /// Thermostat resets applied (see [`crate::thermostat`]); counted in `events` too.
     pub resets: u64,
     /// Work the moving walls did on the bodies at their collisions, joules (see
-    /// [`crate::moving_wall`]); 0 without moving walls.
+    /// [`crate::moving_wall`]): the kinetic energy those collisions changed, which under
+    /// growing radii includes what the growth rule adds at them; 0 without moving walls.
     pub wall_work: f64,
     /// Periodic worlds: box exits applied (a body leaving through a face and re-entering
     /// through the opposite one). Not events: never returned, recorded or counted above.
@@ -632,10 +633,16 @@ impl<const D: usize> Simulation<D> {
         }
     }
 
-    /// Kinetic energy of the bodies `e` involves, joules.
+    /// Kinetic energy of the bodies `e` involves, joules; a kinematic body has none to count
+    /// (its infinite mass would make it ∞, or NaN at rest), as in [`World::kinetic_energy`].
     fn involved_energy(&self, e: &Event) -> f64 {
-        let k =
-            |i: u32| 0.5 * self.world.mass(i as usize) * self.world.velocity(i as usize).norm_sq();
+        let k = |i: u32| {
+            let i = i as usize;
+            if self.world.is_kinematic(i) {
+                return 0.0;
+            }
+            0.5 * self.world.mass(i) * self.world.velocity(i).norm_sq()
+        };
         match e.kind {
             EventKind::Body => k(e.a) + k(e.b),
             EventKind::Wall | EventKind::Reset | EventKind::Edit => k(e.a),

@@ -277,6 +277,7 @@ fn runs_that_add_and_remove_bodies_record_them_and_verify() {
         (Laws::Gravity, false),
         (Laws::Thermostat, true),
         (Laws::Thermostat, false),
+        (Laws::Growth, true),
         (Laws::Growth, false),
     ];
     for (laws, kinematic) in cases {

@@ -9,7 +9,8 @@
 //! body, no walls, everything at rest, simultaneous collisions, touching bodies, Newton's
 //! cradle, the billiard break, exact ties, a lattice of equal bodies, grazing contacts, far
 //! from the origin, inelastic, velocity kicks, frame-by-frame stepping, non-default finder
-//! options).
+//! options); and growing radii alone and with moving walls, per-body restitution and
+//! kinematic bodies.
 
 use ccdsim::finder::{all_pairs_next_event, make_finder, FinderOptions, FINDER_NAMES};
 use ccdsim::generate::{
@@ -1561,6 +1562,93 @@ fn growing_radii_with_edits_and_rescales() {
     }
 }
 
+/// Replays `run`, a recorded run of `scene`, through `verify`, panicking on a violation.
+fn assert_verifies<const D: usize>(label: &str, scene: &Scene<D>, run: &Recorded) {
+    let mut r =
+        ccdsim::record::RunReader::<_, D>::new(&run.bytes[..], label.into()).expect("header");
+    let (events, end) = r.read_events().expect("records");
+    let mut v = ccdsim::verify::Verifier::new(scene);
+    for c in &events {
+        v.check(c)
+            .unwrap_or_else(|e| panic!("{label}: the oracle's run fails verify: {e}"));
+    }
+    v.finish(end.expect("an end record"))
+        .unwrap_or_else(|e| panic!("{label}: the oracle's run fails verify: {e}"));
+}
+
+#[test]
+fn growing_radii_with_moving_walls() {
+    // A piston and a paddle, left at their velocities or steered every frame, against
+    // growing bodies: their contacts are the growing ones in the walls' frames, the bounces
+    // reverse the surfaces' approach there; run files equal the oracle's, which verify.
+    for (k, &seed) in SMALL_SEEDS[..2].iter().enumerate() {
+        let rate = [0.05, 0.2][k];
+        let s2 = growing(
+            with_moving_walls(gas_scene::<2>(80, 0.3, (0.2, 0.6), seed)),
+            rate,
+        );
+        let s3 = growing(
+            with_moving_walls(gas_scene::<3>(50, 0.15, (0.5, 0.5), seed)),
+            rate,
+        );
+        for drive in [Drive::Events, Drive::FrameWalls { dt: 0.05 }] {
+            let label = format!("growing moving walls 2D seed {seed} {drive:?}");
+            let oracle = check_all_driven(&label, &s2, 1200, drive);
+            assert_verifies(&label, &s2, &oracle);
+            let hits = moving_wall_hits(&s2, &oracle);
+            assert!(hits.iter().all(|&h| h >= 3), "{label}: few hits {hits:?}");
+            let label = format!("growing moving walls 3D seed {seed} {drive:?}");
+            let oracle = check_all_driven(&label, &s3, 1000, drive);
+            assert_verifies(&label, &s3, &oracle);
+            let hits = moving_wall_hits(&s3, &oracle);
+            assert!(hits.iter().all(|&h| h >= 3), "{label}: few hits {hits:?}");
+        }
+    }
+}
+
+/// `scene` with restitution 0.8, bodies' own restitutions from 0.2 to 1 and, with `tc`, the
+/// TC model.
+fn inelastic<const D: usize>(mut scene: Scene<D>, tc: Option<f64>) -> Scene<D> {
+    scene.settings.restitution = 0.8;
+    scene.settings.tc = tc;
+    for (k, b) in scene.bodies.iter_mut().enumerate() {
+        b.restitution = [Some(0.2), Some(0.9), None, Some(1.0), Some(0.5)][k % 5];
+    }
+    scene
+}
+
+#[test]
+fn growing_radii_with_per_body_restitution() {
+    // Growth bounces with each pair's restitution (the mean of the bodies'; 1 under the TC
+    // model soon after another), at walls with the body's own, plain and kicked: run files
+    // equal the oracle's, which verify.
+    for (k, &seed) in SMALL_SEEDS[..2].iter().enumerate() {
+        let tc = [None, Some(1e-3)][k];
+        let s2 = growing(
+            inelastic(gas_scene::<2>(100, 0.3, (0.2, 0.6), seed), tc),
+            0.1,
+        );
+        let s3 = growing(
+            inelastic(gas_scene::<3>(60, 0.15, (0.5, 0.5), seed), tc),
+            0.1,
+        );
+        let p2 = growing(
+            inelastic(periodic_gas::<2>(100, 0.35, (0.3, 0.42), seed), tc),
+            0.2,
+        );
+        for drive in [Drive::Events, Drive::Kicks { every: 11 }] {
+            let label = format!("growing restitution 2D seed {seed} {drive:?}");
+            let oracle = check_all_driven(&label, &s2, 1500, drive);
+            assert_verifies(&label, &s2, &oracle);
+            let label = format!("growing restitution 3D seed {seed} {drive:?}");
+            let oracle = check_all_driven(&label, &s3, 1200, drive);
+            assert_verifies(&label, &s3, &oracle);
+        }
+        let label = format!("growing restitution periodic 2D seed {seed}");
+        check_periodic(&label, &p2, 1500, Drive::Events);
+    }
+}
+
 /// `scene` under uniform gravity `g` (see `ccdsim::gravity`).
 fn falling<const D: usize>(mut scene: Scene<D>, g: [f64; D]) -> Scene<D> {
     scene.settings.gravity = ccdsim::gravity::Gravity::new(&g);
@@ -1743,6 +1831,47 @@ fn kinematic_bodies() {
             check_run("kinematic edits", &s2, name, &o, 1500, drive, &oracle);
         }
         check_periodic("kinematic edits periodic 2D", &p2, 1500, drive);
+    }
+}
+
+#[test]
+fn growing_radii_with_kinematic_bodies() {
+    // Kinematic bodies grow like the others and push growing bodies by the growth rule;
+    // kicks steer them (kinematic ones included), frames interleave; run files equal the
+    // oracle's, which verify.
+    for (k, &seed) in SMALL_SEEDS[..2].iter().enumerate() {
+        let rate = [0.05, 0.2][k];
+        let s2 = growing(
+            with_kinematic(gas_scene::<2>(80, 0.3, (0.2, 0.6), seed), 4),
+            rate,
+        );
+        let s3 = growing(
+            with_kinematic(gas_scene::<3>(50, 0.15, (0.3, 0.5), seed), 3),
+            rate,
+        );
+        let walled = growing(
+            with_moving_walls(with_kinematic(
+                inelastic(gas_scene::<2>(80, 0.3, (0.2, 0.6), seed), Some(1e-3)),
+                3,
+            )),
+            rate,
+        );
+        for drive in [
+            Drive::Events,
+            Drive::Kicks { every: 5 },
+            Drive::Frames { dt: 0.05 },
+        ] {
+            let label = format!("growing kinematic 2D seed {seed} {drive:?}");
+            let oracle = check_all_driven(&label, &s2, 1500, drive);
+            assert_verifies(&label, &s2, &oracle);
+            let label = format!("growing kinematic 3D seed {seed} {drive:?}");
+            let oracle = check_all_driven(&label, &s3, 1200, drive);
+            assert_verifies(&label, &s3, &oracle);
+        }
+        // All three together: kinematic bodies, per-body restitution with tc, moving walls.
+        let label = format!("growing kinematic restitution moving walls seed {seed}");
+        let oracle = check_all_driven(&label, &walled, 1500, Drive::FrameWalls { dt: 0.05 });
+        assert_verifies(&label, &walled, &oracle);
     }
 }
 

@@ -167,6 +167,12 @@ fn kinematic_bodies_are_validated() {
     );
     let e = scene(r#", "kinematic": 1"#, "").unwrap_err();
     assert!(e.contains("kinematic"), "{e}");
+    // Growing radii take kinematic bodies (see tests/growth.rs), and so does a thermostat,
+    // which does not reset them (see tests/thermostat.rs).
+    let growth = r#", "settings": {"growth": {"rate": 0.1}}"#;
+    assert_eq!(scene(r#", "kinematic": true"#, growth), Ok(()));
+    let thermostat = r#", "settings": {"thermostat": {"temperature": 1, "rate": 1}}"#;
+    assert_eq!(scene(r#", "kinematic": true"#, thermostat), Ok(()));
 }
 
 #[test]

@@ -339,10 +339,6 @@ fn bad_moving_walls_and_bad_steering_are_refused() {
         "{e}"
     );
     let e = invalid(&|s| {
-        s.settings.growth = Some(ccdsim::growth::Growth { rate: 0.1 });
-    });
-    assert!(e.to_string().contains("growth"), "{e}");
-    let e = invalid(&|s| {
         s.walls.clear();
         s.periodic = Some(Vector([10.0, 10.0]));
     });

@@ -81,6 +81,57 @@ fn restitution_and_tc_are_validated() {
     );
     let e = scene("", r#"{"tc": 0}"#).unwrap_err();
     assert!(e.contains("settings.tc"), "{e}");
-    let e = scene(r#", "restitution": 0.3"#, r#"{"growth": {"rate": 0.1}}"#).unwrap_err();
-    assert!(e.contains("settings.growth"), "{e}");
+    // Growth collisions take the pair's restitution too (see tests/growth.rs).
+    assert_eq!(
+        scene(r#", "restitution": 0.3"#, r#"{"growth": {"rate": 0.1}}"#),
+        Ok(())
+    );
+}
+
+#[test]
+fn verify_takes_each_collision_restitution_as_the_simulation_chose_it() {
+    // An elastic scene with one inelastic body, and an inelastic one under the TC model:
+    // the inelastic body's bounces lose energy, the others' keep it, and `verify` checks
+    // each with the restitution the simulation used (it once held every collision of an
+    // elastic scene to conservation).
+    let walls = box_walls(Vector([8.0, 4.0]));
+    let mut scenes = vec![Scene::<2> {
+        bodies: vec![
+            ball([2.0, 2.0], [-1.0, 0.3], Some(0.5)),
+            ball([6.0, 2.0], [1.0, 0.2], None),
+            ball([4.0, 1.0], [0.1, -0.7], Some(1.0)),
+        ],
+        walls: walls.clone(),
+        ..Scene::default()
+    }];
+    let mut tc = scenes[0].clone();
+    tc.settings.restitution = 0.8;
+    tc.settings.tc = Some(0.05);
+    tc.settings.gravity = Gravity::new(&[0.0, -9.81]);
+    scenes.push(tc);
+    for scene in &scenes {
+        let mut sim = Simulation::new(scene, "cells").unwrap();
+        let mut w = ccdsim::record::RunWriter::new(Vec::new(), "cells".into(), scene).unwrap();
+        sim.run_until_with(100.0, |c| w.write_event(c).unwrap());
+        let bytes = w.finish(sim.time()).unwrap();
+        let mut r = ccdsim::record::RunReader::<_, 2>::new(&bytes[..], "run".into()).unwrap();
+        let (events, end) = r.read_events().unwrap();
+        assert!(events.len() > 20);
+        let mut v = ccdsim::verify::Verifier::new(scene);
+        for c in &events {
+            v.check(c).unwrap();
+        }
+        let report = v.finish(end.unwrap()).unwrap();
+        assert!(report.energy_end() < report.energy_start());
+        // Read as if every body bounced elastically, the losses are violations.
+        let mut elastic = scene.clone();
+        elastic.settings.restitution = 1.0;
+        elastic.settings.tc = None;
+        for b in &mut elastic.bodies {
+            b.restitution = None;
+        }
+        let mut v = ccdsim::verify::Verifier::new(&elastic);
+        let err = events.iter().find_map(|c| v.check(c).err()).unwrap();
+        assert!(err.to_string().contains("kinetic energy"), "{err}");
+    }
 }

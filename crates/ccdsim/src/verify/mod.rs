@@ -18,7 +18,9 @@
 //! check minimises the distance less the growth (a convex function of time) by golden-section
 //! search, and kinetic energy, which growth collisions add, is not checked: instead the
 //! impulse must lie along the line of centres (the wall's normal) and give the normal
-//! relative velocity the growth rule asks for, `u' = (1 + e)·σ̇ − e·u`.
+//! relative velocity the growth rule asks for, `u' = (1 + e)·σ̇ − e·u` (at a moving wall,
+//! relative to the wall), with `e` the collision's restitution as the simulation chose it:
+//! the pair's mean of the bodies' own, or 1 under the TC model ([`restitution`]).
 //!
 //! Under uniform gravity ([`crate::gravity`]) bodies follow parabolas between events: the
 //! expected positions are the falling ones and velocities just before an event are the stored
@@ -33,6 +35,7 @@ mod closest;
 mod falling;
 mod moving_walls;
 mod proximity;
+mod restitution;
 mod slots;
 
 use crate::collision_filter::CollisionFilter;
@@ -48,6 +51,7 @@ use crate::wall::{wall_clearance, Wall};
 use closest::{closest_approach, closest_approach_growing, closest_to_wall};
 use falling::{closest_to_point_falling, closest_to_wall_falling};
 use proximity::Proximity;
+use restitution::Restitutions;
 
 /// Allowed overlap relative to the contact distance.
 pub const OVERLAP_TOLERANCE: f64 = 1e-9;
@@ -84,8 +88,9 @@ pub struct VerifyReport {
     /// energy drift, less this, is what its collisions changed.
     pub edit_energy: f64,
     /// Work the moving walls did on the bodies at their collisions, joules (see
-    /// [`crate::moving_wall`]): the run's energy drift, less this and the edits' energy, is
-    /// what its other collisions changed.
+    /// [`crate::moving_wall`]; under growing radii, with what the growth added at them): the
+    /// run's energy drift, less this and the edits' energy, is what its other collisions
+    /// changed.
     pub wall_work: f64,
     /// Largest overlap seen (relative to the contact distance), at events or in between.
     pub max_overlap: f64,
@@ -126,7 +131,8 @@ pub struct Verifier<const D: usize> {
     moving: Vec<Wall<D>>,
     wall_motion: Vec<crate::moving_wall::WallMotion<D>>,
     period: Option<Vector<D>>,
-    restitution: f64,
+    /// Each collision's coefficient of restitution, as the simulation chooses it.
+    restitutions: Restitutions,
     /// Which bodies are kinematic (infinite mass, straight lines, no walls, no other
     /// kinematic body); empty when none is.
     kinematic: Vec<bool>,
@@ -230,7 +236,7 @@ impl<const D: usize> Verifier<D> {
             moving: scene.moving_walls.iter().map(|m| m.wall).collect(),
             wall_motion: crate::moving_wall::start_motions(&scene.moving_walls, scene.start_time),
             period: scene.periodic,
-            restitution: scene.settings.restitution,
+            restitutions: Restitutions::new(scene),
             kinematic,
             filters: scene.filters(),
             last_time: scene.start_time,
@@ -402,11 +408,44 @@ impl<const D: usize> Verifier<D> {
         let (mi, mj) = (self.mass[i], self.mass[j]);
         // Just before the collision: under gravity the stored velocities have changed since.
         let (vi, vj) = (self.vel_of(i, t), self.vel_of(j, t));
+        // Chosen before the collision counts for the TC model, as the simulation does.
+        let e = self.restitutions.pair(i, j, t);
+        self.restitutions.note(i, t);
+        self.restitutions.note(j, t);
         if self.is_kinematic(i) || self.is_kinematic(j) {
             // A kinematic body (infinite mass) is a moving wall: neither momentum nor energy
-            // is kept, and two of them never meet.
+            // is kept, and two of them never meet. Under growth the bounce still obeys the
+            // growth rule, and the kinematic body keeps its velocity.
             if self.is_kinematic(i) && self.is_kinematic(j) {
                 return Err(self.fail(t, format!("kinematic bodies {i} and {j} collide")));
+            }
+            if let Some(law) = self.growth {
+                // The growth rule on the relative velocity, all of whose change the dynamic
+                // body takes: the kinematic one keeps its velocity.
+                let (k, v0, v1) = if self.is_kinematic(i) {
+                    (i, vi, c.vel[0])
+                } else {
+                    (j, vj, c.vel[1])
+                };
+                if (v1 - v0).norm() > 1e-9 * (v0.norm() + v1.norm() + f64::MIN_POSITIVE) {
+                    return Err(self.fail(
+                        t,
+                        format!(
+                            "kinematic body {k} changes velocity from {:?} to {:?}",
+                            v0.0, v1.0
+                        ),
+                    ));
+                }
+                let n = self.image(c.pos[1] - c.pos[0]);
+                let grow = law.speed(self.radius[i] + self.radius[j]);
+                self.check_growth_rule(
+                    t,
+                    n,
+                    vi - vj,
+                    c.vel[0] - c.vel[1],
+                    (-grow, e),
+                    &format!("bodies {i} and {j}"),
+                )?;
             }
             let e0 = 0.5 * (mi * vi.norm_sq() + mj * vj.norm_sq());
             let e1 = 0.5 * (mi * c.vel[0].norm_sq() + mj * c.vel[1].norm_sq());
@@ -439,11 +478,11 @@ impl<const D: usize> Verifier<D> {
                 n,
                 vi - vj,
                 c.vel[0] - c.vel[1],
-                -grow,
+                (-grow, e),
                 &format!("bodies {i} and {j}"),
             )?;
         } else {
-            self.check_energy(t, e0, e1, &format!("bodies {i} and {j}"))?;
+            self.check_energy(t, e0, e1, e, &format!("bodies {i} and {j}"))?;
         }
         self.report.body_collisions += 1;
         self.report.kinetic_energy_end += e1 - e0;
@@ -629,29 +668,34 @@ impl<const D: usize> Verifier<D> {
         let before = self.vel_of(i, t);
         let e0 = 0.5 * m * before.norm_sq();
         let e1 = 0.5 * m * c.vel[0].norm_sq();
-        if w >= self.walls.len() {
-            // In the moving wall's frame the collision is a static wall's.
-            let e0_there = 0.5 * m * (before - wall_velocity).norm_sq();
-            let e1_there = 0.5 * m * (c.vel[0] - wall_velocity).norm_sq();
-            self.check_energy(t, e0_there, e1_there, &format!("body {i} at wall {w}"))?;
-            self.report.wall_work += e1 - e0;
-            self.report.wall_collisions += 1;
-            self.report.kinetic_energy_end += e1 - e0;
-            return Ok(());
-        }
-        if self.supports.get(i).copied().flatten() == Some(w) {
+        let moving = w >= self.walls.len();
+        if !moving && self.supports.get(i).copied().flatten() == Some(w) {
             return self.check_slide_end(c, i, w);
         }
-        match (self.growth, wall_normal(&self.walls[w], c.pos[0])) {
+        // Chosen before the collision counts for the TC model, as the simulation does.
+        let e = self.restitutions.wall(i, t);
+        self.restitutions.note(i, t);
+        // In a moving wall's frame the collision is a static wall's (a static wall's velocity
+        // is zero, and `v − 0` is `v`).
+        let (v0, v1) = (before - wall_velocity, c.vel[0] - wall_velocity);
+        let who = format!("body {i} at wall {w}");
+        match (self.growth, wall_normal(&wall, c.pos[0])) {
             (Some(law), Some(n)) => {
                 let grow = law.speed(self.radius[i]);
-                let (v0, v1) = (before, c.vel[0]);
-                self.check_growth_rule(t, n, v0, v1, grow, &format!("body {i} at wall {w}"))?;
+                self.check_growth_rule(t, n, v0, v1, (grow, e), &who)?;
             }
             (Some(_), None) => {}
             // Coming to rest: `check_rests` checks the velocity along the wall.
             (None, _) if c.rests[0] => {}
-            (None, _) => self.check_energy(t, e0, e1, &format!("body {i} at wall {w}"))?,
+            (None, _) => {
+                let (e0, e1) = (0.5 * m * v0.norm_sq(), 0.5 * m * v1.norm_sq());
+                self.check_energy(t, e0, e1, e, &who)?;
+            }
+        }
+        if moving {
+            // The kinetic energy the collision changed, the growth's share included under
+            // growing radii (see `crate::moving_wall`).
+            self.report.wall_work += e1 - e0;
         }
         self.report.wall_collisions += 1;
         self.report.kinetic_energy_end += e1 - e0;
@@ -817,9 +861,11 @@ impl<const D: usize> Verifier<D> {
         Ok(out)
     }
 
-    fn check_energy(&self, t: f64, e0: f64, e1: f64, who: &str) -> Result<(), Violation> {
+    /// A collision of restitution `e` took the kinetic energy of `who` from `e0` to `e1`: an
+    /// elastic one keeps it, to rounding; an inelastic one does not add to it.
+    fn check_energy(&self, t: f64, e0: f64, e1: f64, e: f64, who: &str) -> Result<(), Violation> {
         let tol = CONSERVATION_TOLERANCE * e0 + f64::MIN_POSITIVE;
-        let bad = if self.restitution == 1.0 {
+        let bad = if e == 1.0 {
             (e1 - e0).abs() > tol
         } else {
             e1 - e0 > tol
@@ -836,19 +882,19 @@ impl<const D: usize> Verifier<D> {
     /// Growing radii: a collision's change of velocity `v0 → v1` (of the first body less the
     /// second; of the body alone at a wall) lies along `n` and turns the normal velocity `u`
     /// (along `n`, which points towards the first body) into `(1 + e)·σ̇ − e·u` when `u < σ̇`,
-    /// where `σ̇ = grow` (negated for pairs, whose `n` points the other way).
+    /// where `σ̇ = grow` (negated for pairs, whose `n` points the other way) and `e` is the
+    /// collision's restitution.
     fn check_growth_rule(
         &self,
         t: f64,
         n: Vector<D>,
         v0: Vector<D>,
         v1: Vector<D>,
-        grow: f64,
+        (grow, e): (f64, f64),
         who: &str,
     ) -> Result<(), Violation> {
         let n = n * (1.0 / n.norm());
         let (u0, u1) = (v0.dot(n), v1.dot(n));
-        let e = self.restitution;
         let (u0, u1, g) = if grow < 0.0 {
             (-u0, -u1, -grow)
         } else {
@@ -862,7 +908,8 @@ impl<const D: usize> Verifier<D> {
             return Err(self.fail(
                 t,
                 format!(
-                    "{who}: normal velocity {u0} becomes {u1}, the growth rule asks for {want}                      (and no change across the normal; found {sideways:e})"
+                    "{who}: normal velocity {u0} becomes {u1}, the growth rule asks for {want} \
+                     (and no change across the normal; found {sideways:e})"
                 ),
             ));
         }

@@ -3,8 +3,10 @@
 //!
 //! A moving wall's contact with a body is checked like a static wall's, in the wall's frame:
 //! the body's motion relative to it (velocity less the wall's) against the wall where it is
-//! at the start of the stretch. An elastic collision keeps the body's kinetic energy in that
-//! frame; in the lab frame the wall does work, which the report sums in `wall_work`.
+//! at the start of the stretch (with growing radii, less what the radius grew by since). An
+//! elastic collision keeps the body's kinetic energy in that frame, and under growth the
+//! collision obeys the growth rule there; in the lab frame the wall does work, which the
+//! report sums in `wall_work`.
 
 use super::{Verifier, Violation, OVERLAP_TOLERANCE};
 use crate::moving_wall::{translated, WallMotion};

@@ -108,6 +108,7 @@ impl<const D: usize> Verifier<D> {
         if let Some(e) = restitution {
             self.least_restitution = self.least_restitution.min(e);
         }
+        self.restitutions.add(i, restitution);
         let valid = radius.is_finite() && radius > 0.0 && mass > 0.0 && vel.is_finite();
         if !valid {
             return Err(self.fail(
