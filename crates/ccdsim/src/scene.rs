@@ -75,10 +75,10 @@ impl<const D: usize> BodySpec<D> {
         CollisionFilter::of(self.group, self.mask)
     }
 
-    /// Checks this body's own fields as body `i` of a scene with `settings`:
-    /// finite position and velocity, a positive radius and mass, a restitution in `[0, 1]`, and
-    /// nothing the scene's settings cannot be combined with. Errors name `bodies[i]`.
-    pub fn check_fields(&self, i: usize, settings: &Settings) -> Result<(), SceneError> {
+    /// Checks this body's own fields as body `i` of a scene: finite position and velocity, a
+    /// positive radius and mass (none for a kinematic body), a restitution in `[0, 1]`.
+    /// Errors name `bodies[i]`.
+    pub fn check_fields(&self, i: usize) -> Result<(), SceneError> {
         let f = |name: &str| format!("bodies[{i}].{name}");
         if !self.pos.is_finite() {
             return Err(SceneError::NonFinite(f("pos")));
@@ -458,7 +458,7 @@ impl<const D: usize> Scene<D> {
             validate_wall(w, wall)?;
         }
         for (i, b) in self.bodies.iter().enumerate() {
-            b.check_fields(i, &self.settings)?;
+            b.check_fields(i)?;
         }
         self.validate_moving_walls()?;
         self.validate_resolution()?;

@@ -14,7 +14,7 @@
 use super::{SimError, Simulation};
 use crate::edit::Edit;
 use crate::geom::Vector;
-use crate::scene::{BodySpec, Settings};
+use crate::scene::BodySpec;
 use crate::sensor::sensor_fits_box;
 use crate::world::World;
 
@@ -36,8 +36,8 @@ impl<const D: usize> Simulation<D> {
     /// its index, which names it until it is removed. Its id is `spec.id`, or the next id
     /// above every id so far ([`World::next_id`]).
     ///
-    /// Refused, leaving everything as it was, when a field is invalid or the world's settings
-    /// refuse it (as in a scene), the id is taken, the body would overlap a body it collides
+    /// Refused, leaving everything as it was, when a field is invalid (as in a scene), the id
+    /// is taken, the body would overlap a body it collides
     /// with, cross a wall or lie outside the table (as for [`Simulation::set_position`]) or
     /// the periodic box, or it is too large for a sensor in the periodic box
     /// (`2·(R + r) < L` on every axis, as scenes require, see
@@ -61,18 +61,7 @@ impl<const D: usize> Simulation<D> {
     /// ```
     pub fn add_body(&mut self, spec: BodySpec<D>) -> Result<usize, SimError> {
         let slot = self.world.free_slot().unwrap_or(self.world.len());
-        // The settings a body's fields are checked against (growth and a thermostat refuse
-        // some kinds of body), as a scene's would be.
-        let settings = Settings {
-            restitution: self.world.restitution(),
-            growth: self
-                .world
-                .growth()
-                .map(|law| crate::growth::Growth { rate: law.rate }),
-            thermostat: self.world.thermostat().copied(),
-            ..Settings::default()
-        };
-        spec.check_fields(slot, &settings)
+        spec.check_fields(slot)
             .map_err(|e| SimError::Input(format!("add_body: {e}")))?;
         if let (Some(size), Some(sensors)) = (self.world.periodic(), &self.sensors) {
             // A body larger than the scene's could overlap two images of a sensor.
