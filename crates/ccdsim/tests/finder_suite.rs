@@ -1562,20 +1562,6 @@ fn growing_radii_with_edits_and_rescales() {
     }
 }
 
-/// Replays `run`, a recorded run of `scene`, through `verify`, panicking on a violation.
-fn assert_verifies<const D: usize>(label: &str, scene: &Scene<D>, run: &Recorded) {
-    let mut r =
-        ccdsim::record::RunReader::<_, D>::new(&run.bytes[..], label.into()).expect("header");
-    let (events, end) = r.read_events().expect("records");
-    let mut v = ccdsim::verify::Verifier::new(scene);
-    for c in &events {
-        v.check(c)
-            .unwrap_or_else(|e| panic!("{label}: the oracle's run fails verify: {e}"));
-    }
-    v.finish(end.expect("an end record"))
-        .unwrap_or_else(|e| panic!("{label}: the oracle's run fails verify: {e}"));
-}
-
 #[test]
 fn growing_radii_with_moving_walls() {
     // A piston and a paddle, left at their velocities or steered every frame, against
@@ -1594,12 +1580,12 @@ fn growing_radii_with_moving_walls() {
         for drive in [Drive::Events, Drive::FrameWalls { dt: 0.05 }] {
             let label = format!("growing moving walls 2D seed {seed} {drive:?}");
             let oracle = check_all_driven(&label, &s2, 1200, drive);
-            assert_verifies(&label, &s2, &oracle);
+            verifies(&label, &s2, &oracle);
             let hits = moving_wall_hits(&s2, &oracle);
             assert!(hits.iter().all(|&h| h >= 3), "{label}: few hits {hits:?}");
             let label = format!("growing moving walls 3D seed {seed} {drive:?}");
             let oracle = check_all_driven(&label, &s3, 1000, drive);
-            assert_verifies(&label, &s3, &oracle);
+            verifies(&label, &s3, &oracle);
             let hits = moving_wall_hits(&s3, &oracle);
             assert!(hits.iter().all(|&h| h >= 3), "{label}: few hits {hits:?}");
         }
@@ -1639,10 +1625,10 @@ fn growing_radii_with_per_body_restitution() {
         for drive in [Drive::Events, Drive::Kicks { every: 11 }] {
             let label = format!("growing restitution 2D seed {seed} {drive:?}");
             let oracle = check_all_driven(&label, &s2, 1500, drive);
-            assert_verifies(&label, &s2, &oracle);
+            verifies(&label, &s2, &oracle);
             let label = format!("growing restitution 3D seed {seed} {drive:?}");
             let oracle = check_all_driven(&label, &s3, 1200, drive);
-            assert_verifies(&label, &s3, &oracle);
+            verifies(&label, &s3, &oracle);
         }
         let label = format!("growing restitution periodic 2D seed {seed}");
         check_periodic(&label, &p2, 1500, Drive::Events);
@@ -1863,15 +1849,15 @@ fn growing_radii_with_kinematic_bodies() {
         ] {
             let label = format!("growing kinematic 2D seed {seed} {drive:?}");
             let oracle = check_all_driven(&label, &s2, 1500, drive);
-            assert_verifies(&label, &s2, &oracle);
+            verifies(&label, &s2, &oracle);
             let label = format!("growing kinematic 3D seed {seed} {drive:?}");
             let oracle = check_all_driven(&label, &s3, 1200, drive);
-            assert_verifies(&label, &s3, &oracle);
+            verifies(&label, &s3, &oracle);
         }
         // All three together: kinematic bodies, per-body restitution with tc, moving walls.
         let label = format!("growing kinematic restitution moving walls seed {seed}");
         let oracle = check_all_driven(&label, &walled, 1500, Drive::FrameWalls { dt: 0.05 });
-        assert_verifies(&label, &walled, &oracle);
+        verifies(&label, &walled, &oracle);
     }
 }
 

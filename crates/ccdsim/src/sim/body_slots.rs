@@ -37,10 +37,9 @@ impl<const D: usize> Simulation<D> {
     /// above every id so far ([`World::next_id`]).
     ///
     /// Refused, leaving everything as it was, when a field is invalid (as in a scene), the id
-    /// is taken, the body would overlap a body it collides
-    /// with, cross a wall or lie outside the table (as for [`Simulation::set_position`]) or
-    /// the periodic box, or it is too large for a sensor in the periodic box
-    /// (`2·(R + r) < L` on every axis, as scenes require, see
+    /// is taken, the body would overlap a body it collides with, cross a wall or lie outside
+    /// the table (as for [`Simulation::set_position`]) or the periodic box, or it is too large
+    /// for a sensor in the periodic box (`2·(R + r) < L` on every axis, as scenes require, see
     /// [`crate::sensor::sensor_fits_box`]). See the module docs for the cost.
     ///
     /// With growing radii, `spec.radius` is the body's radius now: it grows from now on like

@@ -436,16 +436,7 @@ impl<const D: usize> Verifier<D> {
                         ),
                     ));
                 }
-                let n = self.image(c.pos[1] - c.pos[0]);
-                let grow = law.speed(self.radius[i] + self.radius[j]);
-                self.check_growth_rule(
-                    t,
-                    n,
-                    vi - vj,
-                    c.vel[0] - c.vel[1],
-                    (-grow, e),
-                    &format!("bodies {i} and {j}"),
-                )?;
+                self.check_pair_growth(c, law, (vi, vj), e)?;
             }
             let e0 = 0.5 * (mi * vi.norm_sq() + mj * vj.norm_sq());
             let e1 = 0.5 * (mi * c.vel[0].norm_sq() + mj * c.vel[1].norm_sq());
@@ -471,16 +462,7 @@ impl<const D: usize> Verifier<D> {
         let e0 = 0.5 * (mi * vi.norm_sq() + mj * vj.norm_sq());
         let e1 = 0.5 * (mi * c.vel[0].norm_sq() + mj * c.vel[1].norm_sq());
         if let Some(law) = self.growth {
-            let n = self.image(c.pos[1] - c.pos[0]);
-            let grow = law.speed(self.radius[i] + self.radius[j]);
-            self.check_growth_rule(
-                t,
-                n,
-                vi - vj,
-                c.vel[0] - c.vel[1],
-                (-grow, e),
-                &format!("bodies {i} and {j}"),
-            )?;
+            self.check_pair_growth(c, law, (vi, vj), e)?;
         } else {
             self.check_energy(t, e0, e1, e, &format!("bodies {i} and {j}"))?;
         }
@@ -877,6 +859,28 @@ impl<const D: usize> Verifier<D> {
             ));
         }
         Ok(())
+    }
+
+    /// The growth rule for the body collision `c` of growth law `law`, the bodies' velocities
+    /// just before it `(vi, vj)` and the pair's restitution `e`.
+    fn check_pair_growth(
+        &self,
+        c: &Collision<D>,
+        law: GrowthLaw,
+        (vi, vj): (Vector<D>, Vector<D>),
+        e: f64,
+    ) -> Result<(), Violation> {
+        let (i, j) = (c.event.a as usize, c.event.b as usize);
+        let n = self.image(c.pos[1] - c.pos[0]);
+        let grow = law.speed(self.radius[i] + self.radius[j]);
+        self.check_growth_rule(
+            c.event.time,
+            n,
+            vi - vj,
+            c.vel[0] - c.vel[1],
+            (-grow, e),
+            &format!("bodies {i} and {j}"),
+        )
     }
 
     /// Growing radii: a collision's change of velocity `v0 → v1` (of the first body less the
