@@ -182,8 +182,7 @@ pub fn gas_bench<const D: usize>(
         temperature: Some(1.0),
         ..GasConfig::default()
     })?;
-    let world = World::from_scene(&scene).map_err(SimError::from)?;
-    drop(scene);
+    let world = World::from_owned_scene(scene).map_err(SimError::from)?;
     let finder = make_finder::<D>(&cfg.finder, &cfg.finder_options).map_err(SimError::from)?;
     let mut sim = Simulation::from_world(world, finder)?;
     let equilibrate = cfg.equilibrate.unwrap_or(20 * cfg.n as u64);

@@ -14,8 +14,10 @@ use crate::scene::{Scene, SceneError};
 use crate::sensor::{SensorEvent, SensorTracker};
 use crate::thermostat::ResetClock;
 use crate::world::World;
+use image_counts::ImageCounts;
 
 mod body_slots;
+mod image_counts;
 pub(crate) use body_slots::reserve_count;
 mod resets;
 
@@ -121,8 +123,8 @@ pub struct Simulation<const D: usize> {
     stats: Stats,
     start_time: f64,
     /// Periodic worlds: per body, the whole periods its stored position has been shifted by
-    /// box exits, so that `stored + images · L` is its unwrapped position. Empty otherwise.
-    images: Vec<[i64; D]>,
+    /// box exits, so that `stored + images · L` is its unwrapped position. None otherwise.
+    images: ImageCounts<D>,
     /// The thermostat's reset sequence, if the scene has one.
     thermostat: Option<ResetClock>,
     /// Under gravity, the last event if its collision changed no body's position or velocity
@@ -174,11 +176,7 @@ impl<const D: usize> Simulation<D> {
             kinetic_energy_start: world.kinetic_energy(),
             ..Stats::default()
         };
-        let images = if world.periodic().is_some() {
-            vec![[0; D]; world.len()]
-        } else {
-            Vec::new()
-        };
+        let images = ImageCounts::new(world.len(), world.periodic().is_some());
         let thermostat = world
             .thermostat()
             .map(|th| ResetClock::new(th, world.len(), world.now()));
@@ -270,7 +268,7 @@ impl<const D: usize> Simulation<D> {
         };
         let raw = self.world.position_at(i, self.world.now());
         let wrapped = wrap_point(raw, &size);
-        let mut k = self.images[i];
+        let mut k = self.images.get(i);
         for d in 0..D {
             // `raw − wrapped` is a whole number of periods, up to the rounding of the wrap.
             k[d] += ((raw[d] - wrapped[d]) / size[d]).round() as i64;
@@ -455,8 +453,8 @@ impl<const D: usize> Simulation<D> {
         let face = e.b as usize - self.world.walls().len();
         resolve_exit(&mut self.world, e.a as usize, face, e.time);
         // `resolve_exit` moved the body back by one period through face `face`.
-        let image = &mut self.images[e.a as usize][face / 2];
-        *image += if face % 2 == 1 { 1 } else { -1 };
+        let step = if face % 2 == 1 { 1 } else { -1 };
+        self.images.shift(e.a as usize, face / 2, step);
         self.bodies_changed(&[e.a as usize]);
         if let Some(s) = &mut self.sensors {
             s.body_wrapped(&self.world, e.a as usize);
@@ -1026,9 +1024,9 @@ impl<const D: usize> Simulation<D> {
         let image = self.image(i);
         let p = self.position(i);
         self.world.set_state(i, p, vel, self.world.now());
-        if !self.images.is_empty() {
+        if self.images.is_counting() {
             // The stored position is now the wrapped one: its image is the whole offset.
-            self.images[i] = image;
+            self.images.set(i, image);
         }
     }
 
@@ -1108,9 +1106,9 @@ impl<const D: usize> Simulation<D> {
             )));
         }
         self.world.set_state(i, pos, vel, t);
-        if !self.images.is_empty() {
+        if self.images.is_counting() {
             // A teleport starts a new path: its unwrapped position is where it now is.
-            self.images[i] = [0; D];
+            self.images.set(i, [0; D]);
         }
         self.journal_edit(i);
         self.edited(i);

@@ -42,6 +42,22 @@ pub struct Body<const D: usize> {
     changes: u64,
 }
 
+impl<const D: usize> Body<D> {
+    /// Body `spec` as a scene starts it at time `t` (seconds): its stored motion from `t`.
+    fn at(spec: &BodySpec<D>, t: f64) -> Self {
+        Body {
+            motion: Motion {
+                pos: spec.pos,
+                vel: spec.vel,
+                time: t,
+            },
+            radius: spec.radius,
+            mass: spec.effective_mass(),
+            changes: 0,
+        }
+    }
+}
+
 /// Bodies and walls of a running simulation.
 ///
 /// Only collisions (and explicit edits) change a body's stored state, and only that body's:
@@ -94,22 +110,33 @@ impl<const D: usize> World<D> {
     /// Builds the world of a scene after validating it.
     pub fn from_scene(scene: &Scene<D>) -> Result<Self, SceneError> {
         scene.validate()?;
+        let t = scene.start_time;
+        let bodies = scene.bodies.iter().map(|b| Body::at(b, t)).collect();
+        Ok(Self::around(scene, bodies))
+    }
+
+    /// Builds the world of a scene after validating it, as [`World::from_scene`], taking the
+    /// scene: its body list becomes the world's in place, so a large scene and its world are
+    /// never held at once (a million-body scene holds about 110 MB of bodies, its world 64 MB).
+    pub fn from_owned_scene(mut scene: Scene<D>) -> Result<Self, SceneError> {
+        scene.validate()?;
+        let mut world = Self::around(&scene, Vec::new());
+        let t = scene.start_time;
+        // `Vec`'s in-place collection reuses the specs' allocation for the bodies, and the
+        // shrink hands its tail back.
+        world.bodies = std::mem::take(&mut scene.bodies)
+            .into_iter()
+            .map(|b| Body::at(&b, t))
+            .collect();
+        world.bodies.shrink_to_fit();
+        Ok(world)
+    }
+
+    /// The world of a validated scene with the given `bodies` (built from its body list).
+    fn around(scene: &Scene<D>, bodies: Vec<Body<D>>) -> Self {
         let n = scene.bodies.len();
-        Ok(World {
-            bodies: scene
-                .bodies
-                .iter()
-                .map(|b| Body {
-                    motion: Motion {
-                        pos: b.pos,
-                        vel: b.vel,
-                        time: scene.start_time,
-                    },
-                    radius: b.radius,
-                    mass: b.effective_mass(),
-                    changes: 0,
-                })
-                .collect(),
+        World {
+            bodies,
             id: (0..n).map(|i| scene.id_of(i)).collect(),
             walls: scene.walls.clone(),
             moving_walls: scene.moving_walls.iter().map(|m| m.wall).collect(),
@@ -158,7 +185,7 @@ impl<const D: usize> World<D> {
                 resting: scene.settings.rest_speed.is_some(),
             },
             now: scene.start_time,
-        })
+        }
     }
 
     /// Number of body slots: every index below it names a body or a vacant slot (see
@@ -945,5 +972,56 @@ impl<const D: usize> Body<D> {
     #[inline]
     pub fn is_kinematic(&self) -> bool {
         self.mass == f64::INFINITY
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::generate::{gas, GasConfig};
+
+    #[test]
+    fn an_owned_scene_builds_the_same_world() {
+        let mut scene = gas::<3>(&GasConfig {
+            n: 300,
+            packing: 0.3,
+            radius_min: 0.3,
+            radius_max: 0.5,
+            speed_max: 2.0,
+            seed: 7,
+            ..GasConfig::default()
+        })
+        .unwrap();
+        scene.bodies[4].id = Some(1000);
+        scene.bodies[9].restitution = Some(0.5);
+        scene.bodies[11].kinematic = true;
+        let borrowed = World::from_scene(&scene).unwrap();
+        let owned = World::from_owned_scene(scene).unwrap();
+        let state = |w: &World<3>| {
+            (0..w.len())
+                .map(|i| {
+                    let b = &w.bodies[i];
+                    (b.motion, b.radius.to_bits(), b.mass.to_bits(), b.changes)
+                })
+                .collect::<Vec<_>>()
+        };
+        assert_eq!(state(&owned), state(&borrowed));
+        assert_eq!(owned.ids(), borrowed.ids());
+        assert_eq!(owned.next_id(), 1001);
+        assert_eq!(owned.restitutions, borrowed.restitutions);
+        assert!(owned.is_kinematic(11) && owned.laws.kinematic);
+        assert_eq!(owned.bodies.capacity(), owned.len());
+    }
+
+    #[test]
+    fn an_owned_scene_is_validated() {
+        let mut scene = gas::<2>(&GasConfig {
+            n: 10,
+            packing: 0.2,
+            ..GasConfig::default()
+        })
+        .unwrap();
+        scene.bodies[3].radius = -1.0;
+        assert!(World::from_owned_scene(scene).is_err());
     }
 }

@@ -113,9 +113,7 @@ impl<const D: usize> Simulation<D> {
                 })
                 .collect();
             self.world.reserve(count, |k| park[k]);
-            if !self.images.is_empty() {
-                self.images.resize(self.world.len(), [0; D]);
-            }
+            self.images.resize(self.world.len());
             if let Some(clock) = &mut self.thermostat {
                 clock.grow(self.world.len(), now);
             }
@@ -129,8 +127,8 @@ impl<const D: usize> Simulation<D> {
             ..spec
         };
         let i = self.world.occupy(&stored, id);
-        if !self.images.is_empty() {
-            self.images[i] = [0; D];
+        if self.images.is_counting() {
+            self.images.set(i, [0; D]);
         }
         if !spec.kinematic {
             self.free_bodies += 1;
@@ -169,8 +167,8 @@ impl<const D: usize> Simulation<D> {
         }
         let laws = self.world.laws().copied();
         self.world.vacate(i);
-        if !self.images.is_empty() {
-            self.images[i] = [0; D];
+        if self.images.is_counting() {
+            self.images.set(i, [0; D]);
         }
         self.journal(Edit::Remove {
             body: i,
