@@ -69,7 +69,7 @@ pub enum Halt {
     },
     /// At the next event, at `time`, body `body` is no longer resolved: the rounding of the
     /// clock times its speed, plus that of its coordinates, is `error` metres, more than
-    /// [`RESOLUTION_LIMIT`](crate::resolution::RESOLUTION_LIMIT) of its radius.
+    /// [`crate::resolution::RESOLUTION_LIMIT`] of its radius.
     #[error(
         "at t = {time:e} s the rounding of time and position ({error:.2e} m) exceeds 5e-10 of the \
          radius of body {body}: f64 can no longer resolve its contacts, so the run stops \

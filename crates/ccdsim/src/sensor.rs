@@ -185,7 +185,7 @@ impl<const D: usize> SensorTracker<D> {
 
     /// Body `i`'s stored motion was replaced (a collision, an edit), or what it meets changed
     /// (its radius, when growth stops; the finder rebuilt): its next sensor event is computed
-    /// anew from [`SensorTracker::origin`] (its reference time, or the current time if that is
+    /// anew from its origin (its reference time, or the current time if that is
     /// later), where a body found strictly inside a sensor it is not known to overlap enters it
     /// at once, and one found strictly outside a sensor it is known to overlap leaves it at
     /// once. A removed body (a vacant slot) leaves every sensor at once. (On the sphere, the

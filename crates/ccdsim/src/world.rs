@@ -229,7 +229,7 @@ impl<const D: usize> World<D> {
         self.next_id
     }
 
-    /// The vacant slot the next added body fills, if any ([`World::occupy`] needs one).
+    /// The vacant slot the next added body fills, if any (adding a body needs one).
     #[must_use]
     pub fn free_slot(&self) -> Option<usize> {
         self.free.last().copied()

@@ -26,7 +26,8 @@ impl AllPairs {
 /// [`crate::periodic::toi_circle_circle_periodic`], and every body's box exit is an event too (a wall event
 /// naming face `f` as wall `walls.len() + f`). Pairs whose collision filters keep them apart
 /// ([`World::collides`]) have no event. In a growing world (see [`crate::growth`]) the
-/// functions are the growing forms ([`toi_pair`], [`toi_bodies_periodic`], [`toi_body_wall`]).
+/// functions are the growing forms ([`toi_pair`](crate::narrow::toi_pair),
+/// [`toi_bodies_periodic`], [`toi_body_wall`](crate::narrow::toi_body_wall)).
 #[must_use]
 pub fn all_pairs_next_event<const D: usize>(world: &World<D>) -> Option<Event> {
     let n = world.len();

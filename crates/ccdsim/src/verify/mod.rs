@@ -9,8 +9,8 @@
 //! distances measured between nearest images, and closest approaches are searched over every
 //! image the relative motion passes.
 //!
-//! The miss check looks at the pairs that its own broad phase ([`proximity`]: a hash grid of
-//! swept boxes in slabs of time, sharing no code with the finders) says may have come close,
+//! The miss check looks at the pairs that its own broad phase (`verify/proximity.rs`: a hash
+//! grid of swept boxes in slabs of time, sharing no code with the finders) says may have come close,
 //! so a replay costs about as much per event as the simulation; [`Verifier::all_pairs`]
 //! checks every pair instead, for tests and small runs.
 //!
@@ -20,13 +20,13 @@
 //! impulse must lie along the line of centres (the wall's normal) and give the normal
 //! relative velocity the growth rule asks for, `u' = (1 + e)·σ̇ − e·u` (at a moving wall,
 //! relative to the wall), with `e` the collision's restitution as the simulation chose it:
-//! the pair's mean of the bodies' own, or 1 under the TC model ([`restitution`]).
+//! the pair's mean of the bodies' own, or 1 under the TC model (`verify/restitution.rs`).
 //!
 //! Under uniform gravity ([`crate::gravity`]) bodies follow parabolas between events: the
 //! expected positions are the falling ones and velocities just before an event are the stored
 //! ones plus `g` times the time since. Two bodies share the acceleration, so a pair's relative
 //! motion stays linear and the pair checks run on positions and velocities taken at the start
-//! of each stretch; the closest approach to a wall follows the parabola (see [`falling`]).
+//! of each stretch; the closest approach to a wall follows the parabola (see `verify/falling.rs`).
 //! Kinetic energy is not conserved between events, so an elastic collision must conserve the
 //! kinetic energy of the pair (of the body, at a wall) at the contact time, and the report
 //! carries the potential energy as well.

@@ -59,8 +59,8 @@
 //!
 //! In a periodic world ([`crate::periodic`]) the oracle's time for a pair is the earliest
 //! contact over the images `k·L`, `k ∈ {−1, 0, 1}^D`, of the second body
-//! ([`toi_circle_circle_periodic`]), and each body's exit from the box is an event named like
-//! a wall. Exits depend on one body's state, so they go into the wall cache beside the walls
+//! ([`crate::periodic::toi_circle_circle_periodic`]), and each body's exit from the box is
+//! an event named like a wall. Exits depend on one body's state, so they go into the wall cache beside the walls
 //! (a periodic scene has none) and bound the growth of Δ like wall events do. The tree is
 //! built over the stored positions, which lie in the box, as before; besides its self-check
 //! it is pair-checked against each of its images shifted by `k·L` for half of the non-zero
