@@ -222,3 +222,39 @@ fn in_a_periodic_box_a_paddle_wraps_round_and_meets_bodies_across_the_faces() {
         v.finish(end.unwrap()).unwrap();
     }
 }
+
+#[test]
+fn verify_holds_a_kinematic_collision_to_the_bounce_off_a_moving_wall() {
+    // The paddle (1 m/s) meets the puck at rest at t = 2: the puck leaves at 2 m/s, the
+    // paddle keeps its velocity. A record where the paddle slows down, or where the puck
+    // leaves at the paddle's speed (relative normal velocity 1 becoming 0, not −1), or
+    // swerves, is rejected, with and without restitution of its own.
+    for restitution in [None, Some(0.5)] {
+        let mut puck = BodySpec::new(Vector([5.0, 2.0]), Vector([0.0, 0.0]), 0.5);
+        puck.restitution = restitution;
+        let scene = table(vec![paddle([2.0, 2.0], [1.0, 0.0]), puck]);
+        let mut sim = Simulation::new(&scene, "cells").unwrap();
+        let mut events = Vec::new();
+        // Before the paddle, which passes through walls, squeezes the puck on the far one.
+        sim.run_until_with(3.0, |c| events.push(*c));
+        assert_eq!(events.len(), 1);
+        let mut v = Verifier::new(&scene);
+        events.iter().try_for_each(|c| v.check(c)).unwrap();
+        v.finish(3.0).unwrap();
+        // e is the pair's mean: (1 + 0.5)/2 = 0.75 with the puck's own restitution.
+        let e = restitution.map_or(1.0, |r| (1.0 + r) / 2.0);
+        assert_eq!(events[0].vel[1].0, [1.0 + e, 0.0]);
+        let forge = |k: usize, vel: [f64; 2]| {
+            let mut forged = events.clone();
+            forged[0].vel[k] = Vector(vel);
+            let mut v = Verifier::new(&scene);
+            v.check(&forged[0]).unwrap_err().to_string()
+        };
+        let err = forge(0, [0.9, 0.0]);
+        assert!(err.contains("kinematic body 0 changes velocity"), "{err}");
+        let err = forge(1, [1.0, 0.0]);
+        assert!(err.contains("restitution rule"), "{err}");
+        let err = forge(1, [1.0 + e, 0.1]);
+        assert!(err.contains("restitution rule"), "{err}");
+    }
+}

@@ -414,29 +414,33 @@ impl<const D: usize> Verifier<D> {
         self.restitutions.note(j, t);
         if self.is_kinematic(i) || self.is_kinematic(j) {
             // A kinematic body (infinite mass) is a moving wall: neither momentum nor energy
-            // is kept, and two of them never meet. Under growth the bounce still obeys the
-            // growth rule, and the kinematic body keeps its velocity.
+            // is kept, and two of them never meet. The kinematic body keeps its velocity, and
+            // the dynamic one bounces off it as off a wall moving with it: the relative normal
+            // velocity turns from `u` to `−e·u` (with growth, to `(1 + e)·σ̇ − e·u`).
             if self.is_kinematic(i) && self.is_kinematic(j) {
                 return Err(self.fail(t, format!("kinematic bodies {i} and {j} collide")));
             }
-            if let Some(law) = self.growth {
-                // The growth rule on the relative velocity, all of whose change the dynamic
-                // body takes: the kinematic one keeps its velocity.
-                let (k, v0, v1) = if self.is_kinematic(i) {
-                    (i, vi, c.vel[0])
-                } else {
-                    (j, vj, c.vel[1])
-                };
-                if (v1 - v0).norm() > 1e-9 * (v0.norm() + v1.norm() + f64::MIN_POSITIVE) {
-                    return Err(self.fail(
-                        t,
-                        format!(
-                            "kinematic body {k} changes velocity from {:?} to {:?}",
-                            v0.0, v1.0
-                        ),
-                    ));
-                }
-                self.check_pair_growth(c, law, (vi, vj), e)?;
+            let (k, v0, v1) = if self.is_kinematic(i) {
+                (i, vi, c.vel[0])
+            } else {
+                (j, vj, c.vel[1])
+            };
+            if (v1 - v0).norm() > 1e-9 * (v0.norm() + v1.norm() + f64::MIN_POSITIVE) {
+                return Err(self.fail(
+                    t,
+                    format!(
+                        "kinematic body {k} changes velocity from {:?} to {:?}",
+                        v0.0, v1.0
+                    ),
+                ));
+            }
+            // A body left resting on a wall took the wall's reaction too (see
+            // `resting::pressed_impulse`); the rule is for free bounces.
+            if c.rests == [false; 2] {
+                let grow = self
+                    .growth
+                    .map_or(0.0, |law| law.speed(self.radius[i] + self.radius[j]));
+                self.check_pair_rule(c, grow, (vi, vj), e)?;
             }
             let e0 = 0.5 * (mi * vi.norm_sq() + mj * vj.norm_sq());
             let e1 = 0.5 * (mi * c.vel[0].norm_sq() + mj * c.vel[1].norm_sq());
@@ -462,7 +466,7 @@ impl<const D: usize> Verifier<D> {
         let e0 = 0.5 * (mi * vi.norm_sq() + mj * vj.norm_sq());
         let e1 = 0.5 * (mi * c.vel[0].norm_sq() + mj * c.vel[1].norm_sq());
         if let Some(law) = self.growth {
-            self.check_pair_growth(c, law, (vi, vj), e)?;
+            self.check_pair_rule(c, law.speed(self.radius[i] + self.radius[j]), (vi, vj), e)?;
         } else {
             self.check_energy(t, e0, e1, e, &format!("bodies {i} and {j}"))?;
         }
@@ -861,33 +865,34 @@ impl<const D: usize> Verifier<D> {
         Ok(())
     }
 
-    /// The growth rule for the body collision `c` of growth law `law`, the bodies' velocities
-    /// just before it `(vi, vj)` and the pair's restitution `e`.
-    fn check_pair_growth(
+    /// The growth rule for the body collision `c` whose contact distance grows at `grow`
+    /// metres per second (zero for fixed radii, where the rule is plain restitution), the
+    /// bodies' velocities just before it `(vi, vj)` and the pair's restitution `e`.
+    fn check_pair_rule(
         &self,
         c: &Collision<D>,
-        law: GrowthLaw,
+        grow: f64,
         (vi, vj): (Vector<D>, Vector<D>),
         e: f64,
     ) -> Result<(), Violation> {
         let (i, j) = (c.event.a as usize, c.event.b as usize);
-        let n = self.image(c.pos[1] - c.pos[0]);
-        let grow = law.speed(self.radius[i] + self.radius[j]);
+        // From the second body towards the first, as the rule takes it.
+        let n = self.image(c.pos[0] - c.pos[1]);
         self.check_growth_rule(
             c.event.time,
             n,
             vi - vj,
             c.vel[0] - c.vel[1],
-            (-grow, e),
+            (grow, e),
             &format!("bodies {i} and {j}"),
         )
     }
 
-    /// Growing radii: a collision's change of velocity `v0 → v1` (of the first body less the
-    /// second; of the body alone at a wall) lies along `n` and turns the normal velocity `u`
-    /// (along `n`, which points towards the first body) into `(1 + e)·σ̇ − e·u` when `u < σ̇`,
-    /// where `σ̇ = grow` (negated for pairs, whose `n` points the other way) and `e` is the
-    /// collision's restitution.
+    /// A collision's change of velocity `v0 → v1` (of the first body less the second; of the
+    /// body alone at a wall) lies along `n` and turns the normal velocity `u` (along `n`,
+    /// which points towards the first body) into `(1 + e)·σ̇ − e·u` when `u < σ̇`, where
+    /// `σ̇ = grow` is the speed at which the contact distance grows (zero for fixed radii) and
+    /// `e` the collision's restitution.
     fn check_growth_rule(
         &self,
         t: f64,
@@ -898,12 +903,7 @@ impl<const D: usize> Verifier<D> {
         who: &str,
     ) -> Result<(), Violation> {
         let n = n * (1.0 / n.norm());
-        let (u0, u1) = (v0.dot(n), v1.dot(n));
-        let (u0, u1, g) = if grow < 0.0 {
-            (-u0, -u1, -grow)
-        } else {
-            (u0, u1, grow)
-        };
+        let (u0, u1, g) = (v0.dot(n), v1.dot(n), grow);
         let want = if u0 < g { (1.0 + e) * g - e * u0 } else { u0 };
         let change = v1 - v0;
         let sideways = (change - n * change.dot(n)).norm();
@@ -912,8 +912,9 @@ impl<const D: usize> Verifier<D> {
             return Err(self.fail(
                 t,
                 format!(
-                    "{who}: normal velocity {u0} becomes {u1}, the growth rule asks for {want} \
-                     (and no change across the normal; found {sideways:e})"
+                    "{who}: normal velocity {u0} becomes {u1}, the {rule} rule asks for {want} \
+                     (and no change across the normal; found {sideways:e})",
+                    rule = if g == 0.0 { "restitution" } else { "growth" }
                 ),
             ));
         }
