@@ -1,6 +1,7 @@
 //! First contact of a point moving on a parabola with a ball: a ball under uniform gravity
 //! against a fixed point (a wall segment's end point), or two balls with different
-//! accelerations.
+//! accelerations; and every later one ([`contacts_accelerating`]), for the side of a rod,
+//! whose projected parabola may enter the cylinder around it twice ([`crate::rod`]).
 //!
 //! # A quartic
 //!
@@ -105,6 +106,37 @@ pub fn first_exit<const D: usize>(dp: Vector<D>, dv: Vector<D>, sigma: f64) -> O
     Some(t.max(0.0)).filter(|t| t.is_finite())
 }
 
+/// Time offsets `t ≥ 0`, seconds, at which a point at offset `dp` (metres) from the origin,
+/// moving at relative velocity `dv` (m/s) with constant relative acceleration `acc` (m/s²),
+/// comes into contact with the ball of radius `sigma` (metres) while approaching it, each time
+/// it does, in increasing order: the start of every stretch of time during which
+/// `f(t) = |dp + dv·t + ½·acc·t²|² − σ² ≤ 0` and `f'(t) < 0`. The first is
+/// [`first_contact_accelerating`]'s answer bit for bit; a later one is where the point enters
+/// again after leaving the ball (or turns back towards the centre inside it), found on the
+/// same isolated pieces of the quartic, by the same rules. A parabola approaches along at most
+/// two stretches (`f'` is a cubic with a positive leading coefficient); the third slot is
+/// for rounding at a double root of `f'`. With `acc` exactly zero the path is straight and
+/// enters once: [`first_contact`]'s answer alone.
+///
+/// What the side of a rod needs under gravity ([`crate::gravity`]): the ball meets the rod's
+/// side at an entry into the infinite cylinder around its line whose foot lies on the rod, and
+/// a parabola may enter the cylinder beyond an end, leave it, and come back over the rod.
+#[must_use]
+pub fn contacts_accelerating<const D: usize>(
+    dp: Vector<D>,
+    dv: Vector<D>,
+    acc: Vector<D>,
+    sigma: f64,
+) -> [Option<f64>; 3] {
+    match quartic(dp, dv, acc, sigma, 1.0) {
+        Quartic::Straight => [first_contact(dp, dv, sigma), None, None],
+        Quartic::Known(t) => [t, None, None],
+        Quartic::Scaled { parabola, m } => parabola
+            .contacts()
+            .map(|t| t.map(|t| ldexp(t, m)).filter(|t| t.is_finite())),
+    }
+}
+
 /// The common body of [`first_contact_accelerating`] (`sign` 1) and
 /// [`first_exit_accelerating`] (`sign` −1, the sign of `f` flipped); `straight` is the
 /// straight-line answer, for a zero acceleration and for flights too fast for the quartic.
@@ -117,37 +149,73 @@ fn first_turn<const D: usize>(
     sign: f64,
     straight: fn(Vector<D>, Vector<D>, f64) -> Option<f64>,
 ) -> Option<f64> {
+    match quartic(dp, dv, acc, sigma, sign) {
+        Quartic::Straight => straight(dp, dv, sigma),
+        Quartic::Known(t) => t,
+        Quartic::Scaled { parabola, m } => parabola
+            .first_contact()
+            .map(|t| ldexp(t, m))
+            .filter(|t| t.is_finite()),
+    }
+}
+
+/// How [`quartic`] sets a problem up.
+enum Quartic<const D: usize> {
+    /// The straight-line function answers: a zero acceleration, or a flight too fast for the
+    /// quartic's coefficients.
+    Straight,
+    /// The answer is known without solving: non-finite inputs, or a point at the origin
+    /// against a ball of radius zero.
+    Known(Option<f64>),
+    /// The scaled quartic, and the power of two of its unit of time (seconds).
+    Scaled {
+        /// The scaled problem.
+        parabola: Parabola<D>,
+        /// Times in its units are `2^m` seconds.
+        m: i32,
+    },
+}
+
+/// The problem of [`first_turn`] and [`contacts_accelerating`] in scaled units (see the module
+/// docs), or what answers it without the quartic.
+#[inline]
+fn quartic<const D: usize>(
+    dp: Vector<D>,
+    dv: Vector<D>,
+    acc: Vector<D>,
+    sigma: f64,
+    sign: f64,
+) -> Quartic<D> {
     if acc.0.iter().all(|&a| a == 0.0) {
-        return straight(dp, dv, sigma);
+        return Quartic::Straight;
     }
     if !(dp.is_finite() && dv.is_finite() && acc.is_finite() && sigma.is_finite()) {
-        return None;
+        return Quartic::Known(None);
     }
     let reach = max_abs(dp).max(sigma.abs());
     if reach == 0.0 {
         // f = |x|² ≥ 0 only touches zero: never a contact that approaches; the point
         // leaves at once.
-        return (sign < 0.0).then_some(0.0);
+        return Quartic::Known((sign < 0.0).then_some(0.0));
     }
     // Lengths in units of 2^e > reach, times in units of 2^m with |acc|∞ in [1, 4) after.
     let e = exponent(reach) + 1;
     let m = (e - exponent(max_abs(acc)) + 1).div_euclid(2);
     let v = scaled(dv, m - e);
     if max_abs(v) > MAX_SCALED_SPEED {
-        return straight(dp, dv, sigma);
+        return Quartic::Straight;
     }
     let r = ldexp(sigma, -e);
-    let parabola = Parabola {
-        p: scaled(dp, -e),
-        v,
-        h: scaled(acc, 2 * m - e - 1),
-        r_sq: r * r,
-        sign,
-    };
-    parabola
-        .first_contact()
-        .map(|t| ldexp(t, m))
-        .filter(|t| t.is_finite())
+    Quartic::Scaled {
+        parabola: Parabola {
+            p: scaled(dp, -e),
+            v,
+            h: scaled(acc, 2 * m - e - 1),
+            r_sq: r * r,
+            sign,
+        },
+        m,
+    }
 }
 
 /// Above this scaled speed (2²⁰⁰) `f(T)` could overflow: `T ~ |v|`, `f(T) ~ T⁴`.
@@ -181,6 +249,35 @@ impl<const D: usize> Parabola<D> {
 
     /// The contract of [`first_contact_accelerating`] in scaled time.
     fn first_contact(&self) -> Option<f64> {
+        let cuts = self.cuts();
+        cuts.windows(2).find_map(|w| self.piece_contact(w[0], w[1]))
+    }
+
+    /// The contract of [`contacts_accelerating`] in scaled time: every piece's contact, less
+    /// one found at a piece's start (a cut) where the pair was already in contact and
+    /// approaching at the end of the piece before, whose contact started there already.
+    fn contacts(&self) -> [Option<f64>; 3] {
+        let cuts = self.cuts();
+        let mut found = [None; 3];
+        let mut k = 0;
+        for (i, w) in cuts.windows(2).enumerate() {
+            let Some(t) = self.piece_contact(w[0], w[1]) else {
+                continue;
+            };
+            // Only a contact in contact and approaching at the piece's start is found at it,
+            // and the piece before, which ends there in the same state, found its own.
+            if i > 0 && t == w[0] {
+                continue;
+            }
+            found[k] = Some(t);
+            k += 1;
+        }
+        found
+    }
+
+    /// The cuts of `[0, T]` at the roots of `f''`, between which `f'` is monotone (see the
+    /// module docs): four, non-decreasing, the first `0` and the last `T`.
+    fn cuts(&self) -> [f64; 4] {
         let a4 = self.h.norm_sq();
         let a3 = 2.0 * self.v.dot(self.h);
         let a2 = self.v.norm_sq() + 2.0 * self.p.dot(self.h);
@@ -206,31 +303,30 @@ impl<const D: usize> Parabola<D> {
             cuts[1] = clip(r1.min(r2));
             cuts[2] = clip(r1.max(r2));
         }
-        for w in cuts.windows(2) {
-            let (l, r) = (w[0], w[1]);
-            let [approach_l, approach_r] = [l, r].map(|t| self.eval(t)[1] < 0.0);
-            let found = match (approach_l, approach_r) {
-                (true, true) => self.descent(l, r),
-                (false, false) => None,
-                _ => {
-                    // f' is monotone here: one turn, narrowed to adjacent floats.
-                    let slope = |t| {
-                        let [_, d1, d2] = self.eval(t);
-                        (d1, d2)
-                    };
-                    let (lo, hi) = refine(slope, |d1| (d1 < 0.0) == approach_r, l, r);
-                    if approach_l {
-                        self.descent(l, lo)
-                    } else {
-                        self.descent(hi, r)
-                    }
+        cuts
+    }
+
+    /// On the piece `[l, r]` between two cuts, where `f'` is monotone: the first time the pair
+    /// is in contact and approaching, if it is there.
+    fn piece_contact(&self, l: f64, r: f64) -> Option<f64> {
+        let [approach_l, approach_r] = [l, r].map(|t| self.eval(t)[1] < 0.0);
+        match (approach_l, approach_r) {
+            (true, true) => self.descent(l, r),
+            (false, false) => None,
+            _ => {
+                // f' is monotone here: one turn, narrowed to adjacent floats.
+                let slope = |t| {
+                    let [_, d1, d2] = self.eval(t);
+                    (d1, d2)
+                };
+                let (lo, hi) = refine(slope, |d1| (d1 < 0.0) == approach_r, l, r);
+                if approach_l {
+                    self.descent(l, lo)
+                } else {
+                    self.descent(hi, r)
                 }
-            };
-            if found.is_some() {
-                return found;
             }
         }
-        None
     }
 
     /// On `[a, b]`, where the pair approaches throughout (`f` decreasing): the first time it is
@@ -519,6 +615,88 @@ mod tests {
         got
     }
 
+    /// [`contacts_accelerating`] for a point outside the ball (`f(0) > 0`), checked against
+    /// the exact quartic: its first answer is [`first_contact_accelerating`]'s bit for bit;
+    /// every answer is, within `1e-9·(1 + t)`, either the next root where `f` turns negative
+    /// (the roots alternate, down then up) or, inside the ball, a root of `f'` where the point
+    /// turns back towards the centre; and every root where `f` turns negative has its answer.
+    /// Tangencies (a repeated root of `f` or `f'`) are outside what rounding decides and
+    /// skipped.
+    fn checked_contacts<const D: usize>(dp: Vector<D>, dv: Vector<D>, acc: Vector<D>, sigma: f64) {
+        let all = contacts_accelerating(dp, dv, acc, sigma);
+        let first = first_contact_accelerating(dp, dv, acc, sigma);
+        assert_eq!(all[0].map(f64::to_bits), first.map(f64::to_bits));
+        let got: Vec<f64> = all.iter().flatten().copied().collect();
+        assert_eq!(
+            got.len(),
+            all.iter().take_while(|t| t.is_some()).count(),
+            "{all:?}"
+        );
+        assert!(
+            got.windows(2).all(|w| w[0] < w[1]),
+            "not increasing: {got:?}"
+        );
+        let dot = |a: Vector<D>, b: Vector<D>| -> BigRational {
+            (0..D).map(|k| rat(a[k]) * rat(b[k])).sum()
+        };
+        let f = vec![
+            dot(dp, dp) - rat(sigma) * rat(sigma),
+            rat(2.0) * dot(dp, dv),
+            dot(dv, dv) + dot(dp, acc),
+            dot(dv, acc),
+            dot(acc, acc) / rat(4.0),
+        ];
+        let zero = BigRational::zero();
+        if f[0] <= zero || acc.0.iter().all(|&a| a == 0.0) || dp.norm_sq() <= sigma * sigma {
+            return;
+        }
+        let (sf, sd) = (sturm(f.clone()), sturm(derivative(&f)));
+        if sf[sf.len() - 1].len() > 1 || sd[sd.len() - 1].len() > 1 {
+            return;
+        }
+        let bound = f[..4]
+            .iter()
+            .fold(rat(1.0), |m, c| m.max((c / &f[4]).abs()))
+            + rat(1.0);
+        let value = |t: &BigRational| f.iter().rev().fold(zero.clone(), |acc, c| acc * t + c);
+        let mut entries = 0;
+        for &t in &got {
+            let tol = rat(1e-9) * (rat(1.0) + rat(t));
+            let (a, b) = ((rat(t) - &tol).max(zero.clone()), rat(t) + &tol);
+            if roots(&sf, &a, &b) >= 1 {
+                assert_eq!(roots(&sf, &zero, &a), 2 * entries, "entry at {t}: {got:?}");
+                entries += 1;
+            } else {
+                assert!(
+                    value(&rat(t)) < zero,
+                    "{t} is no entry and not inside: {got:?}"
+                );
+                assert!(
+                    roots(&sd, &a, &b) >= 1,
+                    "{t} is no entry and no turn: {got:?}"
+                );
+            }
+        }
+        let total = roots(&sf, &zero, &bound);
+        assert_eq!(entries, total / 2, "{got:?}: {total} roots");
+    }
+
+    #[test]
+    fn a_point_thrown_through_the_ball_and_back_enters_twice() {
+        // x = −3 + 3t − t²/2 along the axis, against the ball of radius 1: in through x = −1
+        // at t = 3 − √5, out through x = 1 at t = 2, turned at x = 1.5 (t = 3), and back in
+        // through x = 1 at t = 4.
+        let (dp, dv, acc) = (v2(-3.0, 0.0), v2(3.0, 0.0), v2(-1.0, 0.0));
+        let all = contacts_accelerating(dp, dv, acc, 1.0);
+        assert!(close(all[0], 3.0 - 5f64.sqrt()), "{all:?}");
+        assert!(close(all[1], 4.0), "{all:?}");
+        assert_eq!(all[2], None);
+        checked_contacts(dp, dv, acc, 1.0);
+        // Zero acceleration: the straight line's one contact.
+        let straight = contacts_accelerating(dp, dv, Vector::ZERO, 1.0);
+        assert_eq!(straight, [first_contact(dp, dv, 1.0), None, None]);
+    }
+
     fn close(t: Option<f64>, want: f64) -> bool {
         t.is_some_and(|t| (t - want).abs() <= 8.0 * f64::EPSILON * want)
     }
@@ -753,6 +931,21 @@ mod tests {
             if dp.norm() + dv.norm() * t + 0.5 * acc.norm() * t * t <= 1_048_576.0 * sigma {
                 checked(dp, dv, acc, sigma, 0.0);
             }
+        }
+
+        #[test]
+        fn every_contact_matches_exact_reference(
+            dp in vec3(5.0), dv in vec3(5.0), acc in vec3(10.0), sigma in 0.1..2.0f64,
+        ) {
+            checked_contacts(dp, dv, acc, sigma);
+        }
+
+        #[test]
+        fn every_contact_matches_exact_reference_aimed(
+            dp in vec3(5.0), acc in vec3(10.0), sigma in 0.1..2.0f64,
+            tau in 0.1..3.0f64, q in vec3(1.0),
+        ) {
+            checked_contacts(dp, aimed(dp, acc, sigma, tau, q), acc, sigma);
         }
 
         #[test]

@@ -23,6 +23,22 @@
 //! first (unlike straight motion, where a first entry beyond the end can only be followed by
 //! the end point's contact).
 //!
+//! In 3D a segment is a rod: the ball meets the capsule of radius `r` around it. Across the
+//! rod (projected on the plane perpendicular to it) the centre's parabola is a parabola still,
+//! so its squared distance from the rod's line is a quartic, and the ball meets the side
+//! where it enters the infinite cylinder around the line with its foot on the rod
+//! ([`crate::rod`]). That quartic may have two entries (the parabola enters the cylinder
+//! beyond an end, leaves it, and comes back over the rod), so each entry is a candidate
+//! ([`crate::accelerated_contact::contacts_accelerating`]); the end points are the same
+//! quartic against a point as in 2D. A ball does not rest on a rod: held on top of it, it would roll off around it,
+//! a pendulum's motion that no finder could bound exactly, so `settings.rest_speed` holds
+//! bodies on planes (and 2D segments) only, and a ball on a rod bounces with the restitution
+//! as on any wall that does not hold it. A ball off the rod's top is pushed round by its
+//! bounces and falls off, unless they die away first: bounces that die away on a rod end, as
+//! on such a wall, in a contact without normal speed repeated at one instant, and the run
+//! stops there with [`crate::Halt::Resting`], the same event for every finder (the TC model,
+//! `settings.tc`, keeps such bounces elastic instead).
+//!
 //! # What "approaching" means
 //!
 //! As for straight motion, a pair (or body and wall) in contact collides at once only while
@@ -264,9 +280,10 @@ pub(crate) fn face_roots(c: f64, b: f64, a: f64) -> Option<(f64, f64)> {
     })
 }
 
-/// Time of impact of a ball (radius `r`) falling under `g` with the segment `[a, b]` (2D
-/// only; scenes with gravity refuse segments in 3D): the first entry into the slab around its
-/// line whose foot lies on the segment, or the first contact with an end point
+/// Time of impact of a ball (radius `r`) falling under `g` with the segment `[a, b]`: in 2D
+/// the first entry into the slab around its line whose foot lies on the segment, in 3D the
+/// first entry into the cylinder around it whose foot lies on the segment (a rod,
+/// [`crate::rod`]), or the first contact with an end point
 /// ([`first_contact_accelerating`]), from the ball's reference time. With zero gravity this is
 /// [`toi_circle_segment`](crate::narrow::toi_circle_segment) bit for bit.
 #[must_use]
@@ -292,8 +309,11 @@ pub fn toi_circle_segment_falling_ends<const D: usize>(
     g: &Vector<D>,
     ends: [bool; 2],
 ) -> Option<f64> {
-    if *g == Vector::ZERO || D != 2 {
+    if *g == Vector::ZERO {
         return crate::narrow::toi_circle_segment_ends(m, r, a, b, ends);
+    }
+    if D != 2 {
+        return crate::rod::toi_circle_rod_falling_ends(m, r, a, b, g, ends);
     }
     let u = b - a;
     let l2 = u.norm_sq();

@@ -86,8 +86,9 @@ pub enum Halt {
     /// Under gravity body `body` touches wall `wall` at `time` without any normal speed, and
     /// the collision there changed nothing and would repeat at the same time for ever: a ball
     /// come to rest on a floor where bodies do not rest (no `settings.rest_speed`, or a wall
-    /// that does not hold them), or one wedged between two walls, alternating between them
-    /// (see [`crate::resting`]). The run stops.
+    /// that does not hold them, such as a rod, a segment in 3D, on which it would roll), or one
+    /// wedged between two walls, alternating between them (see [`crate::resting`]). The run
+    /// stops.
     #[error(
         "at t = {time:e} s body {body} touches wall {wall} with no normal speed under gravity, again and again at one instant (it rests there, or is wedged between two walls): such contacts are not simulated, so the run stops (settings.rest_speed lets bodies rest on single walls)"
     )]

@@ -43,6 +43,7 @@ pub mod record;
 pub mod resolution;
 pub mod resolve;
 pub mod resting;
+pub mod rod;
 pub mod scene;
 pub mod sensor;
 pub mod sensor_crossing;

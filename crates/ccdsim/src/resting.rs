@@ -42,6 +42,12 @@
 //! one instant until it stops likewise ([`crate::Halt::Resting`]): it rests on one wall at a
 //! time.
 //!
+//! **Rods do not hold.** In 3D a segment is a rod, round in section: a body held on top of
+//! it would roll off around it, a pendulum's motion, not a parabola. Bodies rest on planes
+//! only there; a slow ball bounces on a rod with the restitution, and bounces that die away
+//! on it end the run with [`crate::Halt::Resting`], as on any wall that does not hold them
+//! (see [`crate::gravity`]).
+//!
 //! **Segments end.** A body sliding on a segment reaches one of its ends: it slides on along
 //! a segment that goes straight on from there, flies off if it is fast enough to clear the
 //! edge, and otherwise (it would roll over the edge, a motion no finder can bound exactly)
@@ -60,7 +66,9 @@ use crate::wall::Wall;
 /// squared: `g − n (g·n)/(n·n)` for a plane that `g` presses bodies on (`g·n < 0`); for a
 /// 2D segment not along `g`, the part of `g` along it, `u (g·u)/(u·u)` (`u = b − a`), which
 /// is exact across an axis-aligned segment. `None` where no body rests: a plane gravity
-/// does not press on, a segment along gravity, a segment in 3D (which gravity refuses).
+/// does not press on, a segment along gravity, a segment in 3D (a rod: a body held on it
+/// would roll off around it, a motion no finder bounds exactly, so it bounces there instead;
+/// see [`crate::gravity`]).
 #[must_use]
 pub fn slide_acceleration<const D: usize>(g: &Vector<D>, wall: &Wall<D>) -> Option<Vector<D>> {
     match *wall {

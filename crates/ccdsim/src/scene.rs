@@ -524,7 +524,7 @@ impl<const D: usize> Scene<D> {
     }
 
     /// `settings.gravity`: one finite component per dimension, and none of what it cannot be
-    /// combined with yet (a periodic box, growing radii, segments in 3D).
+    /// combined with yet (a periodic box, growing radii).
     fn validate_gravity(&self) -> Result<(), SceneError> {
         let Some(g) = self.settings.gravity else {
             return Ok(());
@@ -554,11 +554,6 @@ impl<const D: usize> Scene<D> {
         if self.settings.growth.is_some() {
             return unsupported("gravity cannot be combined with settings.growth yet");
         }
-        if D == 3 && self.walls.iter().any(|w| matches!(w, Wall::Segment { .. })) {
-            return unsupported(
-                "gravity with segment walls in 3D is not supported yet; use planes",
-            );
-        }
         Ok(())
     }
 
@@ -583,8 +578,8 @@ impl<const D: usize> Scene<D> {
         Ok(())
     }
 
-    /// Moving walls: finite, non-degenerate, a finite velocity; not in periodic scenes, nor
-    /// (under gravity) 3D segments; no body crossing one at the start.
+    /// Moving walls: finite, non-degenerate, a finite velocity; not in periodic scenes; no
+    /// body crossing one at the start.
     fn validate_moving_walls(&self) -> Result<(), SceneError> {
         let first = self.walls.len();
         for (k, m) in self.moving_walls.iter().enumerate() {
@@ -597,11 +592,6 @@ impl<const D: usize> Scene<D> {
             };
             if self.periodic.is_some() {
                 return unsupported("a periodic scene has no walls, moving or not");
-            }
-            if D == 3 && self.settings.gravity.is_some() && matches!(m.wall, Wall::Segment { .. }) {
-                return unsupported(
-                    "gravity with segment walls in 3D is not supported yet; use planes",
-                );
             }
             validate_wall(first + k, &m.wall).map_err(|e| match e {
                 SceneError::NonFinite(_) => SceneError::NonFinite(field.clone()),

@@ -114,14 +114,25 @@ fn scenes_with_gravity_are_validated() {
         s.validate(),
         Err(SceneError::NonFinite("settings.gravity".into()))
     );
-    // Segments in 3D are not supported under gravity yet.
+    // Segments in 3D (rods) are served under gravity, static and moving (see `tests/rods.rs`).
     let mut s = dropped_ball(1.0, 1.0);
     s.walls.push(Wall::Segment {
         a: Vector([1.0, 1.0, 30.0]),
         b: Vector([3.0, 1.0, 30.0]),
     });
-    let e = s.validate().unwrap_err().to_string();
-    assert!(e.contains("segment walls in 3D"), "{e}");
+    s.moving_walls.push(ccdsim::MovingWall {
+        wall: Wall::Segment {
+            a: Vector([1.0, 3.0, 20.0]),
+            b: Vector([3.0, 3.0, 20.0]),
+        },
+        velocity: Vector([0.0, 0.0, -1.0]),
+    });
+    assert_eq!(s.validate(), Ok(()));
+    let text = r#"{"dim": 3, "settings": {"gravity": [0, 0, -9.81]},
+        "bodies": [{"pos": [1, 1, 5], "vel": [0, 0, 0], "radius": 0.5}],
+        "walls": [{"a": [0, 1, 1], "b": [2, 1, 1]}],
+        "moving_walls": [{"a": [0, 3, 1], "b": [2, 3, 1], "velocity": [0, 0, 1]}]}"#;
+    assert!(AnyScene::from_json(text).is_ok());
 }
 
 #[test]

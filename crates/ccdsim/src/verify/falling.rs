@@ -277,6 +277,44 @@ mod tests {
     }
 
     #[test]
+    fn rods_in_3d_match_dense_sampling() {
+        // A segment in 3D (a rod) takes the same candidates: its line's distance is the norm
+        // of the components across it, still a quadratic in time, and its end points' too.
+        let rod = Wall::Segment {
+            a: Vector([0.0, 0.0, 0.0]),
+            b: Vector([4.0, 1.0, -1.0]),
+        };
+        let mut state = 11u64;
+        let mut next = || {
+            state = state
+                .wrapping_mul(6_364_136_223_846_793_005)
+                .wrapping_add(1_442_695_040_888_963_407);
+            (state >> 11) as f64 / (1u64 << 53) as f64
+        };
+        for _ in 0..200 {
+            let m = Motion {
+                pos: Vector([12.0 * next() - 4.0, 6.0 * next() - 3.0, 6.0 * next() - 1.0]),
+                vel: Vector([
+                    10.0 * next() - 5.0,
+                    10.0 * next() - 5.0,
+                    10.0 * next() - 5.0,
+                ]),
+                time: 0.0,
+            };
+            let g = Vector([2.0 * next() - 1.0, 2.0 * next() - 1.0, -10.0 * next()]);
+            let t = 2.0 * next();
+            let (d, at) = closest_to_wall_falling(&rod, &m, t, &g);
+            let dense = sampled(&rod, &m, t, &g);
+            assert!((wall_clearance(&rod, m.falling_at(at, &g)) - d).abs() < 1e-12);
+            assert!(
+                d <= dense + 1e-12,
+                "{d} > sampled {dense} ({m:?}, {g:?}, {t})"
+            );
+            assert!(d >= dense - 1e-3, "{d} ≪ sampled {dense}");
+        }
+    }
+
+    #[test]
     fn plane_in_3d_and_degenerate_windows() {
         let floor = Wall::Plane {
             point: Vector([0.0, 0.0, 1.0]),
