@@ -223,7 +223,7 @@ pub fn toi_circle_plane_falling<const D: usize>(
 /// The roots of `h(t) = k`, `h(t) = c + b·t + a·t²`, at which `h` falls through `k`
 /// (`falling`) or rises through it: at most one each for a proper parabola, taken in the
 /// cancellation-free forms; tangent touches (a zero discriminant) are no crossing.
-fn crossing(c: f64, b: f64, a: f64, k: f64, falling: bool) -> Option<f64> {
+pub(crate) fn crossing(c: f64, b: f64, a: f64, k: f64, falling: bool) -> Option<f64> {
     let c = c - k;
     if a == 0.0 {
         return ((b < 0.0) == falling && b != 0.0).then(|| -c / b);

@@ -551,9 +551,6 @@ impl<const D: usize> Scene<D> {
                  use walls",
             );
         }
-        if self.settings.growth.is_some() {
-            return unsupported("gravity cannot be combined with settings.growth yet");
-        }
         if D == 3 && self.walls.iter().any(|w| matches!(w, Wall::Segment { .. })) {
             return unsupported(
                 "gravity with segment walls in 3D is not supported yet; use planes",
@@ -562,7 +559,7 @@ impl<const D: usize> Scene<D> {
         Ok(())
     }
 
-    /// `settings.rest_speed`: positive and finite, under gravity.
+    /// `settings.rest_speed`: positive and finite, under gravity, with fixed radii.
     fn validate_rest_speed(&self) -> Result<(), SceneError> {
         let Some(speed) = self.settings.rest_speed else {
             return Ok(());
@@ -578,6 +575,17 @@ impl<const D: usize> Scene<D> {
             return Err(SceneError::Unsupported {
                 field: field(),
                 why: "bodies rest on walls only under gravity; set settings.gravity".into(),
+            });
+        }
+        if self.settings.growth.is_some() {
+            // A resting body whose radius grows would have to move its centre off the wall
+            // at Γ·r while it slides, which the resting motion (a parabola along the wall)
+            // does not model: refused rather than approximated.
+            return Err(SceneError::Unsupported {
+                field: field(),
+                why: "bodies cannot rest on walls while their radii grow (settings.growth); \
+                      leave rest_speed out and let them bounce"
+                    .into(),
             });
         }
         Ok(())

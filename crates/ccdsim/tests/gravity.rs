@@ -105,8 +105,21 @@ fn scenes_with_gravity_are_validated() {
     assert!(e.contains("settings.gravity"), "{e}");
     let e = err(r#"{"gravity": [0, -1]}"#, r#", "periodic": [10, 10]"#);
     assert!(e.contains("periodic box"), "{e}");
-    let e = err(r#"{"gravity": [0, -1], "growth": {"rate": 0.1}}"#, "");
-    assert!(e.contains("settings.growth"), "{e}");
+    // Gravity combines with growing radii (sedimented packings, see `ccdsim::falling_growth`);
+    // resting contacts do not: a resting body would have to move off its wall as it grows.
+    let scene = AnyScene::from_json(&text(r#"{"gravity": [0, -1], "growth": {"rate": 0.1}}"#, ""));
+    let AnyScene::D2(s) = scene.unwrap() else {
+        panic!("2D")
+    };
+    assert_eq!(s.settings.growth.map(|g| g.rate), Some(0.1));
+    let e = err(
+        r#"{"gravity": [0, -1], "growth": {"rate": 0.1}, "rest_speed": 0.1}"#,
+        "",
+    );
+    assert!(
+        e.contains("settings.rest_speed") && e.contains("settings.growth"),
+        "{e}"
+    );
     // NaN cannot be written in JSON; through the API it is refused too.
     let mut s = dropped_ball(1.0, 1.0);
     s.settings.gravity = Gravity::new(&[0.0, f64::NAN, 0.0]);
