@@ -23,6 +23,8 @@
 //! first (unlike straight motion, where a first entry beyond the end can only be followed by
 //! the end point's contact).
 //!
+//! With growing radii too, see [`crate::falling_growth`].
+//!
 //! # What "approaching" means
 //!
 //! As for straight motion, a pair (or body and wall) in contact collides at once only while

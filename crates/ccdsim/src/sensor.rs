@@ -6,7 +6,9 @@
 //! body's path is a line or, under gravity, a parabola, so the overlap starts and ends at
 //! roots of a quadratic or a quartic: [`first_contact_accelerating`] and
 //! [`first_exit_accelerating`] give them with the same guarantees as the collisions' (no
-//! root skipped; each narrowed to adjacent floats). A body that starts inside a sensor, or is
+//! root skipped; each narrowed to adjacent floats), and with growing radii under gravity their
+//! growing forms ([`first_contact_accelerating_growing`], [`first_exit_accelerating_growing`]).
+//! A body that starts inside a sensor, or is
 //! put there by an edit, enters it at that instant.
 //!
 //! In a periodic box of sides `L` a sensor is seen through its images: a body overlaps it

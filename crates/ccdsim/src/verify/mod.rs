@@ -30,6 +30,11 @@
 //! Kinetic energy is not conserved between events, so an elastic collision must conserve the
 //! kinetic energy of the pair (of the body, at a wall) at the contact time, and the report
 //! carries the potential energy as well.
+//!
+//! Under gravity with growing radii ([`crate::falling_growth`]) the growth rule is checked
+//! with the velocities at the contact time, two falling bodies' miss check is growth's (their
+//! relative motion is linear), and the closest approach along a parabola (to a wall, or of a
+//! falling body to a kinematic one) is taken less the growth ([`falling`]).
 
 mod closest;
 mod falling;
