@@ -34,7 +34,7 @@
 //! Under gravity with growing radii ([`crate::falling_growth`]) the growth rule is checked
 //! with the velocities at the contact time, two falling bodies' miss check is growth's (their
 //! relative motion is linear), and the closest approach along a parabola (to a wall, or of a
-//! falling body to a kinematic one) is taken less the growth ([`falling`]).
+//! falling body to a kinematic one) is taken less the growth (see the `falling` module).
 
 mod closest;
 mod falling;
