@@ -551,6 +551,18 @@ impl<const D: usize> Scene<D> {
                  use walls",
             );
         }
+        // `crate::falling_growth` meets segments in 2D only: refused in 3D even where gravity
+        // alone serves them.
+        let segment_3d = |w: &Wall<D>| D == 3 && matches!(w, Wall::Segment { .. });
+        if self.settings.growth.is_some()
+            && (self.walls.iter().any(segment_3d)
+                || self.moving_walls.iter().any(|m| segment_3d(&m.wall)))
+        {
+            return unsupported(
+                "gravity with settings.growth and segment walls in 3D is not supported yet; \
+                 use planes",
+            );
+        }
         if D == 3 && self.walls.iter().any(|w| matches!(w, Wall::Segment { .. })) {
             return unsupported(
                 "gravity with segment walls in 3D is not supported yet; use planes",

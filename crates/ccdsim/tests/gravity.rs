@@ -138,6 +138,14 @@ fn scenes_with_gravity_are_validated() {
     });
     let e = s.validate().unwrap_err().to_string();
     assert!(e.contains("segment walls in 3D"), "{e}");
+    // With growing radii too, whatever gravity alone serves: the growing segment contact is
+    // 2D only.
+    s.settings.growth = Some(ccdsim::growth::Growth { rate: 0.1 });
+    let e = s.validate().unwrap_err().to_string();
+    assert!(
+        e.contains("settings.growth") && e.contains("segment walls in 3D"),
+        "{e}"
+    );
 }
 
 #[test]
