@@ -18,6 +18,15 @@
 //! roots, where `f`, `f'` and `f''` are all positive by a wide margin. A root can be missed
 //! only where `f` dips below zero by no more than its rounding error (a graze).
 //!
+//! # Growing radii
+//!
+//! With growing radii ([`crate::growth`]) the contact distance is linear in time,
+//! `σ(t) = σ + σ̇·t`, and `f(t) = |x(t)|² − σ(t)²` is still a quartic with the same leading
+//! coefficient: `σ̇` only lowers the coefficients of `t²` and `t` by `σ̇²` and `2σσ̇`, and the
+//! derivative chain isolates its roots as before ([`first_contact_accelerating_growing`]).
+//! With `σ̇ = 0` every value computed is the fixed-radius one bit for bit (the terms it adds
+//! are exact zeros). Growth rates are positive, so `σ(t) > 0` and `f = 0` means `|x| = σ`.
+//!
 //! # Scale
 //!
 //! Lengths are divided by a power of two above `max(|dp|∞, σ)` and times by one near the
@@ -26,6 +35,7 @@
 //! of two in length and time gets the scaled answer bit for bit, and nothing overflows.
 
 use crate::geom::Vector;
+use crate::growth::{first_contact_growing, first_exit_growing};
 use crate::narrow::first_contact;
 
 /// Time offset `t ≥ 0`, seconds, at which a point at offset `dp` (metres) from the origin,
@@ -55,7 +65,25 @@ pub fn first_contact_accelerating<const D: usize>(
     acc: Vector<D>,
     sigma: f64,
 ) -> Option<f64> {
-    first_turn(dp, dv, acc, sigma, 1.0, first_contact)
+    first_turn(dp, dv, acc, sigma, 0.0, 1.0, first_contact)
+}
+
+/// [`first_contact_accelerating`] for a contact distance that grows linearly in time,
+/// `sigma + sigma_dot·t` (metres; `sigma_dot` ≥ 0, m/s): two growing balls with different
+/// accelerations, or a growing ball falling onto a fixed point (see the module docs). With
+/// `acc` exactly zero it is [`crate::growth::first_contact_growing`] bit for bit; with
+/// `sigma_dot` zero, [`first_contact_accelerating`] bit for bit.
+#[must_use]
+pub fn first_contact_accelerating_growing<const D: usize>(
+    dp: Vector<D>,
+    dv: Vector<D>,
+    acc: Vector<D>,
+    sigma: f64,
+    sigma_dot: f64,
+) -> Option<f64> {
+    first_turn(dp, dv, acc, sigma, sigma_dot, 1.0, |p, v, s| {
+        first_contact_growing(p, v, s, sigma_dot)
+    })
 }
 
 /// Time offset `t ≥ 0`, seconds, at which a point at offset `dp` (metres) from the origin,
@@ -73,7 +101,24 @@ pub fn first_exit_accelerating<const D: usize>(
     acc: Vector<D>,
     sigma: f64,
 ) -> Option<f64> {
-    first_turn(dp, dv, acc, sigma, -1.0, first_exit)
+    first_turn(dp, dv, acc, sigma, 0.0, -1.0, first_exit)
+}
+
+/// [`first_exit_accelerating`] from a ball whose radius grows linearly in time,
+/// `sigma + sigma_dot·t` (metres; `sigma_dot` ≥ 0, m/s): a growing body leaving a sensor
+/// under gravity. With `acc` exactly zero it is [`crate::growth::first_exit_growing`] bit
+/// for bit; with `sigma_dot` zero, [`first_exit_accelerating`] bit for bit.
+#[must_use]
+pub fn first_exit_accelerating_growing<const D: usize>(
+    dp: Vector<D>,
+    dv: Vector<D>,
+    acc: Vector<D>,
+    sigma: f64,
+    sigma_dot: f64,
+) -> Option<f64> {
+    first_turn(dp, dv, acc, sigma, sigma_dot, -1.0, |p, v, s| {
+        first_exit_growing(p, v, s, sigma_dot)
+    })
 }
 
 /// Time offset `t ≥ 0` at which a point at offset `dp` moving in a straight line at `dv` is
@@ -128,7 +173,7 @@ pub fn contacts_accelerating<const D: usize>(
     acc: Vector<D>,
     sigma: f64,
 ) -> [Option<f64>; 3] {
-    match quartic(dp, dv, acc, sigma, 1.0) {
+    match quartic(dp, dv, acc, sigma, 0.0, 1.0) {
         Quartic::Straight => [first_contact(dp, dv, sigma), None, None],
         Quartic::Known(t) => [t, None, None],
         Quartic::Scaled { parabola, m } => parabola
@@ -138,18 +183,20 @@ pub fn contacts_accelerating<const D: usize>(
 }
 
 /// The common body of [`first_contact_accelerating`] (`sign` 1) and
-/// [`first_exit_accelerating`] (`sign` −1, the sign of `f` flipped); `straight` is the
-/// straight-line answer, for a zero acceleration and for flights too fast for the quartic.
+/// [`first_exit_accelerating`] (`sign` −1, the sign of `f` flipped), and of their growing
+/// forms (`sigma_dot` > 0); `straight` is the straight-line answer, for a zero acceleration
+/// and for flights too fast for the quartic.
 #[inline]
 fn first_turn<const D: usize>(
     dp: Vector<D>,
     dv: Vector<D>,
     acc: Vector<D>,
     sigma: f64,
+    sigma_dot: f64,
     sign: f64,
-    straight: fn(Vector<D>, Vector<D>, f64) -> Option<f64>,
+    straight: impl Fn(Vector<D>, Vector<D>, f64) -> Option<f64>,
 ) -> Option<f64> {
-    match quartic(dp, dv, acc, sigma, sign) {
+    match quartic(dp, dv, acc, sigma, sigma_dot, sign) {
         Quartic::Straight => straight(dp, dv, sigma),
         Quartic::Known(t) => t,
         Quartic::Scaled { parabola, m } => parabola
@@ -177,19 +224,26 @@ enum Quartic<const D: usize> {
 }
 
 /// The problem of [`first_turn`] and [`contacts_accelerating`] in scaled units (see the module
-/// docs), or what answers it without the quartic.
+/// docs), against a contact distance `sigma + sigma_dot·t`, or what answers it without the
+/// quartic.
 #[inline]
 fn quartic<const D: usize>(
     dp: Vector<D>,
     dv: Vector<D>,
     acc: Vector<D>,
     sigma: f64,
+    sigma_dot: f64,
     sign: f64,
 ) -> Quartic<D> {
     if acc.0.iter().all(|&a| a == 0.0) {
         return Quartic::Straight;
     }
-    if !(dp.is_finite() && dv.is_finite() && acc.is_finite() && sigma.is_finite()) {
+    if !(dp.is_finite()
+        && dv.is_finite()
+        && acc.is_finite()
+        && sigma.is_finite()
+        && sigma_dot.is_finite())
+    {
         return Quartic::Known(None);
     }
     let reach = max_abs(dp).max(sigma.abs());
@@ -202,7 +256,9 @@ fn quartic<const D: usize>(
     let e = exponent(reach) + 1;
     let m = (e - exponent(max_abs(acc)) + 1).div_euclid(2);
     let v = scaled(dv, m - e);
-    if max_abs(v) > MAX_SCALED_SPEED {
+    // A speed, scaled like the velocity.
+    let rd = ldexp(sigma_dot, m - e);
+    if max_abs(v).max(rd.abs()) > MAX_SCALED_SPEED {
         return Quartic::Straight;
     }
     let r = ldexp(sigma, -e);
@@ -211,6 +267,8 @@ fn quartic<const D: usize>(
             p: scaled(dp, -e),
             v,
             h: scaled(acc, 2 * m - e - 1),
+            r,
+            rd,
             r_sq: r * r,
             sign,
         },
@@ -222,11 +280,16 @@ fn quartic<const D: usize>(
 const MAX_SCALED_SPEED: f64 = 1.606_938_044_258_990_3e60;
 
 /// `x(t) = p + v·t + h·t²` in scaled units (`h` is half the acceleration, `|h|∞` in
-/// `[½, 2)`, `|p|∞, √r_sq < 1`).
+/// `[½, 2)`, `|p|∞, r < 1`), against the contact distance `r + rd·t`.
 struct Parabola<const D: usize> {
     p: Vector<D>,
     v: Vector<D>,
     h: Vector<D>,
+    /// The contact distance at `t = 0`.
+    r: f64,
+    /// Its growth speed (0 for fixed radii).
+    rd: f64,
+    /// `r²`, as the fixed-radius evaluation always took it.
     r_sq: f64,
     /// 1 for contacts; −1 for exits, whose `f` is flipped (`σ² − |x|²`).
     sign: f64,
@@ -236,14 +299,24 @@ impl<const D: usize> Parabola<D> {
     /// `[f, f', f'']` at `t`, from `x(t)` and `ẋ(t)` in Horner form rather than from the
     /// expanded coefficients: near a contact `|x| ≈ σ`, so the rounding error is of order
     /// `ε·σ·|terms of x|`, not `ε·|terms of x|²` (a point arriving from far away).
+    /// A growing contact distance `s = r + rd·t` subtracts `s²`, `2·rd·s` and `2·rd²`; with
+    /// `rd = 0` the fixed-radius values are kept as they were computed, bit for bit.
     #[inline]
     fn eval(&self, t: f64) -> [f64; 3] {
         let x = self.p + (self.v + self.h * t) * t;
         let xd = self.v + self.h * (2.0 * t);
+        if self.rd == 0.0 {
+            return [
+                self.sign * (x.norm_sq() - self.r_sq),
+                self.sign * (2.0 * x.dot(xd)),
+                self.sign * (2.0 * (xd.norm_sq() + 2.0 * x.dot(self.h))),
+            ];
+        }
+        let s = self.r + self.rd * t;
         [
-            self.sign * (x.norm_sq() - self.r_sq),
-            self.sign * (2.0 * x.dot(xd)),
-            self.sign * (2.0 * (xd.norm_sq() + 2.0 * x.dot(self.h))),
+            self.sign * (x.norm_sq() - s * s),
+            self.sign * (2.0 * (x.dot(xd) - self.rd * s)),
+            self.sign * (2.0 * (xd.norm_sq() + 2.0 * x.dot(self.h) - self.rd * self.rd)),
         ]
     }
 
@@ -280,8 +353,9 @@ impl<const D: usize> Parabola<D> {
     fn cuts(&self) -> [f64; 4] {
         let a4 = self.h.norm_sq();
         let a3 = 2.0 * self.v.dot(self.h);
-        let a2 = self.v.norm_sq() + 2.0 * self.p.dot(self.h);
-        let a1 = 2.0 * self.p.dot(self.v);
+        // The growth's terms are exact zeros for fixed radii: the bits stay.
+        let a2 = self.v.norm_sq() + 2.0 * self.p.dot(self.h) - self.rd * self.rd;
+        let a1 = 2.0 * (self.p.dot(self.v) - self.r * self.rd);
         let a0 = self.p.norm_sq() - self.r_sq;
         // With |a_i| ≤ a4·M^(4−i), every root of f (and, by Gauss–Lucas, of f' and f'') lies
         // below 2M; at 4M the leading term outweighs the rest threefold, so rounding cannot

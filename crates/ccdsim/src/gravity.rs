@@ -30,14 +30,16 @@
 //! ([`crate::rod`]). That quartic may have two entries (the parabola enters the cylinder
 //! beyond an end, leaves it, and comes back over the rod), so each entry is a candidate
 //! ([`crate::accelerated_contact::contacts_accelerating`]); the end points are the same
-//! quartic against a point as in 2D. A ball does not rest on a rod: held on top of it, it would roll off around it,
-//! a pendulum's motion that no finder could bound exactly, so `settings.rest_speed` holds
-//! bodies on planes (and 2D segments) only, and a ball on a rod bounces with the restitution
-//! as on any wall that does not hold it. A ball off the rod's top is pushed round by its
+//! quartic against a point as in 2D. A ball does not rest on a rod: held on top of it, it
+//! would roll off around it, a pendulum's motion that no finder could bound exactly, so
+//! `settings.rest_speed` holds bodies on planes (and 2D segments) only, and a ball on a rod
+//! bounces with the restitution as on any wall that does not hold it. A ball off the rod's top is pushed round by its
 //! bounces and falls off, unless they die away first: bounces that die away on a rod end, as
 //! on such a wall, in a contact without normal speed repeated at one instant, and the run
 //! stops there with [`crate::Halt::Resting`], the same event for every finder (the TC model,
 //! `settings.tc`, keeps such bounces elastic instead).
+//!
+//! With growing radii too, see [`crate::falling_growth`].
 //!
 //! # What "approaching" means
 //!
@@ -239,7 +241,7 @@ pub fn toi_circle_plane_falling<const D: usize>(
 /// The roots of `h(t) = k`, `h(t) = c + b·t + a·t²`, at which `h` falls through `k`
 /// (`falling`) or rises through it: at most one each for a proper parabola, taken in the
 /// cancellation-free forms; tangent touches (a zero discriminant) are no crossing.
-fn crossing(c: f64, b: f64, a: f64, k: f64, falling: bool) -> Option<f64> {
+pub(crate) fn crossing(c: f64, b: f64, a: f64, k: f64, falling: bool) -> Option<f64> {
     let c = c - k;
     if a == 0.0 {
         return ((b < 0.0) == falling && b != 0.0).then(|| -c / b);

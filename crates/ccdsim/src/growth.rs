@@ -34,6 +34,9 @@
 //! by pair collisions of dynamic bodies, kinetic energy is not (it grows by the work of the
 //! growth).
 //!
+//! Under gravity too, see [`crate::falling_growth`]: pairs keep this quadratic (falling bodies
+//! have no relative acceleration), walls and kinematic bodies take parabolas.
+//!
 //! # Exactness
 //!
 //! Every finder evaluates pairs through the functions of this module when the world grows,

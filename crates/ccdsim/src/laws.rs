@@ -1,5 +1,6 @@
 //! The laws that shape motion between events besides each body's velocity: growing radii
-//! ([`crate::growth`]) and uniform gravity ([`crate::gravity`]).
+//! ([`crate::growth`]) and uniform gravity ([`crate::gravity`]), alone or together
+//! ([`crate::falling_growth`]).
 //!
 //! Every finder passes them to the narrow phase's dispatchers ([`crate::narrow::toi_pair`],
 //! [`crate::narrow::toi_body_wall`], …) as `Option<&Laws<D>>`: `None` in a world with neither,

@@ -23,6 +23,7 @@ pub mod collision_filter;
 pub mod discrete;
 pub mod edit;
 pub mod event;
+pub mod falling_growth;
 pub mod finder;
 pub mod generate;
 pub mod geom;

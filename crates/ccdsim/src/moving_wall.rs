@@ -15,7 +15,8 @@
 //! velocity (it has infinite mass), so the body's kinetic energy changes by the work the
 //! wall does.
 //!
-//! **Growing radii** ([`crate::growth`]) change nothing in that frame: the ball grows as it
+//! **Growing radii** ([`crate::growth`]) change nothing in that frame, with gravity or
+//! without ([`crate::falling_growth`]): the ball grows as it
 //! would against a static wall, so against a plane the distance of its centre, linear in
 //! time, meets its radius, linear in time, and against a segment the growing-pair quadratic
 //! finds the contact with the line or an end point (a point of radius zero). The collision
@@ -30,6 +31,7 @@
 //! under the events' total order. Both are the same whatever the finder, so every finder
 //! still gives the all-pairs oracle's events bit for bit.
 
+use crate::falling_growth::toi_circle_wall_falling_growing;
 use crate::geom::Vector;
 use crate::gravity::toi_circle_wall_falling;
 use crate::narrow::{toi_body_wall, Motion};
@@ -125,10 +127,14 @@ pub fn toi_body_moving_wall<const D: usize>(world: &World<D>, i: usize, k: usize
         time: t0,
     };
     let there = translated(&world.moving_wall_base(k), wall.offset_at(t0));
-    match world.gravity_of(i) {
+    match (world.gravity_of(i), world.growth()) {
+        // Growing and falling: the parabola against the growing radius.
+        (Some(a), Some(law)) => {
+            toi_circle_wall_falling_growing(&relative, world.radius(i), &there, &a, law)
+        }
         // The body's own acceleration: gravity's, or its slide's on the wall it rests on.
-        Some(a) => toi_circle_wall_falling(&relative, world.radius(i), &there, &a),
-        None => toi_body_wall(&relative, world.radius(i), &there, world.laws()),
+        (Some(a), None) => toi_circle_wall_falling(&relative, world.radius(i), &there, &a),
+        (None, _) => toi_body_wall(&relative, world.radius(i), &there, world.laws()),
     }
 }
 

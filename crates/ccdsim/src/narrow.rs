@@ -4,6 +4,7 @@
 //! pair, never earlier than the later of the two reference times, or `None`. A pair that
 //! rounding left overlapping while approaching collides at once; a receding pair never does.
 
+use crate::falling_growth::{toi_circle_circle_falling_growing, toi_circle_wall_falling_growing};
 use crate::geom::Vector;
 use crate::gravity::{toi_circle_circle_falling, toi_circle_wall_falling};
 use crate::growth::{toi_circle_circle_growing, toi_circle_wall_growing};
@@ -303,8 +304,9 @@ pub fn toi_bodies_shifted<const D: usize>(
     toi_pair_shifted(&a.motion, a.radius, &b.motion, b.radius, shift, laws)
 }
 
-/// The pair function under laws in force: gravity's ([`toi_circle_circle_falling`]; scenes
-/// with gravity have fixed radii) or growth's ([`toi_circle_circle_growing`]).
+/// The pair function under laws in force: gravity's ([`toi_circle_circle_falling`]),
+/// growth's ([`toi_circle_circle_growing`]), or both together's
+/// ([`toi_circle_circle_falling_growing`]).
 #[inline]
 fn toi_pair_under<const D: usize>(
     a: &Motion<D>,
@@ -315,7 +317,8 @@ fn toi_pair_under<const D: usize>(
     laws: &Laws<D>,
 ) -> Option<f64> {
     match (&laws.gravity, &laws.growth) {
-        (Some(g), _) => toi_circle_circle_falling(a, ra, b, rb, shift, g),
+        (Some(g), Some(law)) => toi_circle_circle_falling_growing(a, ra, b, rb, shift, g, law),
+        (Some(g), None) => toi_circle_circle_falling(a, ra, b, rb, shift, g),
         (None, Some(law)) => toi_circle_circle_growing(a, ra, b, rb, shift, law),
         (None, None) => toi_circle_circle_shifted(a, ra, b, rb, shift),
     }
@@ -325,7 +328,8 @@ fn toi_pair_under<const D: usize>(
 /// an open world evaluates it: [`toi_pair`], except in a world with kinematic bodies, where
 /// two kinematic bodies never meet and a kinematic body, which gravity does not move, meets
 /// a falling one at the first root of the quartic of their relative motion
-/// ([`crate::gravity::toi_circle_circle_accelerating`]).
+/// ([`crate::gravity::toi_circle_circle_accelerating`], with growing radii
+/// [`crate::falling_growth::toi_circle_circle_accelerating_growing`]).
 #[must_use]
 #[inline(always)]
 pub fn toi_pair_bodies<const D: usize>(
@@ -346,8 +350,20 @@ fn toi_kinematic_pair<const D: usize>(a: &Body<D>, b: &Body<D>, laws: &Laws<D>) 
     if ka && kb {
         return None;
     }
-    match &laws.gravity {
-        Some(g) if ka || kb => {
+    match (&laws.gravity, &laws.growth) {
+        (Some(g), Some(law)) if ka || kb => {
+            let acc = |k: bool| if k { Vector::ZERO } else { *g };
+            crate::falling_growth::toi_circle_circle_accelerating_growing(
+                &a.motion,
+                a.radius,
+                &acc(ka),
+                &b.motion,
+                b.radius,
+                &acc(kb),
+                law,
+            )
+        }
+        (Some(g), None) if ka || kb => {
             let acc = |k: bool| if k { Vector::ZERO } else { *g };
             crate::gravity::toi_circle_circle_accelerating(
                 &a.motion,
@@ -455,7 +471,8 @@ pub fn toi_body_wall_of<const D: usize>(
     }
 }
 
-/// [`toi_circle_wall`], or under the world's laws its falling or growing form.
+/// [`toi_circle_wall`], or under the world's laws its falling, growing, or falling and
+/// growing form.
 #[must_use]
 #[inline]
 pub fn toi_body_wall<const D: usize>(
@@ -466,6 +483,11 @@ pub fn toi_body_wall<const D: usize>(
 ) -> Option<f64> {
     match laws {
         None => toi_circle_wall(m, r, wall),
+        Some(Laws {
+            gravity: Some(g),
+            growth: Some(law),
+            ..
+        }) => toi_circle_wall_falling_growing(m, r, wall, g, law),
         Some(Laws {
             gravity: Some(g), ..
         }) => toi_circle_wall_falling(m, r, wall, g),

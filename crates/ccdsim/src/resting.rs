@@ -1,5 +1,10 @@
 //! Resting and sliding contacts under gravity (`settings.rest_speed`).
 //!
+//! Radii are fixed here: scenes refuse `rest_speed` with `settings.growth`, since a resting
+//! body whose radius grows would have to move its centre off the wall at `Γ·r` while it
+//! slides, which the sliding parabola does not model (growing bodies bounce instead, see
+//! [`crate::falling_growth`]).
+//!
 //! With restitution below 1 a ball's bounces on a floor die away geometrically: infinitely
 //! many collisions in finite time. With `settings.rest_speed` set, a body that leaves a
 //! collision with a **static plane or segment** gravity presses it on (`g·n < 0`, `n` the

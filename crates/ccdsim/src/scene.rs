@@ -551,13 +551,22 @@ impl<const D: usize> Scene<D> {
                  use walls",
             );
         }
-        if self.settings.growth.is_some() {
-            return unsupported("gravity cannot be combined with settings.growth yet");
+        // `crate::falling_growth` meets segments in 2D only: refused in 3D even where gravity
+        // alone serves them.
+        let segment_3d = |w: &Wall<D>| D == 3 && matches!(w, Wall::Segment { .. });
+        if self.settings.growth.is_some()
+            && (self.walls.iter().any(segment_3d)
+                || self.moving_walls.iter().any(|m| segment_3d(&m.wall)))
+        {
+            return unsupported(
+                "gravity with settings.growth and segment walls in 3D is not supported yet; \
+                 use planes",
+            );
         }
         Ok(())
     }
 
-    /// `settings.rest_speed`: positive and finite, under gravity.
+    /// `settings.rest_speed`: positive and finite, under gravity, with fixed radii.
     fn validate_rest_speed(&self) -> Result<(), SceneError> {
         let Some(speed) = self.settings.rest_speed else {
             return Ok(());
@@ -573,6 +582,17 @@ impl<const D: usize> Scene<D> {
             return Err(SceneError::Unsupported {
                 field: field(),
                 why: "bodies rest on walls only under gravity; set settings.gravity".into(),
+            });
+        }
+        if self.settings.growth.is_some() {
+            // A resting body whose radius grows would have to move its centre off the wall
+            // at Γ·r while it slides, which the resting motion (a parabola along the wall)
+            // does not model: refused rather than approximated.
+            return Err(SceneError::Unsupported {
+                field: field(),
+                why: "bodies cannot rest on walls while their radii grow (settings.growth); \
+                      leave rest_speed out and let them bounce"
+                    .into(),
             });
         }
         Ok(())

@@ -6,7 +6,9 @@
 //! body's path is a line or, under gravity, a parabola, so the overlap starts and ends at
 //! roots of a quadratic or a quartic: [`first_contact_accelerating`] and
 //! [`first_exit_accelerating`] give them with the same guarantees as the collisions' (no
-//! root skipped; each narrowed to adjacent floats). A body that starts inside a sensor, or is
+//! root skipped; each narrowed to adjacent floats), and with growing radii under gravity their
+//! growing forms ([`first_contact_accelerating_growing`], [`first_exit_accelerating_growing`]).
+//! A body that starts inside a sensor, or is
 //! put there by an edit, enters it at that instant.
 //!
 //! In a periodic box of sides `L` a sensor is seen through its images: a body overlaps it
@@ -26,7 +28,10 @@
 //! (O(sensors) per change) or when it crosses a sensor, and reports the events in time order
 //! as its clock passes them. They are the same whatever the finder, since the motions are.
 
-use crate::accelerated_contact::{first_contact_accelerating, first_exit_accelerating};
+use crate::accelerated_contact::{
+    first_contact_accelerating, first_contact_accelerating_growing, first_exit_accelerating,
+    first_exit_accelerating_growing,
+};
 use crate::geom::Vector;
 use crate::narrow::Motion;
 use crate::sensor_crossing::{enter_time, leave_time, nearest_image};
@@ -255,10 +260,20 @@ impl<const D: usize> SensorTracker<D> {
             } else {
                 first_contact_accelerating(raw, vel, acc, sigma)
             }
+        } else if let (None, Some(law), Some(acc)) = (period, growth, world.gravity_of(i)) {
+            // Gravity and growth: a parabola against a growing sphere, the quartic's roots.
+            let sigma = sensor.radius + world.radius_at(i, t0);
+            let sigma_dot = law.speed(world.radius(i));
+            if inside {
+                first_exit_accelerating_growing(raw, vel, acc, sigma, sigma_dot)
+            } else {
+                first_contact_accelerating_growing(raw, vel, acc, sigma, sigma_dot)
+            }
         } else {
-            // Periodic boxes and growth have no gravity (scenes refuse it): straight lines,
-            // seen through the box's images, with a contact distance that may grow.
-            debug_assert!(world.gravity().is_none());
+            // Periodic boxes have no gravity (scenes refuse it), nor do kinematic bodies
+            // fall: straight lines, seen through the box's images, with a contact distance
+            // that may grow.
+            debug_assert!(world.gravity_of(i).is_none());
             let sigma = sensor.radius + world.radius_at(i, t0);
             let sigma_dot = growth.map_or(0.0, |law| law.speed(world.radius(i)));
             if inside {

@@ -1763,6 +1763,118 @@ fn inelastic_gravity_with_the_tc_model_and_per_body_restitution() {
     check_all("inelastic gravity 3D", &s3, 3000);
 }
 
+/// [`check_all`], and the oracle's run file passes verify.
+fn check_all_verified<const D: usize>(label: &str, scene: &Scene<D>, max_events: u64) {
+    let oracle = reference(label, scene, max_events, Drive::Events);
+    for name in finders() {
+        let options = FinderOptions::default();
+        check_run(
+            label,
+            scene,
+            name,
+            &options,
+            max_events,
+            Drive::Events,
+            &oracle,
+        );
+    }
+    verifies(label, scene, &oracle);
+}
+
+#[test]
+fn gravity_with_growing_radii() {
+    // Sedimented packings: bodies fall on parabolas while their radii grow. Pairs through
+    // growth's quadratic from the later reference time, planes through the growing gap's
+    // quadratic, segments through the growing slab's entries and the end points' growing
+    // quartic; cells crossings by the face roots and grids rebuilt at growth horizons, bvh
+    // boxes around parabolic arcs at the grown radii. Against the oracle before every step,
+    // run files byte-identical across finders and passing verify.
+    for (k, &seed) in SMALL_SEEDS.iter().enumerate() {
+        let rate = [0.02, 0.1, 0.5][k];
+        let g2 = [[0.0, -9.81], [0.3, -1.0], [-2.0, 0.0]][k];
+        let g3 = [[0.0, 0.0, -9.81], [0.5, -1.0, 2.0], [0.0, -0.2, 0.0]][k];
+        for (disp, radii) in DISPERSITIES {
+            let s2 = growing(falling(gas_scene::<2>(100, 0.3, radii, seed), g2), rate);
+            let s3 = growing(falling(gas_scene::<3>(70, 0.15, radii, seed), g3), rate);
+            let label = format!("gravity growth {disp} 2D seed {seed}");
+            check_all_verified(&label, &s2, 2000);
+            let label = format!("gravity growth {disp} 3D seed {seed}");
+            check_all_verified(&label, &s3, 1500);
+        }
+        let board = growing(peg_board(4, 24, seed), rate);
+        let label = format!("gravity growth peg board seed {seed}");
+        check_all_verified(&label, &board, 1500);
+    }
+}
+
+#[test]
+fn gravity_with_growing_radii_kinematic_inelastic_and_moving_walls() {
+    // Kinematic bodies do not fall but grow (the quartic of a growing contact distance),
+    // bounces lose energy (restitution below 1, the growth rule's e), and moving walls meet
+    // falling, growing bodies in their frames; kicks and frames interleave.
+    for (k, &seed) in SMALL_SEEDS[..2].iter().enumerate() {
+        let rate = [0.05, 0.2][k];
+        let kin2 = growing(
+            falling(
+                with_kinematic(gas_scene::<2>(80, 0.3, (0.2, 0.6), seed), 4),
+                [0.0, -9.81],
+            ),
+            rate,
+        );
+        let kin3 = growing(
+            falling(
+                with_kinematic(gas_scene::<3>(60, 0.15, (0.3, 0.5), seed), 3),
+                [0.0, 0.0, -9.81],
+            ),
+            rate,
+        );
+        let board = growing(with_kinematic(peg_board(4, 24, seed), 2), rate);
+        let inel2 = growing(
+            inelastic(
+                falling(gas_scene::<2>(100, 0.3, (0.2, 1.0), seed), [0.0, -4.0]),
+                None,
+            ),
+            rate,
+        );
+        let walls2 = growing(
+            falling(
+                with_moving_walls(gas_scene::<2>(80, 0.3, (0.2, 0.6), seed)),
+                [0.0, -3.0],
+            ),
+            rate,
+        );
+        let walls3 = growing(
+            falling(
+                with_moving_walls(gas_scene::<3>(50, 0.15, (0.5, 0.5), seed)),
+                [0.0, 0.0, -3.0],
+            ),
+            rate,
+        );
+        for drive in [
+            Drive::Events,
+            Drive::Kicks { every: 7 },
+            Drive::FrameWalls { dt: 0.05 },
+        ] {
+            for (label, scene, events) in [
+                ("gravity growth kinematic 2D", &kin2, 1500),
+                ("gravity growth kinematic peg board", &board, 1500),
+                ("gravity growth inelastic 2D", &inel2, 2000),
+                ("gravity growth moving walls 2D", &walls2, 1200),
+            ] {
+                let label = format!("{label} seed {seed} {drive:?}");
+                let oracle = check_all_driven(&label, scene, events, drive);
+                verifies(&label, scene, &oracle);
+            }
+            let label = format!("gravity growth kinematic 3D seed {seed} {drive:?}");
+            let oracle = check_all_driven(&label, &kin3, 1200, drive);
+            verifies(&label, &kin3, &oracle);
+            let label = format!("gravity growth moving walls 3D seed {seed} {drive:?}");
+            let oracle = check_all_driven(&label, &walls3, 1000, drive);
+            verifies(&label, &walls3, &oracle);
+        }
+    }
+}
+
 /// `scene` with its first `k` bodies made kinematic (infinite mass; see `BodySpec::kinematic`).
 fn with_kinematic<const D: usize>(mut scene: Scene<D>, k: usize) -> Scene<D> {
     for b in scene.bodies.iter_mut().take(k) {

@@ -105,8 +105,24 @@ fn scenes_with_gravity_are_validated() {
     assert!(e.contains("settings.gravity"), "{e}");
     let e = err(r#"{"gravity": [0, -1]}"#, r#", "periodic": [10, 10]"#);
     assert!(e.contains("periodic box"), "{e}");
-    let e = err(r#"{"gravity": [0, -1], "growth": {"rate": 0.1}}"#, "");
-    assert!(e.contains("settings.growth"), "{e}");
+    // Gravity combines with growing radii (sedimented packings, see `ccdsim::falling_growth`);
+    // resting contacts do not: a resting body would have to move off its wall as it grows.
+    let scene = AnyScene::from_json(&text(
+        r#"{"gravity": [0, -1], "growth": {"rate": 0.1}}"#,
+        "",
+    ));
+    let AnyScene::D2(s) = scene.unwrap() else {
+        panic!("2D")
+    };
+    assert_eq!(s.settings.growth.map(|g| g.rate), Some(0.1));
+    let e = err(
+        r#"{"gravity": [0, -1], "growth": {"rate": 0.1}, "rest_speed": 0.1}"#,
+        "",
+    );
+    assert!(
+        e.contains("settings.rest_speed") && e.contains("settings.growth"),
+        "{e}"
+    );
     // NaN cannot be written in JSON; through the API it is refused too.
     let mut s = dropped_ball(1.0, 1.0);
     s.settings.gravity = Gravity::new(&[0.0, f64::NAN, 0.0]);
@@ -133,6 +149,14 @@ fn scenes_with_gravity_are_validated() {
         "walls": [{"a": [0, 1, 1], "b": [2, 1, 1]}],
         "moving_walls": [{"a": [0, 3, 1], "b": [2, 3, 1], "velocity": [0, 0, 1]}]}"#;
     assert!(AnyScene::from_json(text).is_ok());
+    // With growing radii too, whatever gravity alone serves: the growing segment contact is
+    // 2D only.
+    s.settings.growth = Some(ccdsim::growth::Growth { rate: 0.1 });
+    let e = s.validate().unwrap_err().to_string();
+    assert!(
+        e.contains("settings.growth") && e.contains("segment walls in 3D"),
+        "{e}"
+    );
 }
 
 #[test]
@@ -162,6 +186,58 @@ fn run_files_of_gravity_scenes_are_version_4_and_read_back() {
         read.push(c);
     }
     assert_eq!(read, events);
+}
+
+#[test]
+fn run_files_of_growing_scenes_under_gravity_are_version_4_read_back_and_verify() {
+    // Gravity's version (it comes after growth's): the header carries both settings, and a
+    // build that predates the combination refuses the scene when it reads the header.
+    let mut scene = pegs(&PegsConfig {
+        balls: 16,
+        rows: 3,
+        ..PegsConfig::default()
+    })
+    .unwrap();
+    scene.settings.growth = Some(ccdsim::growth::Growth { rate: 0.05 });
+    let mut sim = Simulation::new(&scene, "bvh").unwrap();
+    let mut w = RunWriter::new(Vec::new(), "bvh".into(), &scene).unwrap();
+    let mut events = Vec::new();
+    sim.run_events_with(400, |c| {
+        w.write_event(c).unwrap();
+        events.push(*c);
+    });
+    assert_eq!(events.len(), 400);
+    // The radii have grown, and the frames' radii are the grown ones.
+    assert!(sim.radius(0) > scene.bodies[0].radius);
+    let bytes = w.finish(sim.time()).unwrap();
+    assert_eq!(
+        u32::from_le_bytes(bytes[8..12].try_into().unwrap()),
+        VERSION_GRAVITY
+    );
+    let mut r = RunReader::<_, 2>::new(&bytes[..], "run".into()).unwrap();
+    assert_eq!(r.scene().gravity(), Some(Vector([0.0, -9.81])));
+    assert_eq!(r.scene().settings.growth.map(|g| g.rate), Some(0.05));
+    let (read, end) = r.read_events().unwrap();
+    assert_eq!(read, events);
+    let mut v = ccdsim::verify::Verifier::new(&scene);
+    for c in &read {
+        v.check(c).unwrap();
+    }
+    v.finish(end.unwrap()).unwrap();
+    // A collision that breaks the growth rule is caught: a wall bounce whose velocity after
+    // is the one before (no bounce at all).
+    let k = read
+        .iter()
+        .position(|c| c.event.kind == ccdsim::EventKind::Wall)
+        .unwrap();
+    let mut bad = read.clone();
+    bad[k].vel[0] = bad[k].vel[0] * -1.0;
+    let mut v = ccdsim::verify::Verifier::new(&scene);
+    let failed = bad.iter().try_for_each(|c| v.check(c));
+    assert!(
+        failed.is_err(),
+        "a bounce against the growth rule passes verify"
+    );
 }
 
 #[test]

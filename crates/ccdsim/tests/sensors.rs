@@ -127,6 +127,29 @@ fn a_falling_ball_enters_at_the_root_of_its_parabola() {
 }
 
 #[test]
+fn a_falling_growing_ball_enters_when_its_parabola_meets_the_grown_sphere() {
+    // As above, dropped from y = 3.4 (clear of the ceiling at 4, which the growing ball
+    // would touch at once from 3.5), the radius 0.5 growing at 0.2 per second (0.1 m/s): the
+    // centres, 1.9 − t² apart, meet the contact distance 1.3 + 0.1·t at the root of
+    // t² + 0.1·t − 0.6. (The ceiling's gap, 0.1 − 0.1·t + t², never closes.)
+    let mut scene = table(
+        vec![BodySpec::new(Vector([5.0, 3.4]), Vector([0.0, 0.0]), 0.5)],
+        vec![sensor([5.0, 1.5], 0.8)],
+    );
+    scene.settings.gravity = Gravity::new(&[0.0, -2.0]);
+    scene.settings.growth = Some(Growth { rate: 0.2 });
+    let want = (-0.1 + (0.01f64 + 2.4).sqrt()) / 2.0;
+    for finder in FINDERS {
+        let mut sim = Simulation::new(&scene, finder).unwrap();
+        sim.run_until(1.0);
+        let events = sim.take_sensor_events();
+        assert_eq!(events.len(), 1, "[{finder}] {events:?}");
+        assert_eq!(events[0].change, SensorChange::Enter);
+        assert!((events[0].time - want).abs() < 1e-14, "{events:?} {want}");
+    }
+}
+
+#[test]
 fn every_finder_reports_the_same_sensor_events_on_a_peg_board() {
     let mut board = pegs(&PegsConfig {
         rows: 5,

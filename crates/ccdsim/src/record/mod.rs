@@ -21,7 +21,9 @@
 //!
 //! Version 4 is version 2 for scenes with gravity (`settings.gravity` in the header): bodies
 //! move on parabolas between events (see [`crate::gravity`]), so positions, contacts and the
-//! energy a reader checks differ from straight motion.
+//! energy a reader checks differ from straight motion. A scene with gravity and growing radii
+//! (see [`crate::falling_growth`]) is version 4 too, the later of the two: its header carries
+//! both settings, and a build that predates the combination refuses the header's scene.
 //!
 //! Version 5 is version 4 for scenes with kinematic bodies (`bodies[].kinematic`): bodies of
 //! infinite mass that move in straight lines, meet no wall and no other kinematic body, and

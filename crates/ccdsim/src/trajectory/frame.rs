@@ -126,7 +126,7 @@ mod tests {
     use crate::scene::{BodySpec, Scene};
 
     #[test]
-    fn frames_between_events_fall() {
+    fn frames_between_events_fall_and_grow() {
         // Two balls far apart in an open world: no event, so every frame is between events.
         let mut scene = Scene::<2> {
             bodies: vec![
@@ -136,17 +136,22 @@ mod tests {
             ..Scene::default()
         };
         scene.settings.gravity = Gravity::new(&[0.0, -4.0]);
-        let mut sim = Simulation::new(&scene, "all-pairs").unwrap();
-        assert!(sim.advance(1.5).is_empty());
-        let f = Frame::of(&sim);
-        assert_eq!(f.time, 1.5);
-        // x = p + v·t + ½·g·t², v(t) = v + g·t.
-        let want_p = [[1.5, 3.0 - 4.5], [10.0, -4.5]];
-        let want_v = [[1.0, 2.0 - 6.0], [0.0, -6.0]];
-        for i in 0..2 {
-            for d in 0..2 {
-                assert!((f.positions[i][d] - want_p[i][d]).abs() < 1e-12, "{f:?}");
-                assert!((f.velocities[i][d] - want_v[i][d]).abs() < 1e-12, "{f:?}");
+        // With growing radii too: positions on the parabolas, radii grown (0.5·1.3 at 1.5 s).
+        for (growth, radius) in [(None, 0.5), (Some(0.2), 0.65)] {
+            scene.settings.growth = growth.map(|rate| crate::growth::Growth { rate });
+            let mut sim = Simulation::new(&scene, "all-pairs").unwrap();
+            assert!(sim.advance(1.5).is_empty());
+            let f = Frame::of(&sim);
+            assert_eq!(f.time, 1.5);
+            // x = p + v·t + ½·g·t², v(t) = v + g·t.
+            let want_p = [[1.5, 3.0 - 4.5], [10.0, -4.5]];
+            let want_v = [[1.0, 2.0 - 6.0], [0.0, -6.0]];
+            for i in 0..2 {
+                for d in 0..2 {
+                    assert!((f.positions[i][d] - want_p[i][d]).abs() < 1e-12, "{f:?}");
+                    assert!((f.velocities[i][d] - want_v[i][d]).abs() < 1e-12, "{f:?}");
+                }
+                assert!((f.radii[i] - radius).abs() < 1e-15, "{f:?}");
             }
         }
     }

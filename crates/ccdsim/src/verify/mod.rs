@@ -30,6 +30,11 @@
 //! Kinetic energy is not conserved between events, so an elastic collision must conserve the
 //! kinetic energy of the pair (of the body, at a wall) at the contact time, and the report
 //! carries the potential energy as well.
+//!
+//! Under gravity with growing radii ([`crate::falling_growth`]) the growth rule is checked
+//! with the velocities at the contact time, two falling bodies' miss check is growth's (their
+//! relative motion is linear), and the closest approach along a parabola (to a wall, or of a
+//! falling body to a kinematic one) is taken less the growth (see the `falling` module).
 
 mod closest;
 mod falling;
@@ -968,8 +973,11 @@ impl<const D: usize> Verifier<D> {
         if acc != Vector::ZERO {
             // A kinematic body and a falling one (open worlds only): the relative motion is a
             // parabola.
-            let (d, s) = closest_to_point_falling(pj - pi, vj - vi, acc, span);
-            return Some(((sigma0 - d) / sigma0, t0 + s));
+            // With growing radii, `d` is the distance less what the contact distance grew.
+            let grow = self.growth_speed(i) + self.growth_speed(j);
+            let (d, s) = closest_to_point_falling(pj - pi, vj - vi, acc, span, grow);
+            let sigma_at = self.radius_at(i, t0 + s) + self.radius_at(j, t0 + s);
+            return Some(((sigma0 - d) / sigma_at, t0 + s));
         }
         let grow = self.growth_speed(i) + self.growth_speed(j);
         // `d` is the distance less what the contact distance grew by since `t0`. Under
@@ -984,7 +992,7 @@ impl<const D: usize> Verifier<D> {
     fn wall_overlap(&self, i: usize, w: usize, t: f64) -> (f64, f64) {
         let (mi, wall) = self.motion_against(i, w);
         let (d, at) = match &self.g(i) {
-            Some(g) => closest_to_wall_falling(&wall, &mi, t, g),
+            Some(g) => closest_to_wall_falling(&wall, &mi, t, g, self.growth_speed(i)),
             None => closest_to_wall(&wall, &mi, t, self.growth_speed(i)),
         };
         let r0 = self.radius_at(i, mi.time);
