@@ -84,13 +84,15 @@ pub enum Halt {
         error: f64,
     },
     /// Under gravity body `body` touches wall `wall` at `time` without any normal speed, and
-    /// the collision there changed nothing and would repeat at the same time for ever: a ball
-    /// come to rest on a floor where bodies do not rest (no `settings.rest_speed`, or a wall
-    /// that does not hold them, such as a rod, a segment in 3D, on which it would roll), or one
-    /// wedged between two walls, alternating between them (see [`crate::resting`]). The run
-    /// stops.
+    /// the collision there changed nothing and would repeat at the same time for ever, or it
+    /// bounces off it in hops too low to resolve (rising less than
+    /// [`crate::resolution::RESOLUTION_LIMIT`] of its radius; the clock's rounding can keep
+    /// such hops going for ever, each a few ulps of time long): a ball come to rest on a floor
+    /// where bodies do not rest (no `settings.rest_speed`, or a wall that does not hold them,
+    /// such as a rod, a segment in 3D, on which it would roll), or one wedged between two
+    /// walls, alternating between them (see [`crate::resting`]). The run stops.
     #[error(
-        "at t = {time:e} s body {body} touches wall {wall} with no normal speed under gravity, again and again at one instant (it rests there, or is wedged between two walls): such contacts are not simulated, so the run stops (settings.rest_speed lets bodies rest on single walls)"
+        "at t = {time:e} s body {body} touches wall {wall} with no normal speed under gravity, again and again at one instant or in hops too low to resolve (it rests there, or is wedged between two walls): such contacts are not simulated, so the run stops (settings.rest_speed lets bodies rest on single planes, and on segments in 2D)"
     )]
     Resting {
         /// The time, seconds.

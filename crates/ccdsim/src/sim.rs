@@ -18,7 +18,10 @@ use image_counts::ImageCounts;
 
 mod body_slots;
 mod image_counts;
+mod wall_chain;
 pub(crate) use body_slots::reserve_count;
+use wall_chain::WallChain;
+pub use wall_chain::WEDGED_AFTER;
 mod resets;
 
 /// A resolved collision: the event and the involved bodies' states right after it.
@@ -92,11 +95,6 @@ pub enum SimError {
     Input(String),
 }
 
-/// How many wall events of one body at one instant (under gravity) end the run
-/// ([`Halt::Resting`]): bounces in a wedge whose walls do not hold it die away geometrically,
-/// each halving its speed or so, so a thousand take any speed below the smallest float.
-pub const WEDGED_AFTER: u32 = 1000;
-
 /// An exact event-driven simulation: a [`World`] and a [`Finder`].
 ///
 /// ```
@@ -133,11 +131,11 @@ pub struct Simulation<const D: usize> {
     /// instant for ever (a body wedged between two walls that hold it alternates between
     /// them), and halts ([`Halt::Resting`], [`Halt::RestingOnBody`]).
     idle: [Option<Event>; 2],
-    /// Under gravity: the time and body of the last wall event, and how many wall events of
-    /// that body in a row came at that very instant. Past [`WEDGED_AFTER`], a body caught in a
-    /// wedge whose speed has decayed into subnormal floats (where rounding may keep a
-    /// collision changing it in a cycle) halts the run ([`Halt::Resting`]).
-    instant: (f64, u32, u32),
+    /// Under gravity: the last wall events of one body in a row that came at one instant, or
+    /// after hops too low to resolve. Past [`WEDGED_AFTER`], a body caught in a wedge whose
+    /// speed has decayed into subnormal floats, or bouncing on a floor at a fixed point of the
+    /// clock's rounding, halts the run ([`Halt::Resting`], see `sim/wall_chain.rs`).
+    instant: WallChain,
     /// The scene's sensors, if it has any (see [`crate::sensor`]).
     sensors: Option<SensorTracker<D>>,
     /// Edits made since the last [`Simulation::take_edits`], as records, when
@@ -195,7 +193,7 @@ impl<const D: usize> Simulation<D> {
             halt: None,
             stats,
             idle: [None; 2],
-            instant: (f64::NAN, 0, 0),
+            instant: WallChain::NONE,
             sensors: None,
             edits: None,
         })
@@ -316,7 +314,7 @@ impl<const D: usize> Simulation<D> {
                     if self.world.gravity().is_some()
                         && (self.idle[0].is_some()
                             || self.world.has_resting()
-                            || self.instant.2 >= WEDGED_AFTER)
+                            || self.instant.is_long())
                         && self.halts_before(&e) =>
                 {
                     None
@@ -343,11 +341,9 @@ impl<const D: usize> Simulation<D> {
     #[inline(never)]
     fn halts_before(&mut self, e: &Event) -> bool {
         // The same event again after collisions that changed nothing, or one wall event too
-        // many of a body at one instant.
+        // many of a body at one instant or after hops too low to resolve.
         let repeats = (self.idle[0].is_some() && self.idle.contains(&Some(*e)))
-            || (self.instant.2 >= WEDGED_AFTER
-                && e.kind == EventKind::Wall
-                && (e.time, e.a) == (self.instant.0, self.instant.1));
+            || (self.instant.is_long() && self.continues_chain(e));
         let halt = if repeats {
             Some(match e.kind {
                 EventKind::Body => Halt::RestingOnBody {
@@ -370,6 +366,13 @@ impl<const D: usize> Simulation<D> {
             self.halt = halt;
         }
         halt.is_some()
+    }
+
+    /// True when wall event `e` continues the chain of unresolved wall events (under gravity).
+    fn continues_chain(&self, e: &Event) -> bool {
+        let g = self.world.gravity().map_or(0.0, |g| g.norm());
+        let r = self.world.radius_at(e.a as usize, e.time);
+        self.instant.continues(e, g, r)
     }
 
     /// The next event of any source: the finder's (collision or box exit) or the thermostat's
@@ -576,13 +579,9 @@ impl<const D: usize> Simulation<D> {
                     // come again, or it alternates between two walls (see `Halt::Resting`).
                     self.idle = [Some(e), idle_before];
                 }
-                if falling {
-                    let (t, body, count) = self.instant;
-                    self.instant = if (t, body) == (e.time, e.a) {
-                        (t, body, count + 1)
-                    } else {
-                        (e.time, e.a, 1)
-                    };
+                if let Some(g) = self.world.gravity() {
+                    let r = self.world.radius_at(a, e.time);
+                    self.instant.note(&e, g.norm(), r);
                 }
                 self.stats.wall_collisions += 1;
                 self.bodies_changed(&[a]);
@@ -767,7 +766,7 @@ impl<const D: usize> Simulation<D> {
         self.pending = None;
         self.halt = None;
         self.idle = [None; 2];
-        self.instant = (f64::NAN, 0, 0);
+        self.instant = WallChain::NONE;
         Ok(())
     }
 
@@ -939,7 +938,7 @@ impl<const D: usize> Simulation<D> {
         self.pending = None;
         self.halt = None;
         self.idle = [None; 2];
-        self.instant = (f64::NAN, 0, 0);
+        self.instant = WallChain::NONE;
     }
 
     /// The first body `j ≠ skip` that a ball of radius `r` put at `pos` now would overlap,
@@ -1079,7 +1078,7 @@ impl<const D: usize> Simulation<D> {
         self.pending = None;
         self.halt = None;
         self.idle = [None; 2];
-        self.instant = (f64::NAN, 0, 0);
+        self.instant = WallChain::NONE;
         Ok(())
     }
 

@@ -9,8 +9,10 @@
 //! body, no walls, everything at rest, simultaneous collisions, touching bodies, Newton's
 //! cradle, the billiard break, exact ties, a lattice of equal bodies, grazing contacts, far
 //! from the origin, inelastic, velocity kicks, frame-by-frame stepping, non-default finder
-//! options); and growing radii alone and with moving walls, per-body restitution and
-//! kinematic bodies.
+//! options); periodic boxes, thermostats and inelastic collapse; growing radii alone and with
+//! moving walls, per-body restitution and kinematic bodies; gravity alone, with edits and
+//! frames, the TC model, growing radii, and rods (3D segments); kinematic bodies, teleports,
+//! collision filters, bodies added and removed, moving walls, resting, sliding and ledges.
 
 use ccdsim::finder::{all_pairs_next_event, make_finder, FinderOptions, FINDER_NAMES};
 use ccdsim::generate::{

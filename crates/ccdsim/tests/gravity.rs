@@ -264,3 +264,57 @@ fn a_ball_that_comes_to_rest_halts_the_run_at_the_same_event_with_every_finder()
     }
     assert!(ends.windows(2).all(|w| w[0] == w[1]), "{ends:?}");
 }
+
+#[test]
+fn bounces_the_clock_quantises_into_a_fixed_point_halt_the_run_too() {
+    // A ball of restitution 0.9 dropped on a floor (2D): its bounces die away until each
+    // hop lasts a few ulps of time, where rounding the flight to whole ulps feeds back as
+    // much speed as the restitution takes: 1.65e-14 m/s, 4 ulps a hop, at t ≈ 7.23 s, for
+    // ever. Such hops rise 1e-29 m, far below the resolution of the ball: the run halts,
+    // at the same event with every finder, instead of creeping on a few ulps an event.
+    let scene = Scene {
+        bodies: vec![BodySpec::new(
+            Vector([2.9993153025651473, 1.1852748539049491]),
+            Vector([0.07641747911227026, -0.9279602241779514]),
+            0.5,
+        )],
+        walls: vec![Wall::Plane {
+            point: Vector([0.0, 0.0]),
+            normal: Vector([0.0, 1.0]),
+        }],
+        settings: ccdsim::Settings {
+            restitution: 0.9,
+            gravity: Gravity::new(&[0.0, -9.81]),
+            ..ccdsim::Settings::default()
+        },
+        ..Scene::default()
+    };
+    let mut ends = Vec::new();
+    for finder in ["all-pairs", "bvh", "sedgewick", "cells"] {
+        let mut sim = Simulation::new(&scene, finder).unwrap();
+        let mut w = RunWriter::new(Vec::new(), finder.into(), &scene).unwrap();
+        let mut events = Vec::new();
+        // Capped: without the halt the clock creeps on for ever.
+        sim.run_events_with(5_000, |c| {
+            w.write_event(c).unwrap();
+            events.push(*c);
+        });
+        assert!(events.len() < 5_000, "[{finder}] {} events", events.len());
+        let Some(Halt::Resting { body, wall, time }) = sim.halt() else {
+            panic!("[{finder}] expected a resting halt, got {:?}", sim.halt());
+        };
+        assert_eq!((body, wall), (0, 0), "[{finder}]");
+        assert!((time - 7.231_067_016_5).abs() < 1e-9, "[{finder}] {time}");
+        // The last thousand bounces are the unresolved ones: each comes less than 2e-5 s
+        // (the longest hop under 5e-10 of the radius) after the one before.
+        let last = &events[events.len() - ccdsim::sim::WEDGED_AFTER as usize..];
+        assert!(last
+            .windows(2)
+            .all(|p| p[1].event.time - p[0].event.time < 2e-5));
+        let mut v = ccdsim::verify::Verifier::new(&scene);
+        events.iter().try_for_each(|c| v.check(c)).unwrap();
+        v.finish(time).unwrap();
+        ends.push(w.finish(time).unwrap());
+    }
+    assert!(ends.windows(2).all(|w| w[0] == w[1]));
+}
