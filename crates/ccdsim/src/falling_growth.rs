@@ -167,12 +167,7 @@ pub fn toi_circle_segment_falling_growing<const D: usize>(
         .reduce(f64::min);
     let end_a = first_contact_accelerating_growing(w, m.vel, *g, radius, speed);
     let end_b = first_contact_accelerating_growing(m.pos - b, m.vel, *g, radius, speed);
-    [interior, end_a, end_b]
-        .into_iter()
-        .flatten()
-        .reduce(f64::min)
-        .map(|dt| m.time + dt)
-        .filter(|t| t.is_finite())
+    crate::gravity::earliest_at(m.time, [interior, end_a, end_b])
 }
 
 /// Time of impact (absolute, seconds) of a growing ball (stored radius `r`) falling under `g`

@@ -363,11 +363,18 @@ pub fn toi_circle_segment_falling_ends<const D: usize>(
     let end_b = ends[1]
         .then(|| first_contact_accelerating(m.pos - b, m.vel, *g, r))
         .flatten();
-    [interior, end_a, end_b]
+    crate::gravity::earliest_at(m.time, [interior, end_a, end_b])
+}
+
+/// The earliest of a segment contact's candidate time offsets (seconds, from `time`: its
+/// side and its two end points), as an absolute time, if any is finite then.
+#[inline]
+pub(crate) fn earliest_at(time: f64, offsets: [Option<f64>; 3]) -> Option<f64> {
+    offsets
         .into_iter()
         .flatten()
         .reduce(f64::min)
-        .map(|dt| m.time + dt)
+        .map(|dt| time + dt)
         .filter(|t| t.is_finite())
 }
 

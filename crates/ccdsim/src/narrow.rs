@@ -350,29 +350,20 @@ fn toi_kinematic_pair<const D: usize>(a: &Body<D>, b: &Body<D>, laws: &Laws<D>) 
     if ka && kb {
         return None;
     }
-    match (&laws.gravity, &laws.growth) {
-        (Some(g), Some(law)) if ka || kb => {
+    match &laws.gravity {
+        Some(g) if ka || kb => {
+            // The kinematic body does not fall.
             let acc = |k: bool| if k { Vector::ZERO } else { *g };
-            crate::falling_growth::toi_circle_circle_accelerating_growing(
-                &a.motion,
-                a.radius,
-                &acc(ka),
-                &b.motion,
-                b.radius,
-                &acc(kb),
-                law,
-            )
-        }
-        (Some(g), None) if ka || kb => {
-            let acc = |k: bool| if k { Vector::ZERO } else { *g };
-            crate::gravity::toi_circle_circle_accelerating(
-                &a.motion,
-                a.radius,
-                &acc(ka),
-                &b.motion,
-                b.radius,
-                &acc(kb),
-            )
+            let (ga, gb) = (acc(ka), acc(kb));
+            let (ma, mb) = (&a.motion, &b.motion);
+            match &laws.growth {
+                Some(law) => crate::falling_growth::toi_circle_circle_accelerating_growing(
+                    ma, a.radius, &ga, mb, b.radius, &gb, law,
+                ),
+                None => crate::gravity::toi_circle_circle_accelerating(
+                    ma, a.radius, &ga, mb, b.radius, &gb,
+                ),
+            }
         }
         _ => toi_pair(&a.motion, a.radius, &b.motion, b.radius, Some(laws)),
     }

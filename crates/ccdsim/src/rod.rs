@@ -62,12 +62,7 @@ pub fn toi_circle_rod_falling_ends<const D: usize>(
     let end_b = ends[1]
         .then(|| first_contact_accelerating(m.pos - b, m.vel, *g, r))
         .flatten();
-    [side, end_a, end_b]
-        .into_iter()
-        .flatten()
-        .reduce(f64::min)
-        .map(|dt| m.time + dt)
-        .filter(|t| t.is_finite())
+    crate::gravity::earliest_at(m.time, [side, end_a, end_b])
 }
 
 #[cfg(test)]
