@@ -299,6 +299,7 @@ impl<const D: usize> Simulation<D> {
 
     /// The finder's next event: a collision or, in periodic worlds, a box exit; `None` also
     /// when the simulation halts (see [`Simulation::halt`]).
+    #[inline(always)]
     fn next_raw(&mut self) -> Option<Event> {
         if self.pending.is_none() {
             // Finders return finite events only (`finite_event`); the two halts are the cold
@@ -378,8 +379,20 @@ impl<const D: usize> Simulation<D> {
     /// The next event of any source: the finder's (collision or box exit) or the thermostat's
     /// reset, whichever comes first (the collision on a tie). A reset also comes when the
     /// finder has none, or has halted after the reset's time.
+    #[inline(always)]
     fn next_any(&mut self) -> Option<Event> {
         let found = self.next_raw();
+        if self.thermostat.is_none() {
+            return found;
+        }
+        self.with_resets(found)
+    }
+
+    /// [`Simulation::next_any`] with a thermostat: the earlier of the finder's event `found`
+    /// and the next reset. Out of line: the event loop of a world without a thermostat stays
+    /// as tight as it was before thermostats.
+    #[inline(never)]
+    fn with_resets(&mut self, found: Option<Event>) -> Option<Event> {
         // Without a free body every draw is void (see `crate::thermostat`): the clock waits,
         // and an added body has the draws due by then judged first.
         let Some(clock) = self.thermostat.as_ref().filter(|_| self.free_bodies > 0) else {
@@ -447,6 +460,7 @@ impl<const D: usize> Simulation<D> {
     /// becomes the exit's. Sensor events up to the exit are reported on the path before it,
     /// and the body's next one is sought on the path after it, with what it overlaps kept
     /// (the body has not moved: see [`SensorTracker::body_wrapped`]).
+    #[inline(never)]
     fn apply_exit(&mut self, e: Event) {
         self.pending = None;
         if let Some(s) = &mut self.sensors {
@@ -470,6 +484,7 @@ impl<const D: usize> Simulation<D> {
     /// In a periodic world, box exits before it are applied on the way (so the current time
     /// may advance to the last of them), and `None` also comes when more than
     /// `1024 + 64 · n` exits in a row bring no collision (bodies that may fly for ever).
+    #[inline(always)]
     pub fn peek_event(&mut self) -> Option<Event> {
         let guard = 1024 + 64 * self.world.len() as u64;
         let mut exits = 0;
@@ -492,13 +507,14 @@ impl<const D: usize> Simulation<D> {
 
     /// Resolves the next event and returns it, or `None` when no event will ever happen (see
     /// [`Simulation::peek_event`] for periodic worlds).
-    #[inline]
+    #[inline(always)]
     pub fn step_event(&mut self) -> Option<Collision<D>> {
         let event = self.peek_event()?;
         self.pending = None;
         Some(self.resolve(event))
     }
 
+    #[inline(always)]
     fn resolve(&mut self, e: Event) -> Collision<D> {
         let (a, b) = (e.a as usize, e.b as usize);
         if let Some(s) = &mut self.sensors {

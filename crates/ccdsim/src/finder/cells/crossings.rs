@@ -77,7 +77,9 @@ impl<const D: usize> Cells<D> {
 
     /// `update` in crossing mode: crossings after the earliest changed state are undone, the
     /// changed bodies filed in the cells holding them, and recomputed (the two of a collision
-    /// in one scan when it applies, see `pair`).
+    /// in one scan when it applies, see `pair`). Inlined into `update`, whose body it was
+    /// before the modes had modules: out of line it cost a call's register saves per event.
+    #[inline(always)]
     pub(super) fn update_crossing_mode(&mut self, world: &World<D>, t: f64, changed: &[usize]) {
         // The clock goes back first: a body stepped back by an undone crossing schedules its
         // next one from `t`, and under gravity a face's roots count only from the clock on

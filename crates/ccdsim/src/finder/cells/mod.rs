@@ -376,6 +376,8 @@ pub struct Cells<const D: usize> {
     /// The world's collision filters by body index (see [`crate::collision_filter`]);
     /// empty when every pair collides.
     filters: Vec<crate::CollisionFilter>,
+    /// True when any of `filters`, `kinematic` and `accels` is kept (see `update_mirrors`).
+    mirrors: bool,
 }
 
 impl<const D: usize> Default for Cells<D> {
@@ -411,6 +413,7 @@ impl<const D: usize> Cells<D> {
             kinematic: Vec::new(),
             accels: Vec::new(),
             filters: Vec::new(),
+            mirrors: false,
         }
     }
 
@@ -576,6 +579,33 @@ impl<const D: usize> Cells<D> {
     }
 }
 
+impl<const D: usize> Cells<D> {
+    /// Copies the changed bodies' filters, kinematic flags and accelerations into the
+    /// finder's mirrors of them. Out of line: a world without filters, kinematic bodies or
+    /// resting contacts keeps no mirror, and its `update` tests one flag.
+    #[inline(never)]
+    fn update_mirrors(&mut self, world: &World<D>, changed: &[usize]) {
+        if !self.filters.is_empty() {
+            // A changed body may have changed its filter (`set_collision_filter`), or its
+            // slot may have been emptied or filled (`remove_body`, `add_body`).
+            for &i in changed {
+                self.filters[i] = world.filters()[i];
+            }
+        }
+        if !self.kinematic.is_empty() {
+            for &i in changed {
+                self.kinematic[i] = world.is_kinematic(i);
+            }
+        }
+        if !self.accels.is_empty() {
+            // A body comes to rest on a wall, or leaves it, only when its state changes.
+            for &i in changed {
+                self.accels[i] = world.acceleration(i);
+            }
+        }
+    }
+}
+
 impl<const D: usize> Finder<D> for Cells<D> {
     fn name(&self) -> &'static str {
         "cells"
@@ -612,6 +642,8 @@ impl<const D: usize> Finder<D> for Cells<D> {
         } else {
             Vec::new()
         };
+        self.mirrors =
+            !(self.filters.is_empty() && self.kinematic.is_empty() && self.accels.is_empty());
         let mut grown = 1.0;
         if let Some(law) = world.growth() {
             let window = (law.scale(now) * GROWTH_HEADROOM / law.rate).max(0.0);
@@ -724,23 +756,8 @@ impl<const D: usize> Finder<D> for Cells<D> {
         else {
             return;
         };
-        if !self.filters.is_empty() {
-            // A changed body may have changed its filter (`set_collision_filter`), or its
-            // slot may have been emptied or filled (`remove_body`, `add_body`).
-            for &i in changed {
-                self.filters[i] = world.filters()[i];
-            }
-        }
-        if !self.kinematic.is_empty() {
-            for &i in changed {
-                self.kinematic[i] = world.is_kinematic(i);
-            }
-        }
-        if !self.accels.is_empty() {
-            // A body comes to rest on a wall, or leaves it, only when its state changes.
-            for &i in changed {
-                self.accels[i] = world.acceleration(i);
-            }
+        if self.mirrors {
+            self.update_mirrors(world, changed);
         }
         match self.mode {
             Mode::Crossings | Mode::FallingCrossings => {

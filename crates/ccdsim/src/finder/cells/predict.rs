@@ -212,7 +212,10 @@ impl<const D: usize> Cells<D> {
         }
     }
 
-    /// Offers body `p` every pair with a body in its neighbour cells.
+    /// Offers body `p` every pair with a body in its neighbour cells. Inlined into its one
+    /// caller, `recompute_in_cells`, which it was part of: out of line it cost a call's
+    /// register saves per recompute.
+    #[inline(always)]
     pub(super) fn scan_neighbours(&self, world: &World<D>, p: &Probe<D>, best: &mut Best) {
         let k = self.cached[p.i].coords;
         let bodies = world.bodies();

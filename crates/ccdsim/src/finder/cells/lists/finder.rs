@@ -54,7 +54,9 @@ impl<const D: usize> Cells<D> {
 
     /// Offers body `p` every pair of its neighbour list, each by the oracle's narrow phase
     /// with the oracle's arguments (see `scan_list`): the partners of higher index (listed
-    /// first) with `p` first, the rest with the partner first.
+    /// first) with `p` first, the rest with the partner first. Inlined into its one caller,
+    /// `recompute_listed`: out of line it cost a call's register saves per recompute.
+    #[inline(always)]
     pub(in super::super) fn scan_neighbour_list(
         &self,
         world: &World<D>,
