@@ -577,9 +577,7 @@ impl<const D: usize> Cells<D> {
         self.regrids_in_a_row = regrids;
         None
     }
-}
 
-impl<const D: usize> Cells<D> {
     /// Copies the changed bodies' filters, kinematic flags and accelerations into the
     /// finder's mirrors of them. Out of line: a world without filters, kinematic bodies or
     /// resting contacts keeps no mirror, and its `update` tests one flag.
