@@ -72,7 +72,7 @@ impl<const D: usize> Frame<D> {
         Frame {
             time: sim.time(),
             cell,
-            ids: slots.iter().map(|&i| world.ids()[i]).collect(),
+            ids: slots.iter().map(|&i| world.id(i)).collect(),
             positions: each(&|i| sim.position(i)),
             images: slots.iter().map(|&i| sim.image(i)).collect(),
             // At the frame's time: under gravity the stored velocities hold only at each
