@@ -3,11 +3,10 @@
 mod common;
 
 use common::{ccdsim, run_ok};
-use std::path::PathBuf;
 
 /// An output directory that does not exist yet: the commands must create it.
-fn tmp_dir(name: &str) -> PathBuf {
-    common::scratch_dir("bench-cli", name).join("out")
+fn tmp_dir(name: &str) -> common::ScratchFile {
+    common::scratch_file(&format!("bench-cli-{name}"), "out")
 }
 
 #[test]

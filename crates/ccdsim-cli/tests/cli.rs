@@ -3,10 +3,10 @@
 mod common;
 
 use common::{ccdsim, run_ok};
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::Stdio;
 
-fn tmp(name: &str) -> PathBuf {
+fn tmp(name: &str) -> common::ScratchFile {
     common::scratch_file("cli", name)
 }
 

@@ -4,10 +4,9 @@
 mod common;
 
 use common::{ccdsim, run_ok};
-use std::path::PathBuf;
 use std::process::Output;
 
-fn tmp(name: &str) -> PathBuf {
+fn tmp(name: &str) -> common::ScratchFile {
     common::scratch_file("gas", name)
 }
 

@@ -7,7 +7,7 @@ use common::ccdsim;
 use std::path::{Path, PathBuf};
 use std::process::Stdio;
 
-fn tmp(name: &str) -> PathBuf {
+fn tmp(name: &str) -> common::ScratchDir {
     common::scratch_dir("cli-view", name)
 }
 

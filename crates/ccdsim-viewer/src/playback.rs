@@ -373,11 +373,14 @@ mod tests {
     use ccdsim::Simulation;
     use std::path::PathBuf;
 
-    fn temp_file(name: &str) -> PathBuf {
-        let dir =
-            std::env::temp_dir().join(format!("ccdsim-viewer-unit-{name}-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
-        dir.join("run.ccdrun")
+    /// A run file's path in a fresh directory, removed when the returned guard is dropped.
+    fn temp_file(name: &str) -> (tempfile::TempDir, PathBuf) {
+        let dir = tempfile::Builder::new()
+            .prefix(&format!("ccdsim-viewer-unit-{name}-"))
+            .tempdir()
+            .unwrap();
+        let path = dir.path().join("run.ccdrun");
+        (dir, path)
     }
 
     fn record<const D: usize>(scene: &Scene<D>, until: f64, path: &Path) -> u64 {
@@ -404,7 +407,7 @@ mod tests {
         })
         .unwrap();
         scene.settings.gravity = Gravity::new(&[0.5, -9.81]);
-        let path = temp_file("gravity");
+        let (_dir, path) = temp_file("gravity");
         let events = record(&scene, 3.0, &path);
         assert!(events > 100, "{events}");
         let mut p = Playback::<2>::open(&path, &DENSE).unwrap();
@@ -451,7 +454,7 @@ mod tests {
             ..Scene::default()
         };
         scene.settings.gravity = Gravity::new(&[0.0, -10.0]);
-        let path = temp_file("arcs");
+        let (_dir, path) = temp_file("arcs");
         assert_eq!(record(&scene, 2.0, &path), 0);
         let p = Playback::<2>::open(&path, &DENSE).unwrap();
         let e = *p.extent();

@@ -33,9 +33,8 @@ fn recorded(
     scene: &ccdsim::Scene<2>,
     until: f64,
     frame: f64,
-) -> (std::path::PathBuf, LedgeRun) {
-    let dir = common::temp_dir(name);
-    let path = dir.join("ledges.ccd");
+) -> (common::scratch::ScratchFile, LedgeRun) {
+    let path = common::scratch::ScratchFile::new(&format!("viewer-{name}"), "ledges.ccd");
     let run = record_ledge_run(scene, until, frame, &path);
     (path, run)
 }

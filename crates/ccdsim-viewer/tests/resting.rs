@@ -19,9 +19,8 @@ const DENSE: KeyframeOptions = KeyframeOptions {
     min_interval: 2,
 };
 
-fn recorded(name: &str) -> (std::path::PathBuf, RestRun) {
-    let dir = common::temp_dir(name);
-    let path = dir.join("resting.ccd");
+fn recorded(name: &str) -> (common::scratch::ScratchFile, RestRun) {
+    let path = common::scratch::ScratchFile::new(&format!("viewer-{name}"), "resting.ccd");
     let run = record_rest_run(&path);
     (path, run)
 }

@@ -18,9 +18,8 @@ fn start(run: &std::path::Path) -> common::Running {
     )
 }
 
-fn recorded_break(name: &str) -> (std::path::PathBuf, u64) {
-    let dir = common::temp_dir(name);
-    let path = dir.join("break.ccd");
+fn recorded_break(name: &str) -> (common::scratch::ScratchFile, u64) {
+    let path = common::scratch::ScratchFile::new(&format!("viewer-{name}"), "break.ccd");
     let n = common::record(&rack(&RackConfig::default()), 3.0, &path);
     (path, n)
 }

@@ -63,8 +63,10 @@ fn unwrapped_displacements_match_the_velocities_between_collisions() {
 
 #[test]
 fn files_of_either_format_are_written_whole() {
-    let dir = std::env::temp_dir().join(format!("ccdsim-traj-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = tempfile::Builder::new()
+        .prefix("ccdsim-traj-")
+        .tempdir()
+        .unwrap();
     let scene = ccdsim::generate::gas::<2>(&ccdsim::generate::GasConfig {
         n: 50,
         packing: 0.3,
@@ -74,7 +76,7 @@ fn files_of_either_format_are_written_whole() {
     })
     .unwrap();
     for name in ["t.xyz", "t.gsd"] {
-        let path = dir.join(name);
+        let path = dir.path().join(name);
         let format = TrajectoryFormat::from_path(&path).unwrap();
         let mut w = TrajectoryWriter::create(&path, format).unwrap();
         let mut sim = Simulation::new(&scene, "cells").unwrap();
@@ -93,7 +95,6 @@ fn files_of_either_format_are_written_whole() {
         }
     }
     assert!(TrajectoryFormat::from_path(std::path::Path::new("t.dcd")).is_err());
-    std::fs::remove_dir_all(&dir).unwrap();
 }
 
 #[test]

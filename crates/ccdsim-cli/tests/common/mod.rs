@@ -3,7 +3,9 @@
 
 #![allow(dead_code)] // each test binary uses its own subset
 
-use std::path::PathBuf;
+mod scratch;
+
+pub use scratch::{ScratchDir, ScratchFile};
 use std::process::{Command, Output};
 
 /// The `ccdsim` binary built for these tests.
@@ -11,20 +13,16 @@ pub fn ccdsim() -> Command {
     Command::new(env!("CARGO_BIN_EXE_ccdsim"))
 }
 
-/// A fresh, empty scratch directory for one test: `group` names the test file, `name` the
-/// test, and the process id keeps concurrent test runs apart.
-pub fn scratch_dir(group: &str, name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("ccdsim-{group}-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
+/// A fresh, empty scratch directory for one test, removed when it is dropped: `group` names
+/// the test file, `name` the test.
+pub fn scratch_dir(group: &str, name: &str) -> ScratchDir {
+    ScratchDir::new(&format!("{group}-{name}"))
 }
 
-/// A path for file `name` in the scratch directory that `group`'s tests share.
-pub fn scratch_file(group: &str, name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("ccdsim-{group}-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    dir.join(name)
+/// A path for file `name` in a scratch directory of its own for `group`'s tests, removed
+/// with the file when it is dropped.
+pub fn scratch_file(group: &str, name: &str) -> ScratchFile {
+    ScratchFile::new(group, name)
 }
 
 /// Runs `cmd` and panics with its standard error unless it succeeds.

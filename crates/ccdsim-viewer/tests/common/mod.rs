@@ -7,19 +7,21 @@ pub mod ledges;
 pub mod resting;
 pub mod slots;
 pub mod walls;
+// One copy of the scratch-directory guard for the CLI's tests and these.
+#[path = "../../../ccdsim-cli/tests/common/scratch.rs"]
+pub mod scratch;
+
+use scratch::ScratchDir;
 
 use ccdsim::record::RunWriter;
 use ccdsim::{Scene, Simulation};
 use ccdsim_viewer::{serve, KeyframeOptions, ServeOptions, StopHandle};
 use std::io::{Read, Write};
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
-/// A fresh directory for one test's files.
-pub fn temp_dir(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("ccdsim-viewer-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
+/// A fresh directory for one test's files, removed when it is dropped.
+pub fn temp_dir(name: &str) -> ScratchDir {
+    ScratchDir::new(&format!("viewer-{name}"))
 }
 
 /// Records `scene` run until `until` with the all-pairs finder to `path`; returns the events.
