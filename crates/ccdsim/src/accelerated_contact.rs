@@ -173,8 +173,41 @@ pub fn contacts_accelerating<const D: usize>(
     acc: Vector<D>,
     sigma: f64,
 ) -> [Option<f64>; 3] {
-    match quartic(dp, dv, acc, sigma, 0.0, 1.0) {
-        Quartic::Straight => [first_contact(dp, dv, sigma), None, None],
+    every_contact(dp, dv, acc, sigma, 0.0, first_contact)
+}
+
+/// [`contacts_accelerating`] against a contact distance that grows linearly in time,
+/// `sigma + sigma_dot·t` (metres; `sigma_dot` ≥ 0, m/s): the side of a rod met by a growing
+/// ball under gravity ([`crate::rod`]). With `acc` exactly zero the path is straight and
+/// enters once: [`crate::growth::first_contact_growing`]'s answer alone; with `sigma_dot`
+/// zero, [`contacts_accelerating`] bit for bit; the first is always
+/// [`first_contact_accelerating_growing`]'s answer bit for bit.
+#[must_use]
+pub fn contacts_accelerating_growing<const D: usize>(
+    dp: Vector<D>,
+    dv: Vector<D>,
+    acc: Vector<D>,
+    sigma: f64,
+    sigma_dot: f64,
+) -> [Option<f64>; 3] {
+    every_contact(dp, dv, acc, sigma, sigma_dot, |p, v, s| {
+        first_contact_growing(p, v, s, sigma_dot)
+    })
+}
+
+/// The common body of [`contacts_accelerating`] and its growing form; `straight` is the
+/// straight-line answer, for a zero acceleration and for flights too fast for the quartic.
+#[inline]
+fn every_contact<const D: usize>(
+    dp: Vector<D>,
+    dv: Vector<D>,
+    acc: Vector<D>,
+    sigma: f64,
+    sigma_dot: f64,
+    straight: impl Fn(Vector<D>, Vector<D>, f64) -> Option<f64>,
+) -> [Option<f64>; 3] {
+    match quartic(dp, dv, acc, sigma, sigma_dot, 1.0) {
+        Quartic::Straight => [straight(dp, dv, sigma), None, None],
         Quartic::Known(t) => [t, None, None],
         Quartic::Scaled { parabola, m } => parabola
             .contacts()

@@ -21,7 +21,11 @@
 //! at the first root of the quartic `|w + v·t + ½·g·t²|² = (r + ṙ·t)²`. As under gravity with
 //! fixed radii every entry into the slab is a candidate; as under growth without gravity a
 //! contact with the line beyond an end cannot hide one with the interior, which a ball within
-//! reach of the line beyond an end reaches only through the end point's ball.
+//! reach of the line beyond an end reaches only through the end point's ball. In 3D a segment
+//! is a rod ([`crate::rod`]): the side is the quartic of the motion across it against the
+//! growing radius, `|w⊥ + v⊥·t + ½·g⊥·t²|² = (r + ṙ·t)²`, every entry whose foot lies on the
+//! rod a candidate, and the end points' quartics as in 2D
+//! ([`crate::rod::toi_circle_rod_falling_growing`]).
 //!
 //! # What "approaching" means
 //!
@@ -111,9 +115,10 @@ pub fn toi_circle_plane_falling_growing<const D: usize>(
 }
 
 /// Time of impact (absolute, seconds) of a growing ball (stored radius `r`) falling under `g`
-/// with the segment `[a, b]` (2D only): the first entry into the growing slab around its line
+/// with the segment `[a, b]`: in 2D the first entry into the growing slab around its line
 /// whose foot lies on the segment, or the first contact with an end point, from the ball's
-/// reference time (see the module docs).
+/// reference time (see the module docs); in 3D, a rod's
+/// ([`crate::rod::toi_circle_rod_falling_growing`]).
 #[must_use]
 pub fn toi_circle_segment_falling_growing<const D: usize>(
     m: &Motion<D>,
@@ -123,7 +128,9 @@ pub fn toi_circle_segment_falling_growing<const D: usize>(
     g: &Vector<D>,
     law: &GrowthLaw,
 ) -> Option<f64> {
-    debug_assert!(D == 2, "segments under gravity are 2D only");
+    if D != 2 {
+        return crate::rod::toi_circle_rod_falling_growing(m, r, a, b, g, law);
+    }
     let (radius, speed) = (law.radius_at(r, m.time), law.speed(r));
     let u = b - a;
     let l2 = u.norm_sq();

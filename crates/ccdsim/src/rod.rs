@@ -19,13 +19,26 @@
 //! end point first, which the end point's quartic finds; so the earliest of the side's
 //! candidates and the end points' first contacts is the capsule's first contact.
 //!
+//! # Growing radii
+//!
+//! With `settings.growth` the capsule's radius grows with the ball's, `ρ(t) = ρ + ρ̇·t`: the
+//! side is the quartic `|x⊥(t)|² = ρ(t)²` and each end point `|x(t)|² = ρ(t)²`, solved by the
+//! same isolation ([`crate::accelerated_contact`]), every entry into the growing cylinder with
+//! its foot on the rod a candidate. The end balls still catch what enters beyond an end: when
+//! the foot crosses an end the centre is within `ρ(t)` of the line there, so of the end point
+//! ([`toi_circle_rod_falling_growing`]).
+//!
 //! # Resting
 //!
 //! A ball held on top of a rod would roll off around it, a pendulum's motion, not a parabola:
 //! bodies never rest on rods (see [`crate::resting`]); they bounce with the restitution.
 
-use crate::accelerated_contact::{contacts_accelerating, first_contact_accelerating};
+use crate::accelerated_contact::{
+    contacts_accelerating, contacts_accelerating_growing, first_contact_accelerating,
+    first_contact_accelerating_growing,
+};
 use crate::geom::Vector;
+use crate::growth::GrowthLaw;
 use crate::narrow::Motion;
 
 /// Time of impact of a ball (radius `r`, metres; motion `m`) falling under `g` (m/s², not
@@ -43,6 +56,61 @@ pub fn toi_circle_rod_falling_ends<const D: usize>(
     g: &Vector<D>,
     ends: [bool; 2],
 ) -> Option<f64> {
+    capsule_contact(
+        m,
+        a,
+        b,
+        g,
+        ends,
+        |p, v, acc| contacts_accelerating(p, v, acc, r),
+        |p, v, acc| first_contact_accelerating(p, v, acc, r),
+    )
+}
+
+/// Time of impact of a growing ball (stored radius `r`, metres; motion `m`) falling under
+/// `g` (m/s², not zero) with the rod from `a` to `b` (metres): as
+/// [`toi_circle_rod_falling_ends`] with both end points, against the capsule whose radius
+/// grows as the ball's does, `ρ(t) = ρ + ρ̇·(t − t_m)` (`ρ` the radius at the ball's
+/// reference time `t_m`). The side is then the quartic `|x⊥(t)|² = ρ(t)²`, every entry a
+/// candidate, and each end point the quartic `|x(t)|² = ρ(t)²` (see
+/// [`crate::accelerated_contact`]); the end balls still catch whatever enters the cylinder
+/// beyond an end and carries its foot onto the rod, since the ball is within `ρ(t)` of the
+/// end point when its foot crosses it. An absolute time, seconds, or `None`.
+#[must_use]
+#[inline(never)]
+pub fn toi_circle_rod_falling_growing<const D: usize>(
+    m: &Motion<D>,
+    r: f64,
+    a: Vector<D>,
+    b: Vector<D>,
+    g: &Vector<D>,
+    law: &GrowthLaw,
+) -> Option<f64> {
+    let (radius, speed) = (law.radius_at(r, m.time), law.speed(r));
+    capsule_contact(
+        m,
+        a,
+        b,
+        g,
+        [true; 2],
+        |p, v, acc| contacts_accelerating_growing(p, v, acc, radius, speed),
+        |p, v, acc| first_contact_accelerating_growing(p, v, acc, radius, speed),
+    )
+}
+
+/// The rod's contact from its side's entries (`side`: every entry of the projected parabola
+/// into the cylinder, in order) and its end points' first contacts (`end`), each given the
+/// offset, velocity and acceleration of the ball's centre; see the module docs.
+#[inline(always)]
+fn capsule_contact<const D: usize>(
+    m: &Motion<D>,
+    a: Vector<D>,
+    b: Vector<D>,
+    g: &Vector<D>,
+    ends: [bool; 2],
+    side: impl Fn(Vector<D>, Vector<D>, Vector<D>) -> [Option<f64>; 3],
+    end: impl Fn(Vector<D>, Vector<D>, Vector<D>) -> Option<f64>,
+) -> Option<f64> {
     let u = b - a;
     let l2 = u.norm_sq();
     let w = m.pos - a;
@@ -52,16 +120,12 @@ pub fn toi_circle_rod_falling_ends<const D: usize>(
         (0.0..=1.0).contains(&s)
     };
     // In increasing order: the first whose foot lies on the rod.
-    let side = contacts_accelerating(across(w), across(m.vel), across(*g), r)
+    let side = side(across(w), across(m.vel), across(*g))
         .into_iter()
         .flatten()
         .find(|&dt| foot(dt));
-    let end_a = ends[0]
-        .then(|| first_contact_accelerating(w, m.vel, *g, r))
-        .flatten();
-    let end_b = ends[1]
-        .then(|| first_contact_accelerating(m.pos - b, m.vel, *g, r))
-        .flatten();
+    let end_a = ends[0].then(|| end(w, m.vel, *g)).flatten();
+    let end_b = ends[1].then(|| end(m.pos - b, m.vel, *g)).flatten();
     crate::gravity::earliest_at(m.time, [side, end_a, end_b])
 }
 
@@ -179,25 +243,52 @@ mod tests {
     /// given the clearance is `r`; before it, never below `r`; and the first sample deeper
     /// than `2%` of `r` inside the capsule (a contact no rounding decides) is not before it.
     fn check(m: &Motion<3>, r: f64, a: Vector<3>, b: Vector<3>, g: &Vector<3>) {
+        let got = toi_circle_rod_falling_ends(m, r, a, b, g, [true; 2]);
+        check_contact(m, |_| r, a, b, g, got);
+    }
+
+    /// [`check`] for a ball whose radius grows by `law` (stored radius `r`): its clearance
+    /// against the radius at each time.
+    fn check_growing(
+        m: &Motion<3>,
+        r: f64,
+        a: Vector<3>,
+        b: Vector<3>,
+        g: &Vector<3>,
+        law: &GrowthLaw,
+    ) {
+        let got = toi_circle_rod_falling_growing(m, r, a, b, g, law);
+        check_contact(m, |t| law.radius_at(r, t), a, b, g, got);
+    }
+
+    /// The brute-force check of [`check`] of the contact `got` of a ball whose radius at
+    /// time `t` is `radius(t)`.
+    fn check_contact(
+        m: &Motion<3>,
+        radius: impl Fn(f64) -> f64,
+        a: Vector<3>,
+        b: Vector<3>,
+        g: &Vector<3>,
+        got: Option<f64>,
+    ) {
         let wall = Wall::Segment { a, b };
-        if clearance(m, g, &wall, 0.0) <= r * 1.02 {
+        if clearance(m, g, &wall, 0.0) <= radius(0.0) * 1.02 {
             return;
         }
-        let got = toi_circle_rod_falling_ends(m, r, a, b, g, [true; 2]);
         let scale = 1.0 + m.pos.norm() + a.norm() + b.norm() + 8.0 * m.vel.norm() + 32.0 * g.norm();
         let steps = 80_000;
         let deep = (0..=steps)
             .map(|k| 8.0 * f64::from(k) / f64::from(steps))
-            .find(|&t| clearance(m, g, &wall, t) < 0.98 * r);
+            .find(|&t| clearance(m, g, &wall, t) < 0.98 * radius(t));
         match got {
             Some(t) => {
                 assert!(t >= 0.0 && t.is_finite(), "{t}");
-                let c = clearance(m, g, &wall, t);
+                let (c, r) = (clearance(m, g, &wall, t), radius(t));
                 assert!((c - r).abs() <= 1e-9 * scale, "clearance {c} at {t}, r {r}");
                 for k in 0..=4000 {
                     let s = t * f64::from(k) / 4000.0;
                     let c = clearance(m, g, &wall, s);
-                    assert!(c >= r - 1e-9 * scale, "contact at {s} before {t}");
+                    assert!(c >= radius(s) - 1e-9 * scale, "contact at {s} before {t}");
                 }
                 if let Some(d) = deep {
                     assert!(t <= d, "deep inside at {d}, contact given at {t}");
@@ -244,6 +335,43 @@ mod tests {
             let v = (target - p - g * (0.5 * tau * tau)) * (1.0 / tau);
             prop_assume!(v.norm() < 20.0);
             check(&Motion { pos: p, vel: v, time: 0.0 }, r, a, b, &g);
+        }
+
+        /// Growing balls against random rods, and throws aimed at them: the contact against
+        /// the grown radius, none missed.
+        #[test]
+        fn growing_rod_contacts_match_brute_force(
+            p in v3(5.0), a in v3(3.0), b in v3(3.0), g in gravity(), r in 0.1..1.0f64,
+            s in -0.3..1.3f64, q in v3(1.0), tau in 0.2..2.0f64, rate in 0.01..0.5f64,
+            origin in -1.0..0.5f64, aimed in proptest::bool::ANY,
+        ) {
+            prop_assume!((b - a).norm() > 0.5);
+            let law = GrowthLaw { rate, origin };
+            let target = a + (b - a) * s + q * (1.5 * r);
+            let v = if aimed {
+                (target - p - g * (0.5 * tau * tau)) * (1.0 / tau)
+            } else {
+                q * 5.0
+            };
+            prop_assume!(v.norm() < 20.0);
+            check_growing(&Motion { pos: p, vel: v, time: 0.0 }, r, a, b, &g, &law);
+        }
+
+        /// Without growth (`Γ = 0`) the growing rod contact is the fixed-radius one, bit for
+        /// bit.
+        #[test]
+        fn zero_growth_keeps_the_rods_bits(
+            p in v3(5.0), v in v3(5.0), a in v3(3.0), b in v3(3.0), g in gravity(),
+            r in 0.1..1.0f64, t0 in -2.0..2.0f64, along in proptest::bool::ANY,
+        ) {
+            prop_assume!((b - a).norm() > 0.5);
+            // Gravity along the rod too: the straight-line answer across it.
+            let g = if along { (b - a) * (g.norm() / (b - a).norm()) } else { g };
+            let m = Motion { pos: p, vel: v, time: t0 };
+            let law = GrowthLaw { rate: 0.0, origin: 0.0 };
+            let fixed = toi_circle_rod_falling_ends(&m, r, a, b, &g, [true; 2]);
+            let growing = toi_circle_rod_falling_growing(&m, r, a, b, &g, &law);
+            prop_assert_eq!(fixed.map(f64::to_bits), growing.map(f64::to_bits));
         }
 
         /// A rod and a motion in the plane z = 0 meet as the 2D segment and motion do (the

@@ -523,8 +523,8 @@ impl<const D: usize> Scene<D> {
         self.settings.gravity.and_then(|g| g.vector::<D>())
     }
 
-    /// `settings.gravity`: one finite component per dimension, and none of what it cannot be
-    /// combined with yet (a periodic box, growing radii).
+    /// `settings.gravity`: one finite component per dimension, and no periodic box, which it
+    /// cannot be combined with.
     fn validate_gravity(&self) -> Result<(), SceneError> {
         let Some(g) = self.settings.gravity else {
             return Ok(());
@@ -549,18 +549,6 @@ impl<const D: usize> Scene<D> {
             return unsupported(
                 "gravity in a periodic box is not supported (bodies would fall for ever); \
                  use walls",
-            );
-        }
-        // `crate::falling_growth` meets segments in 2D only: refused in 3D even where gravity
-        // alone serves them.
-        let segment_3d = |w: &Wall<D>| D == 3 && matches!(w, Wall::Segment { .. });
-        if self.settings.growth.is_some()
-            && (self.walls.iter().any(segment_3d)
-                || self.moving_walls.iter().any(|m| segment_3d(&m.wall)))
-        {
-            return unsupported(
-                "gravity with settings.growth and segment walls in 3D is not supported yet; \
-                 use planes",
             );
         }
         Ok(())

@@ -2275,8 +2275,10 @@ fn rods_under_gravity() {
     // Segment walls in 3D under gravity: the rods' sides (the quartic of the motion across
     // each rod, every entry into its cylinder a candidate), their end caps, a rod along
     // gravity (straight across it) and a moving rod steered frame by frame; elastic, and
-    // inelastic with bodies resting on the floor (rods hold none: they bounce there). Every
-    // finder and cells mode writes the oracle's run file, whose runs verify, and rods are hit.
+    // inelastic with bodies resting on the floor (rods hold none: they bounce there); and with
+    // growing radii (the side's and end points' quartics against the growing radius), static
+    // and moving. Every finder and cells mode writes the oracle's run file, whose runs verify,
+    // and rods are hit.
     for (k, &seed) in SMALL_SEEDS.iter().enumerate() {
         let g = [[0.0, 0.0, -9.81], [0.8, -0.5, -9.81], [0.0, -3.0, 0.0]][k];
         let base = gas_scene::<3>(60, 0.1, (0.3, 0.6), seed);
@@ -2286,12 +2288,21 @@ fn rods_under_gravity() {
         // `tests/rods.rs`) and the runs go on.
         let mut inelastic = resting(with_rods(base, false), g);
         inelastic.settings.tc = Some(1e-3);
+        let rate = [0.05, 0.2, 0.1][k];
+        let (fixed_growing, moving_growing) =
+            (growing(fixed.clone(), rate), growing(moving.clone(), rate));
         let runs = [
             ("static", &fixed, Drive::Events),
             ("static kicks", &fixed, Drive::Kicks { every: 37 }),
             ("moving", &moving, Drive::Events),
             ("moving frames", &moving, Drive::FrameWalls { dt: 0.05 }),
             ("inelastic resting", &inelastic, Drive::Events),
+            ("growing", &fixed_growing, Drive::Events),
+            (
+                "growing moving frames",
+                &moving_growing,
+                Drive::FrameWalls { dt: 0.05 },
+            ),
         ];
         for (what, scene, drive) in runs {
             let label = format!("rods {what} seed {seed} g {g:?}");

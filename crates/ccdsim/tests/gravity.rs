@@ -149,14 +149,9 @@ fn scenes_with_gravity_are_validated() {
         "walls": [{"a": [0, 1, 1], "b": [2, 1, 1]}],
         "moving_walls": [{"a": [0, 3, 1], "b": [2, 3, 1], "velocity": [0, 0, 1]}]}"#;
     assert!(AnyScene::from_json(text).is_ok());
-    // With growing radii too, whatever gravity alone serves: the growing segment contact is
-    // 2D only.
+    // With growing radii too: rods meet growing balls as well.
     s.settings.growth = Some(ccdsim::growth::Growth { rate: 0.1 });
-    let e = s.validate().unwrap_err().to_string();
-    assert!(
-        e.contains("settings.growth") && e.contains("segment walls in 3D"),
-        "{e}"
-    );
+    assert_eq!(s.validate(), Ok(()));
 }
 
 #[test]

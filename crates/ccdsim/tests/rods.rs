@@ -96,6 +96,42 @@ fn an_elastic_ball_bounces_on_a_rod_with_the_free_fall_period() {
 }
 
 #[test]
+fn a_growing_ball_dropped_onto_a_rod_meets_it_when_its_grown_radius_does() {
+    // Dropped from rest with its centre at 5.5, 2.5 above the rod at height 3, its radius
+    // 0.5·(1 + Γt): it meets the rod when 2.5 − ½·g·t² = 0.5·(1 + Γt), the positive root of
+    // ½·g·t² + 0.5·Γ·t − 2 = 0; every finder alike, and the run file verifies.
+    let rate = 0.4;
+    let mut scene = rod_scene([4.5, 4.0, 5.5], [0.0, 0.0, 0.0], 1.0);
+    scene.settings.growth = Some(ccdsim::growth::Growth { rate });
+    let (b, c) = (0.5 * rate, -2.0);
+    let want = (-b + (b * b - 4.0 * (0.5 * G) * c).sqrt()) / G;
+    let mut times = Vec::new();
+    for finder in FINDERS {
+        let mut sim = Simulation::new(&scene, finder).unwrap();
+        let hit = sim.step_event().unwrap();
+        assert_eq!(
+            (hit.event.kind, hit.event.b),
+            (EventKind::Wall, ROD),
+            "[{finder}]"
+        );
+        let t = hit.event.time;
+        assert!((t - want).abs() < 1e-12, "[{finder}] at {t}, not {want}");
+        let grown = 0.5 * (1.0 + rate * t);
+        assert!(
+            (hit.pos[0][2] - 3.0 - grown).abs() < 1e-12,
+            "{:?}",
+            hit.pos[0]
+        );
+        // The growth rule sends it up at (1 + e)·ṙ − e·u with e = 1 and u = −g·t: 2·ṙ + g·t.
+        let up = 2.0 * 0.5 * rate + G * t;
+        assert!((hit.vel[0][2] - up).abs() < 1e-10, "{:?}", hit.vel[0]);
+        times.push(t.to_bits());
+        recorded(&scene, finder, 200);
+    }
+    assert!(times.windows(2).all(|w| w[0] == w[1]), "{times:?}");
+}
+
+#[test]
 fn a_ball_thrown_past_the_rod_falls_back_onto_it() {
     // Thrown up from below and beyond the rod's end (x = 6): it rises past the end, clear of
     // it, and comes down onto the rod's top; the first event is that landing.
