@@ -139,6 +139,51 @@ fn a_slow_ball_at_the_end_of_a_shelf_stops_the_run() {
 }
 
 #[test]
+fn a_program_goes_on_after_an_over_edge_halt_by_pushing_the_ball() {
+    // A game loop meets the halt and pushes the ball (an edit): the halt is lifted, the ball
+    // lands back on the shelf at once, slides at the speed it was given, flies off the end
+    // and falls onto the floor, the same with every finder.
+    let s = on_shelf(1.5, 1.0);
+    let mut runs = Vec::new();
+    for finder in FINDERS {
+        let mut sim = Simulation::new(&s, finder).unwrap();
+        assert_eq!(sim.run_until(3.0), 1, "[{finder}] the landing on the shelf");
+        assert!(
+            matches!(sim.halt(), Some(Halt::OverEdge { .. })),
+            "[{finder}]"
+        );
+        // The clock stays at the last event resolved, before the halt.
+        let pushed_at = sim.time();
+        assert!(pushed_at < 0.01, "[{finder}] {pushed_at}");
+        sim.set_velocity(0, Vector([3.0, 0.0])).unwrap();
+        assert_eq!(sim.halt(), None, "[{finder}] an edit lifts the halt");
+        let mut events = Vec::new();
+        sim.run_until_with(3.0, |c| events.push(*c));
+        assert_eq!(sim.halt(), None, "[{finder}]");
+        assert_eq!(sim.time(), 3.0, "[{finder}]");
+        let kinds: Vec<_> = events.iter().map(|c| (c.event.b, c.rests[0])).collect();
+        // Back on the shelf (resting), off its end, then the floor.
+        assert_eq!(
+            &kinds[..3],
+            &[(1, true), (1, false), (0, false)],
+            "[{finder}]"
+        );
+        assert_eq!(events[0].vel[0].0, [3.0, 0.0], "[{finder}]");
+        let off = events[1].event.time;
+        let expect = pushed_at + (2.0 - events[0].pos[0][0]) / 3.0;
+        assert!(
+            (off - expect).abs() < 1e-12,
+            "[{finder}] off the end at {off}"
+        );
+        runs.push(events.iter().map(|c| c.event).collect::<Vec<_>>());
+    }
+    assert!(
+        runs.windows(2).all(|w| w[0] == w[1]),
+        "the finders' events differ"
+    );
+}
+
+#[test]
 fn a_shelf_drawn_in_pieces_is_one_shelf() {
     // Three collinear pieces, the middle one drawn backwards: a ball too slow to fly off an
     // edge slides across both joints, going on along each next piece, and stops the run only
