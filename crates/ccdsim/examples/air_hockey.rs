@@ -27,6 +27,12 @@ const SECONDS: f64 = 30.0;
 const PADDLE_SPEED: f64 = 1.5;
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
+    play(std::env::args().nth(1).as_deref())
+}
+
+/// Plays the game, recording it to the run file `out` if given (`tests/examples.rs` runs it
+/// too).
+pub fn play(out: Option<&str>) -> Result<(), Box<dyn std::error::Error>> {
     let paddle = |x: f64| BodySpec {
         kinematic: true,
         ..BodySpec::new(Vector([x, 0.5]), Vector([0.0, 0.0]), 0.05)
@@ -44,7 +50,6 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     // their own velocity, so the game stays lively without running away.
     scene.settings.restitution = 0.9;
     let mut sim = Simulation::new(&scene, "cells")?;
-    let out = std::env::args().nth(1);
     let mut run = out
         .as_ref()
         .map(|path| RunWriter::record_steered(&mut sim, path.as_ref(), &scene))

@@ -27,6 +27,12 @@ const SECONDS: f64 = 120.0;
 const FPS: f64 = 30.0;
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
+    play(std::env::args().nth(1).as_deref())
+}
+
+/// Plays the game, recording it to the run file `out` if given (`tests/examples.rs` runs it
+/// too).
+pub fn play(out: Option<&str>) -> Result<(), Box<dyn std::error::Error>> {
     let mut scene = pegs(&PegsConfig {
         rows: 10,
         balls: 32,
@@ -50,7 +56,6 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         .fold(f64::NEG_INFINITY, f64::max);
     let radius = scene.bodies[0].radius;
     let mut sim = Simulation::new(&scene, "cells")?;
-    let out = std::env::args().nth(1);
     let mut run = out
         .as_ref()
         .map(|path| RunWriter::record_steered(&mut sim, path.as_ref(), &scene))

@@ -128,9 +128,14 @@ const DRAIN: usize = 4;
 const RELAUNCH: usize = 5;
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
+    play(std::env::args().nth(1).as_deref())
+}
+
+/// Plays the game, recording it to the run file `out` if given (`tests/examples.rs` runs it
+/// too).
+pub fn play(out: Option<&str>) -> Result<(), Box<dyn std::error::Error>> {
     let scene = table();
     let mut sim = Simulation::new(&scene, "cells")?;
-    let out = std::env::args().nth(1);
     let mut run = out
         .as_ref()
         .map(|path| RunWriter::record_steered(&mut sim, path.as_ref(), &scene))

@@ -11,7 +11,7 @@ use crate::moving_wall::MovingWall;
 use crate::resolution::{resolution_error, resolves, ulp, RESOLUTION_LIMIT};
 use crate::sensor::{sensor_fits_box, Sensor};
 use crate::thermostat::Thermostat;
-use crate::wall::{closed_segments, inside_even_odd};
+use crate::wall::{inside_even_odd, table_edges};
 pub use crate::wall::{wall_clearance, Wall};
 use serde::{Deserialize, Serialize};
 use std::fmt;
@@ -304,7 +304,9 @@ pub enum SceneError {
         /// Wall index.
         wall: usize,
     },
-    /// The walls form a closed table and a body is outside it.
+    /// The walls form a closed table (a closed polygon of segments around every other
+    /// segment, in a scene without planes) and a body is outside it, or inside one of the
+    /// polygons within it (by the even–odd rule).
     #[error("{body} is outside the table formed by the walls")]
     OutsideTable {
         /// The body.
@@ -491,7 +493,7 @@ impl<const D: usize> Scene<D> {
             }
         }
         if D == 2 {
-            let loops = closed_segments(&self.walls);
+            let loops = table_edges(&self.walls);
             if !loops.is_empty() {
                 for (i, b) in self.bodies.iter().enumerate() {
                     if !inside_even_odd(&loops, b.pos[0], b.pos[1]) {

@@ -102,6 +102,72 @@ pub(crate) fn closed_segments<const D: usize>(walls: &[Wall<D>]) -> Vec<(Vector<
     }
 }
 
+/// The edges of the table the static walls form (2D), empty when they form none: the edges
+/// of the closed polygons ([`closed_segments`]) when one of those polygons encloses every
+/// other segment (its midpoint inside, by the even–odd rule) and no wall is a plane. Bodies
+/// of a scene with a table lie inside it by the even–odd rule over all these edges (the other
+/// polygons are holes in it). Without such a polygon the closed ones are obstacles in an
+/// open or plane-bounded scene (bumpers in a pinball cabinet open at its drain, pegs between
+/// planes), and no body is outside a table.
+pub(crate) fn table_edges<const D: usize>(walls: &[Wall<D>]) -> Vec<(Vector<D>, Vector<D>)> {
+    if D != 2 || walls.iter().any(|w| matches!(w, Wall::Plane { .. })) {
+        return Vec::new();
+    }
+    let closed = closed_segments(walls);
+    if closed.is_empty() {
+        return closed;
+    }
+    // The closed polygons: edges joined at shared end points (each of degree 2).
+    let bits = |v: Vector<D>| v.0.map(f64::to_bits);
+    let mut parent: Vec<usize> = (0..closed.len()).collect();
+    fn root(parent: &mut [usize], mut k: usize) -> usize {
+        while parent[k] != k {
+            parent[k] = parent[parent[k]];
+            k = parent[k];
+        }
+        k
+    }
+    let mut first_at: HashMap<[u64; D], usize> = HashMap::new();
+    for (k, (a, b)) in closed.iter().enumerate() {
+        for p in [a, b] {
+            let j = *first_at.entry(bits(*p)).or_insert(k);
+            let (rj, rk) = (root(&mut parent, j), root(&mut parent, k));
+            parent[rj] = rk;
+        }
+    }
+    let polygon: Vec<usize> = (0..closed.len()).map(|k| root(&mut parent, k)).collect();
+    let segments: Vec<(Vector<D>, Vector<D>)> = walls
+        .iter()
+        .filter_map(|w| match *w {
+            Wall::Segment { a, b } => Some((a, b)),
+            Wall::Plane { .. } => None,
+        })
+        .collect();
+    let encloses_the_rest = |p: usize| {
+        let edges: Vec<_> = (0..closed.len())
+            .filter(|&k| polygon[k] == p)
+            .map(|k| closed[k])
+            .collect();
+        let own = |s: &(Vector<D>, Vector<D>)| {
+            edges
+                .iter()
+                .any(|e| bits(e.0) == bits(s.0) && bits(e.1) == bits(s.1))
+        };
+        segments.iter().filter(|s| !own(s)).all(|(a, b)| {
+            let m = (*a + *b) * 0.5;
+            inside_even_odd(&edges, m[0], m[1])
+        })
+    };
+    let mut roots = polygon.clone();
+    roots.sort_unstable();
+    roots.dedup();
+    if roots.into_iter().any(encloses_the_rest) {
+        closed
+    } else {
+        Vec::new()
+    }
+}
+
 /// True when the point `(x, y)` lies inside the polygons formed by `segs`, by the even–odd
 /// rule.
 pub(crate) fn inside_even_odd<const D: usize>(
@@ -131,6 +197,49 @@ mod tests {
             a: Vector(a),
             b: Vector(b),
         }
+    }
+
+    #[test]
+    fn a_table_is_a_closed_polygon_around_every_other_segment() {
+        let square = |x: f64, y: f64, s: f64| {
+            vec![
+                seg([x, y], [x + s, y]),
+                seg([x + s, y], [x + s, y + s]),
+                seg([x + s, y + s], [x, y + s]),
+                seg([x, y + s], [x, y]),
+            ]
+        };
+        // A box with a square obstacle and a shelf inside: the box is the table, the
+        // obstacle a hole in it.
+        let mut boxed = square(0.0, 0.0, 10.0);
+        boxed.extend(square(4.0, 4.0, 1.0));
+        boxed.push(seg([1.0, 8.0], [3.0, 8.0]));
+        let table = table_edges(&boxed);
+        assert_eq!(table.len(), 8);
+        assert!(inside_even_odd(&table, 2.0, 2.0));
+        assert!(!inside_even_odd(&table, 4.5, 4.5) && !inside_even_odd(&table, 11.0, 2.0));
+        // A cabinet open at the bottom with two square bumpers in it: no table.
+        let mut cabinet = vec![
+            seg([0.0, 0.0], [0.0, 10.0]),
+            seg([0.0, 10.0], [10.0, 10.0]),
+            seg([10.0, 10.0], [10.0, 0.0]),
+        ];
+        cabinet.extend(square(2.0, 5.0, 1.0));
+        cabinet.extend(square(6.0, 5.0, 1.0));
+        assert_eq!(closed_segments(&cabinet).len(), 8);
+        assert!(table_edges(&cabinet).is_empty());
+        // A polygon alone is a table; between planes it is an obstacle.
+        assert_eq!(table_edges(&square(0.0, 0.0, 1.0)).len(), 4);
+        let mut between = square(0.0, 0.0, 1.0);
+        between.push(Wall::Plane {
+            point: Vector([0.0, -5.0]),
+            normal: Vector([0.0, 1.0]),
+        });
+        assert!(table_edges(&between).is_empty());
+        // Two boxes side by side: neither encloses the other, no table.
+        let mut two = square(0.0, 0.0, 1.0);
+        two.extend(square(3.0, 0.0, 1.0));
+        assert!(table_edges(&two).is_empty());
     }
 
     #[test]

@@ -625,7 +625,7 @@ impl<const D: usize> Verifier<D> {
                     ));
                 }
             }
-            let loops = crate::wall::closed_segments(&self.walls);
+            let loops = crate::wall::table_edges(&self.walls);
             if D == 2 && !loops.is_empty() && !crate::wall::inside_even_odd(&loops, pos[0], pos[1])
             {
                 return Err(self.fail(t, format!("an edit puts body {i} outside the table")));
