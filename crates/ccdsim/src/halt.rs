@@ -198,7 +198,7 @@ impl ResolutionGuard {
         } else if let Some(size) = world.periodic() {
             Some(2.0 * size.0.iter().fold(0.0f64, |m, &l| m.max(l)))
         } else {
-            let loops = crate::wall::table_edges(world.walls());
+            let loops = world.table();
             (D == 2 && !loops.is_empty()).then(|| {
                 loops
                     .iter()

@@ -1029,8 +1029,8 @@ impl<const D: usize> Simulation<D> {
         {
             return Some(format!("{what} at {:?} would cross wall {w}", pos.0));
         }
-        let loops = crate::wall::table_edges(walls);
-        if D == 2 && !loops.is_empty() && !crate::wall::inside_even_odd(&loops, pos[0], pos[1]) {
+        let loops = self.world.table();
+        if D == 2 && !loops.is_empty() && !crate::wall::inside_even_odd(loops, pos[0], pos[1]) {
             return Some(format!("{what} at {:?} would lie outside the table", pos.0));
         }
         None

@@ -72,6 +72,9 @@ pub struct World<const D: usize> {
     /// empty, so that it can lend a slice.
     identity_ids: std::sync::OnceLock<Vec<u64>>,
     walls: Vec<Wall<D>>,
+    /// The edges of the table the static walls form ([`crate::wall::table_edges`]), computed
+    /// once: edits check every placement against it.
+    table: Vec<(Vector<D>, Vector<D>)>,
     /// The moving walls' geometry at the scene's start (see [`crate::moving_wall`]).
     moving_walls: Vec<Wall<D>>,
     /// Where each moving wall is and how it moves.
@@ -149,6 +152,7 @@ impl<const D: usize> World<D> {
             },
             identity_ids: std::sync::OnceLock::new(),
             walls: scene.walls.clone(),
+            table: crate::wall::table_edges(&scene.walls),
             moving_walls: scene.moving_walls.iter().map(|m| m.wall).collect(),
             wall_motions: start_motions(&scene.moving_walls, scene.start_time),
             periodic: scene.periodic,
@@ -766,6 +770,13 @@ impl<const D: usize> World<D> {
     #[must_use]
     pub fn walls(&self) -> &[Wall<D>] {
         &self.walls
+    }
+
+    /// The edges of the table the static walls form, empty without one (see
+    /// [`crate::wall::table_edges`]): a body's centre lies inside them by the even–odd rule.
+    #[must_use]
+    pub(crate) fn table(&self) -> &[(Vector<D>, Vector<D>)] {
+        &self.table
     }
 
     /// Number of moving walls (see [`crate::moving_wall`]); moving wall `k` is wall

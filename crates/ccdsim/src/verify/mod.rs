@@ -132,6 +132,8 @@ pub struct Verifier<const D: usize> {
     radius: Vec<f64>,
     mass: Vec<f64>,
     walls: Vec<Wall<D>>,
+    /// The table the walls form ([`crate::wall::table_edges`]), for the edits' placements.
+    table: Vec<(Vector<D>, Vector<D>)>,
     /// The moving walls' geometry at the start, and how each moves now.
     moving: Vec<Wall<D>>,
     wall_motion: Vec<crate::moving_wall::WallMotion<D>>,
@@ -238,6 +240,7 @@ impl<const D: usize> Verifier<D> {
             radius,
             mass,
             walls: scene.walls.clone(),
+            table: crate::wall::table_edges(&scene.walls),
             moving: scene.moving_walls.iter().map(|m| m.wall).collect(),
             wall_motion: crate::moving_wall::start_motions(&scene.moving_walls, scene.start_time),
             period: scene.periodic,
@@ -625,9 +628,8 @@ impl<const D: usize> Verifier<D> {
                     ));
                 }
             }
-            let loops = crate::wall::table_edges(&self.walls);
-            if D == 2 && !loops.is_empty() && !crate::wall::inside_even_odd(&loops, pos[0], pos[1])
-            {
+            let loops = &self.table;
+            if D == 2 && !loops.is_empty() && !crate::wall::inside_even_odd(loops, pos[0], pos[1]) {
                 return Err(self.fail(t, format!("an edit puts body {i} outside the table")));
             }
         }
