@@ -42,6 +42,7 @@ pub mod packing;
 pub mod periodic;
 pub mod pivot;
 pub mod pivot_contact;
+pub mod pivot_end;
 pub(crate) mod prefetch;
 pub mod record;
 pub mod resolution;

@@ -21,6 +21,7 @@
 
 use crate::geom::Vector;
 use crate::pivot::Pivot;
+use crate::wall::Wall;
 
 /// A point moving by a polynomial of degree at most two: at time `time` it is at `pos` with
 /// velocity `vel`, and accelerates by `acc` (m, m/s, m/s², s).
@@ -110,12 +111,12 @@ pub fn first_contact_points(
 }
 
 /// The first time in `[lo, hi]` (s) at which centre `a` is within `reach` (m) of the line
-/// through `point` with unit normal `normal` (a wall at rest), on the normal's side and
+/// through the moving point `line` with unit normal `normal`, on the normal's side and
 /// approaching it, with `counts(t)` true (e.g. its foot on a segment), or `None`.
 #[must_use]
 pub fn first_contact_line(
     a: &impl Mover,
-    point: Vector<2>,
+    line: &impl Mover,
     normal: Vector<2>,
     reach: f64,
     counts: impl Fn(f64) -> bool,
@@ -123,12 +124,67 @@ pub fn first_contact_line(
     hi: f64,
 ) -> Option<f64> {
     let gap = |t: f64| {
-        let (p, v) = a.state(t);
-        let dist = (p - point).dot(normal);
-        (dist - reach, v.dot(normal), dist.abs())
+        let ((p, v), (q, u)) = (a.state(t), line.state(t));
+        let dist = (p - q).dot(normal);
+        (dist - reach, (v - u).dot(normal), dist.abs())
     };
-    let curvature = |x: f64, y: f64, _m: f64, _w: f64| a.bounds(x, y).1;
+    let curvature =
+        |x: f64, y: f64, _m: f64, _w: f64| (a.bounds(x, y).1 + line.bounds(x, y).1) * BOUND_SLACK;
     first_approach(gap, curvature, counts, lo, hi)
+}
+
+/// The first time in `[lo, hi]` (s) at which the ball of radius `r` (m) turning with `pivot`
+/// meets `wall`, which is where `wall` says at time `wall_time` and moves at `wall_vel`
+/// (m/s; zero for a static wall), or `None`. A plane is met on its side; a segment on the
+/// side the centre is on at `lo`, between its ends, or at an end point. Not met: the pivot's
+/// own point, and the inside of a segment that ends there (the ball reaches those only by
+/// landing on them, see [`crate::pivot_end`]).
+#[must_use]
+pub fn toi_pivot_wall(
+    pivot: &Pivot,
+    r: f64,
+    wall: &Wall<2>,
+    wall_vel: Vector<2>,
+    wall_time: f64,
+    lo: f64,
+    hi: f64,
+) -> Option<f64> {
+    let mover = |p: Vector<2>| Parabola {
+        pos: p,
+        vel: wall_vel,
+        acc: Vector::ZERO,
+        time: wall_time,
+    };
+    match *wall {
+        Wall::Plane { point, normal } => {
+            let n = normal * (1.0 / normal.norm());
+            first_contact_line(pivot, &mover(point), n, r, |_| true, lo, hi)
+        }
+        Wall::Segment { a, b } => {
+            let e = pivot.point();
+            let ends = [a, b]
+                .into_iter()
+                .filter(|&p| p != e || wall_vel != Vector::ZERO)
+                .filter_map(|p| first_contact_points(pivot, &mover(p), r, lo, hi));
+            let inside = if (a == e || b == e) && wall_vel == Vector::ZERO {
+                None
+            } else {
+                let u = b - a;
+                let len2 = u.norm_sq();
+                let mut n = Vector([-u[1], u[0]]) * (1.0 / len2.sqrt());
+                let start = mover(a);
+                if (pivot.position(lo) - start.state(lo).0).dot(n) < 0.0 {
+                    n = -n;
+                }
+                let foot_on = |t: f64| {
+                    let f = (pivot.position(t) - start.state(t).0).dot(u);
+                    (0.0..=len2).contains(&f)
+                };
+                first_contact_line(pivot, &start, n, r, foot_on, lo, hi)
+            };
+            ends.chain(inside).reduce(f64::min)
+        }
+    }
 }
 
 /// The search of the module docs: `gap(t)` gives the gap, its derivative and a size from
@@ -190,6 +246,15 @@ mod tests {
 
     const G: Vector<2> = Vector([0.0, -10.0]);
 
+    fn at_rest(pos: Vector<2>) -> Parabola {
+        Parabola {
+            pos,
+            vel: Vector::ZERO,
+            acc: Vector::ZERO,
+            time: 0.0,
+        }
+    }
+
     fn level_ledge_pivot(v: f64) -> Pivot {
         Pivot::new(
             Vector([0.0, 0.0]),
@@ -234,7 +299,7 @@ mod tests {
         // A vertical wall at x = 0.8 facing left: the centre comes within 0.5 of it.
         let t = first_contact_line(
             &p,
-            Vector([0.8, 0.0]),
+            &at_rest(Vector([0.8, 0.0])),
             Vector([-1.0, 0.0]),
             0.5,
             |_| true,
@@ -249,7 +314,7 @@ mod tests {
         let floor = |counts: &dyn Fn(f64) -> bool| {
             first_contact_line(
                 &p,
-                Vector([-5.0, 0.0]),
+                &at_rest(Vector([-5.0, 0.0])),
                 Vector([0.0, 1.0]),
                 0.5,
                 counts,
@@ -260,6 +325,39 @@ mod tests {
         assert_eq!(floor(&|t| p.position(t)[0] <= 0.0), None);
         // The whole line would be met at once.
         assert!(floor(&|_| true).is_some_and(|t| t < 1e-3));
+    }
+
+    fn ledge_ball() -> (Pivot, f64) {
+        let p = level_ledge_pivot(0.5);
+        let end = p.release_time().unwrap();
+        (p, end)
+    }
+
+    #[test]
+    fn walls_met_while_turning() {
+        let (p, end) = ledge_ball();
+        let seg = |a: [f64; 2], b: [f64; 2]| Wall::Segment {
+            a: Vector(a),
+            b: Vector(b),
+        };
+        let toi = |w: &Wall<2>, vel: Vector<2>| toi_pivot_wall(&p, 0.5, w, vel, 0.0, 0.0, end);
+        // A wall standing beside the ledge: its inside.
+        let t = toi(&seg([0.8, -2.0], [0.8, 2.0]), Vector::ZERO).unwrap();
+        assert!((p.position(t)[0] - 0.3).abs() < 1e-12);
+        // The floor it slid off: never (its end is the pivot, its inside is landed on).
+        assert_eq!(toi(&seg([-5.0, 0.0], [0.0, 0.0]), Vector::ZERO), None);
+        // A shelf whose end point sticks into the ball's way: the end point.
+        let t = toi(&seg([0.7, 0.2], [3.0, 0.2]), Vector::ZERO).unwrap();
+        assert!(((p.position(t) - Vector([0.7, 0.2])).norm() - 0.5).abs() < 1e-12);
+        // A plane closing in from the right at 1 m/s.
+        let plane = Wall::Plane {
+            point: Vector([1.2, 0.0]),
+            normal: Vector([-2.0, 0.0]),
+        };
+        let t = toi(&plane, Vector([-1.0, 0.0])).unwrap();
+        assert!((1.2 - t - p.position(t)[0] - 0.5).abs() < 1e-12);
+        // Far away, nothing.
+        assert_eq!(toi(&seg([5.0, -2.0], [5.0, 2.0]), Vector::ZERO), None);
     }
 
     /// The reference: the gap sampled densely; the first sample at which it is not positive
