@@ -132,6 +132,7 @@ fn record<const D: usize>(
         pos: [slots[0][0], slots[1][0]],
         vel: [slots[0][1], slots[1][1]],
         rests: [false; 2],
+        pivots: [false; 2],
     }
 }
 

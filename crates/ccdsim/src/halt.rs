@@ -118,8 +118,8 @@ pub enum Halt {
         b: usize,
     },
     /// Body `body`, sliding on segment `wall`, reaches its end at `time` too slowly to fly
-    /// clear of the edge: it would roll over it, turning about the end point, a motion no
-    /// finder bounds exactly (see [`crate::ledge`]). The run stops before that event.
+    /// clear of the edge. No longer raised: such a body rolls over the edge, turning about
+    /// the end point ([`crate::pivot`]). Kept so that code matching on halts still builds.
     #[error(
         "at t = {time:e} s body {body} slides off the end of wall {wall} too slowly to fly clear of it: it would roll over the edge, a motion that is not simulated, so the run stops (a faster slide, a segment going straight on, or settings.rest_speed unset avoid it)"
     )]
@@ -131,33 +131,6 @@ pub enum Halt {
         /// The segment it slides on.
         wall: usize,
     },
-}
-
-/// The halt before event `e` of `world` when it is a body's arrival at the end of the segment
-/// it slides on, too slow to fly clear, with no segment going straight on (case 3 of
-/// [`crate::ledge`]); `None` for every other event.
-#[must_use]
-pub fn over_edge<const D: usize>(world: &World<D>, e: &Event) -> Option<Halt> {
-    let (i, w) = (e.a as usize, e.b as usize);
-    if e.kind != EventKind::Wall || world.support(i) != Some(w) {
-        return None;
-    }
-    let crate::wall::Wall::Segment { a, b } = world.walls()[w] else {
-        return None;
-    };
-    let g = world.gravity()?;
-    let m = crate::narrow::Motion {
-        pos: world.position_at(i, e.time),
-        vel: world.velocity_at(i, e.time),
-        time: e.time,
-    };
-    let end = crate::ledge::end_reached(a, b, m.pos);
-    let goes_on = crate::ledge::continuation(world.walls(), world.slides(), w, end).is_some();
-    (!goes_on && !crate::ledge::flies_clear(&m, end, &g)).then_some(Halt::OverEdge {
-        time: e.time,
-        body: i,
-        wall: w,
-    })
 }
 
 /// The simulation's per-event resolution check, with a fast path: up to a time `fast_until`

@@ -175,6 +175,14 @@ pub fn toi_body_segment<const D: usize>(
         };
         return toi_circle_segment_falling_ends(m, r, a, b, &acc, ends);
     }
+    if let Some(left) = world.released(i) {
+        // Come off an end point after turning about it: never that point again.
+        let Wall::Segment { a: la, b: lb } = world.walls()[left] else {
+            unreachable!("bodies turn about segment ends only");
+        };
+        let end = end_reached(la, lb, m.pos);
+        return toi_circle_segment_falling_ends(m, r, a, b, &acc, [a != end, b != end]);
+    }
     if let (Some(left), Some(g)) = (world.departed(i), world.gravity()) {
         let Wall::Segment { a: la, b: lb } = world.walls()[left] else {
             unreachable!("bodies fly off segments only");

@@ -46,6 +46,10 @@ impl MovingWallTracker {
     /// The first contact of body `i` with any moving wall, as an event: the earliest, and the
     /// lowest wall index on a tie.
     fn first_contact<const D: usize>(world: &World<D>, i: usize) -> Option<Event> {
+        if world.has_resting() && world.pivot(i).is_some() {
+            // Parked while it turns: its contacts are the simulation's pivot events.
+            return None;
+        }
         let first = world.walls().len();
         (0..world.moving_wall_count())
             .filter_map(|k| {

@@ -100,14 +100,37 @@ pub fn first_contact_points(
         let (d, dv) = (pa - pb, va - vb);
         (d.norm_sq() - reach * reach, 2.0 * d.dot(dv), d.norm())
     };
-    let curvature = |x: f64, y: f64, m: f64, w: f64| {
-        let ((sa, aa), (sb, ab)) = (a.bounds(x, y), b.bounds(x, y));
-        let (speed, acc) = (sa + sb, aa + ab);
-        // |f''| = 2|d'|² + 2 d·d'' ≤ 2(V² + D·A), D bounding |d| over the interval.
-        let dist = m + speed * w;
-        2.0 * (speed * speed + dist * acc) * BOUND_SLACK
-    };
+    let curvature = |x: f64, y: f64, m: f64, w: f64| points_curvature(a, b, x, y, m, w);
     first_approach(gap, curvature, |_| true, lo, hi)
+}
+
+/// The first time in `[lo, hi]` (s) at which centres `a` and `b` are at least `reach` (m)
+/// apart and moving apart (a body leaving a sensor), or `None`.
+#[must_use]
+pub fn first_exit_points(
+    a: &impl Mover,
+    b: &impl Mover,
+    reach: f64,
+    lo: f64,
+    hi: f64,
+) -> Option<f64> {
+    let gap = |t: f64| {
+        let ((pa, va), (pb, vb)) = (a.state(t), b.state(t));
+        let (d, dv) = (pa - pb, va - vb);
+        (reach * reach - d.norm_sq(), -2.0 * d.dot(dv), d.norm())
+    };
+    let curvature = |x: f64, y: f64, m: f64, w: f64| points_curvature(a, b, x, y, m, w);
+    first_approach(gap, curvature, |_| true, lo, hi)
+}
+
+/// A bound of `|f''|` over `[x, y]` (half-width `w`) for `f = ±(|d|² − reach²)`, `d` the
+/// offset of `b` from `a`, `m = |d|` at the midpoint: `|f''| = 2|d'|² + 2 d·d'' ≤ 2(V² + D·A)`,
+/// `D` bounding `|d|` over the interval.
+fn points_curvature(a: &impl Mover, b: &impl Mover, x: f64, y: f64, m: f64, w: f64) -> f64 {
+    let ((sa, aa), (sb, ab)) = (a.bounds(x, y), b.bounds(x, y));
+    let (speed, acc) = (sa + sb, aa + ab);
+    let dist = m + speed * w;
+    2.0 * (speed * speed + dist * acc) * BOUND_SLACK
 }
 
 /// The first time in `[lo, hi]` (s) at which centre `a` is within `reach` (m) of the line

@@ -215,35 +215,65 @@ pub fn resolve_body_wall<const D: usize>(world: &mut World<D>, i: usize, w: usiz
     ((r - clearance) / r).max(0.0)
 }
 
+/// What became of a body that slid to the end of its segment ([`resolve_slide_end`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SlideEnd {
+    /// It rests on this segment, which goes straight on.
+    GoesOn(usize),
+    /// It flies clear of the edge, falling.
+    FliesClear,
+    /// It turns about the end point ([`crate::pivot`]); `laws_changed` when parking it gave
+    /// the world its first collision filter (re-initialise a finder then).
+    Pivots {
+        /// See [`World::start_pivot`](crate::World::pivot).
+        laws_changed: bool,
+    },
+}
+
 /// Resolves the arrival of body `i`, sliding on segment `w`, at the segment's end at time `t`
 /// (see [`crate::ledge`]): it rests on the segment that goes straight on from there, if
-/// there is one, its velocity projected onto it; otherwise it flies off, its state as it
-/// was, falling under gravity from now on. Returns the wall the event names in records: the
-/// segment it goes on to, or `w`. The caller has made sure that it does not roll over the
-/// edge ([`crate::halt::over_edge`]).
+/// there is one, its velocity projected onto it; otherwise it flies off if it is fast enough
+/// to clear the edge, its state as it was, falling under gravity from now on; otherwise it
+/// turns about the end point ([`crate::pivot`], 2D), parked for the finders (see
+/// [`World::pivot`]).
 pub fn resolve_slide_end<const D: usize>(
     world: &mut World<D>,
     i: usize,
     w: usize,
     t: f64,
-) -> usize {
+) -> SlideEnd {
     let p = world.position_at(i, t);
     let v = world.velocity_at(i, t);
     let Wall::Segment { a, b } = world.walls()[w] else {
         unreachable!("bodies slide to the ends of segments only");
     };
     let end = crate::ledge::end_reached(a, b, p);
-    match crate::ledge::continuation(world.walls(), world.slides(), w, end) {
-        Some(next) => {
-            let v2 = crate::resting::along_support(&v, &world.walls()[next]);
-            world.set_state(i, p, v2, t);
-            world.rest_on(i, next);
-            next
-        }
+    if let Some(next) = crate::ledge::continuation(world.walls(), world.slides(), w, end) {
+        let v2 = crate::resting::along_support(&v, &world.walls()[next]);
+        world.set_state(i, p, v2, t);
+        world.rest_on(i, next);
+        return SlideEnd::GoesOn(next);
+    }
+    let g = world.gravity().expect("bodies slide under gravity");
+    let m = crate::narrow::Motion {
+        pos: p,
+        vel: v,
+        time: t,
+    };
+    let pivot = (D == 2 && !crate::ledge::flies_clear(&m, end, &g))
+        .then(|| {
+            let two = |x: Vector<D>| Vector([x[0], x[1]]);
+            crate::pivot::Pivot::new(two(end), world.radius(i), two(g), two(p), two(v), t)
+        })
+        .flatten();
+    match pivot {
+        Some(pivot) => SlideEnd::Pivots {
+            laws_changed: world.start_pivot(i, pivot, w, (p, v)),
+        },
         None => {
             world.set_state(i, p, v, t);
             world.depart(i, w);
-            w
+            SlideEnd::FliesClear
         }
     }
 }

@@ -249,6 +249,11 @@ impl<const D: usize> SensorTracker<D> {
     ) -> Option<f64> {
         let sensor = &self.sensors[k];
         let inside = self.inside[i * self.sensors.len() + k];
+        if world.has_resting() {
+            if let Some((pivot, _)) = world.pivot(i) {
+                return pivot_crossing(world, i, pivot, sensor, inside, t0);
+            }
+        }
         let raw = pos - sensor.center;
         let period = world.periodic();
         let growth = world.growth();
@@ -404,6 +409,33 @@ impl<const D: usize> SensorTracker<D> {
             let next = self.next_crossing(world, i, pos, vel, time);
             self.queue_next(i, next);
         }
+    }
+}
+
+/// [`SensorTracker`]'s next crossing of `sensor` by body `i`, which turns with `pivot` (see
+/// [`crate::pivot`]), from `t0` until its turn ends: the first entry (or exit, `inside`)
+/// found by [`crate::pivot_contact`]'s search, which skips no root.
+fn pivot_crossing<const D: usize>(
+    world: &World<D>,
+    i: usize,
+    pivot: &crate::pivot::Pivot,
+    sensor: &Sensor<D>,
+    inside: bool,
+    t0: f64,
+) -> Option<f64> {
+    use crate::pivot_contact::{first_contact_points, first_exit_points, Parabola};
+    let center = Parabola {
+        pos: crate::world::to_2d(sensor.center),
+        vel: Vector::ZERO,
+        acc: Vector::ZERO,
+        time: t0,
+    };
+    let hi = crate::sim::pivot_events::turn_end(world, i).map_or(f64::INFINITY, |e| e.time());
+    let reach = sensor.radius + world.radius(i);
+    if inside {
+        first_exit_points(pivot, &center, reach, t0, hi)
+    } else {
+        first_contact_points(pivot, &center, reach, t0, hi)
     }
 }
 

@@ -3,21 +3,24 @@
 use crate::event::{Event, EventKind};
 use crate::finder::{make_finder, Finder, FinderError, FinderOptions};
 use crate::geom::Vector;
-use crate::halt::{beyond_range, over_edge, unresolved, Halt, ResolutionGuard};
+use crate::halt::{beyond_range, unresolved, Halt, ResolutionGuard};
 use crate::moving_wall_tracker::MovingWallTracker;
 use crate::observables::{observables, Observables};
 use crate::periodic::wrap_point;
+use crate::pivot_end::PivotEnd;
 use crate::resolve::{
-    resolve_body_body_contact, resolve_body_wall, resolve_exit, resolve_slide_end,
+    resolve_body_body_contact, resolve_body_wall, resolve_exit, resolve_slide_end, SlideEnd,
 };
 use crate::scene::{Scene, SceneError};
 use crate::sensor::{SensorEvent, SensorTracker};
 use crate::thermostat::ResetClock;
 use crate::world::World;
 use image_counts::ImageCounts;
+use pivot_events::PivotEvents;
 
 mod body_slots;
 mod image_counts;
+pub(crate) mod pivot_events;
 mod wall_chain;
 pub(crate) use body_slots::reserve_count;
 use wall_chain::WallChain;
@@ -38,6 +41,10 @@ pub struct Collision<const D: usize> {
     /// for a body event on the wall it rested on before (the collision left its velocity as
     /// it was). Edits and resets lift every body they change off its wall.
     pub rests: [bool; 2],
+    /// For each body of the event, as `rests`, true when it turns about a segment's end
+    /// point after it (see [`crate::pivot`]): for a wall event, about an end point of that
+    /// segment; its `pos` and `vel` are then the state its turn starts from.
+    pub pivots: [bool; 2],
 }
 
 impl<const D: usize> Collision<D> {
@@ -149,6 +156,8 @@ pub struct Simulation<const D: usize> {
     /// Each body's next contact with a moving wall, if the world has moving walls (see
     /// [`crate::moving_wall`]).
     moving: Option<MovingWallTracker>,
+    /// The events of bodies turning about segment ends, which finders do not see.
+    pivots: PivotEvents,
 }
 
 impl<const D: usize> Simulation<D> {
@@ -196,6 +205,7 @@ impl<const D: usize> Simulation<D> {
             instant: WallChain::NONE,
             sensors: None,
             edits: None,
+            pivots: PivotEvents::default(),
         })
     }
 
@@ -310,6 +320,9 @@ impl<const D: usize> Simulation<D> {
         if self.moving.is_some() {
             found = self.with_moving_walls(found);
         }
+        if !self.pivots.is_empty() {
+            found = self.with_pivots(found);
+        }
         let answer = match found {
             // Both halts of resting contacts need gravity: one test keeps them off the
             // hot path of a world without it.
@@ -361,8 +374,6 @@ impl<const D: usize> Simulation<D> {
                     wall: e.b as usize,
                 },
             })
-        } else if self.world.has_resting() {
-            over_edge(&self.world, e)
         } else {
             None
         };
@@ -431,6 +442,14 @@ impl<const D: usize> Simulation<D> {
         Event::earliest(found, moving)
     }
 
+    /// The earlier of the finder's event `found` and the first event of a pivoting body (out
+    /// of line, as [`Simulation::with_moving_walls`]).
+    #[cold]
+    #[inline(never)]
+    fn with_pivots(&mut self, found: Option<Event>) -> Option<Event> {
+        Event::earliest(found, self.pivots.next())
+    }
+
     /// True for a box exit (a wall event naming a face after the walls, static and moving).
     fn is_exit(&self, e: &Event) -> bool {
         e.kind == EventKind::Wall
@@ -444,6 +463,19 @@ impl<const D: usize> Simulation<D> {
         self.finder.update(&self.world, bodies);
         if self.moving.is_some() {
             self.moving_walls_see(bodies);
+        }
+        if self.world.has_resting() {
+            self.pivots_see(bodies);
+        }
+    }
+
+    /// The pivoting bodies' events take in the new states of `bodies` (out of line, as
+    /// [`Simulation::with_moving_walls`]).
+    #[cold]
+    #[inline(never)]
+    fn pivots_see(&mut self, bodies: &[usize]) {
+        if !self.pivots.is_empty() || self.world.pivoting().next().is_some() {
+            self.pivots.bodies_changed(&self.world, bodies);
         }
     }
 
@@ -558,16 +590,32 @@ impl<const D: usize> Simulation<D> {
                 }
                 self.bodies_changed(&[a, b]);
                 let w = &self.world;
-                Collision {
-                    event: e,
-                    pos: [w.position(a), w.position(b)],
-                    vel: [w.velocity(a), w.velocity(b)],
-                    rests: if w.has_resting() {
-                        [w.support(a).is_some(), w.support(b).is_some()]
-                    } else {
-                        [false; 2]
-                    },
+                if w.has_resting() {
+                    let ((pa, va), (pb, vb)) = (w.recorded_state(a), w.recorded_state(b));
+                    Collision {
+                        event: e,
+                        pos: [pa, pb],
+                        vel: [va, vb],
+                        rests: [w.support(a).is_some(), w.support(b).is_some()],
+                        pivots: [w.pivot(a).is_some(), w.pivot(b).is_some()],
+                    }
+                } else {
+                    Collision {
+                        event: e,
+                        pos: [w.position(a), w.position(b)],
+                        vel: [w.velocity(a), w.velocity(b)],
+                        rests: [false; 2],
+                        pivots: [false; 2],
+                    }
                 }
+            }
+            // A pivoting body's turn ends (it comes off, swings back or lands).
+            EventKind::Wall
+                if self.world.has_resting()
+                    && self.pivots.end_of(a).is_some_and(|(_, end)| end == e) =>
+            {
+                overlap = 0.0;
+                self.resolve_pivot_end(e)
             }
             // A body meeting the segment it slides on: it has reached the end.
             EventKind::Wall if self.world.has_resting() && self.world.support(a) == Some(b) => {
@@ -631,21 +679,70 @@ impl<const D: usize> Simulation<D> {
     #[cold]
     fn resolve_slide_end(&mut self, mut e: Event) -> Collision<D> {
         let a = e.a as usize;
-        e.b = u32::try_from(resolve_slide_end(&mut self.world, a, e.b as usize, e.time))
-            .expect("wall indices fit events");
+        match resolve_slide_end(&mut self.world, a, e.b as usize, e.time) {
+            SlideEnd::GoesOn(next) => {
+                e.b = u32::try_from(next).expect("wall indices fit events");
+            }
+            SlideEnd::FliesClear => {}
+            SlideEnd::Pivots { laws_changed } => {
+                self.stats.wall_collisions += 1;
+                if laws_changed {
+                    self.rebuild()
+                        .expect("a finder re-initialised for a world it served");
+                } else {
+                    self.bodies_changed(&[a]);
+                }
+                return self.wall_collision(e, false);
+            }
+        }
         self.stats.wall_collisions += 1;
         self.bodies_changed(&[a]);
         self.wall_collision(e, self.world.support(a).is_some())
     }
 
+    /// Resolves the end of body `e.a`'s turn about a segment's end point (see
+    /// [`crate::pivot_end`]): it comes off falling (it meets that point no more, see
+    /// [`World::released`]), or rests on the segment it swings back onto or lands on, its
+    /// velocity along it.
+    #[cold]
+    fn resolve_pivot_end(&mut self, e: Event) -> Collision<D> {
+        let (a, t) = (e.a as usize, e.time);
+        let (end, _) = self.pivots.end_of(a).expect("a pivoting body");
+        let (_, w) = self.world.pivot(a).expect("a pivoting body");
+        let (p, v) = (self.world.position_at(a, t), self.world.velocity_at(a, t));
+        let rests = match end {
+            PivotEnd::Release { .. } => {
+                self.world.set_state(a, p, v, t);
+                self.world.release(a, w);
+                false
+            }
+            PivotEnd::Back { .. } | PivotEnd::Land { .. } => {
+                let k = e.b as usize;
+                let wall = self.world.walls()[k];
+                let v2 = crate::resting::along_support(&v, &wall);
+                self.world.set_state(a, p, v2, t);
+                let holds = self.world.slide_of(k).is_some();
+                if holds {
+                    self.world.rest_on(a, k);
+                }
+                holds
+            }
+        };
+        self.stats.wall_collisions += 1;
+        self.bodies_changed(&[a]);
+        self.wall_collision(e, rests)
+    }
+
     /// The record of wall event `e` just resolved: its body's new state, and whether it rests.
     fn wall_collision(&self, e: Event, rests: bool) -> Collision<D> {
         let (w, a) = (&self.world, e.a as usize);
+        let (pos, vel) = w.recorded_state(a);
         Collision {
             event: e,
-            pos: [w.position(a), Vector::ZERO],
-            vel: [w.velocity(a), Vector::ZERO],
+            pos: [pos, Vector::ZERO],
+            vel: [vel, Vector::ZERO],
             rests: [rests, false],
+            pivots: [w.pivot(a).is_some(), false],
         }
     }
 
@@ -782,6 +879,7 @@ impl<const D: usize> Simulation<D> {
             }
         }
         self.guard = ResolutionGuard::new(&self.world);
+        self.pivots.reset(&self.world);
         self.pending = None;
         self.halt = None;
         self.idle = [None; 2];
@@ -1088,6 +1186,7 @@ impl<const D: usize> Simulation<D> {
         if let Some(m) = &mut self.moving {
             m.walls_changed(&self.world);
         }
+        self.pivots.reset(&self.world);
         let motion = self.world.wall_motion(k);
         self.journal(crate::edit::Edit::WallMotion {
             wall: k,
@@ -1117,7 +1216,12 @@ impl<const D: usize> Simulation<D> {
         if let Some(why) = self.placement_error(&format!("body {i}"), pos, vel, r, kinematic) {
             return Err(SimError::Input(why));
         }
-        if let Some(j) = self.overlapped_by(i, pos, r, kinematic, |j| self.world.collides(i, j)) {
+        // The bodies' own filters: a body turning about a segment's end is parked colliding
+        // with nothing for the finders (see `World::pivot`), yet must not be overlapped.
+        let filter = self.world.filter(i);
+        if let Some(j) = self.overlapped_by(i, pos, r, kinematic, |j| {
+            filter.collides(&self.world.filter(j))
+        }) {
             return Err(SimError::Input(format!(
                 "body {i} at {:?} would overlap body {j}",
                 pos.0

@@ -25,6 +25,44 @@ const NO_SUPPORT: u32 = u32::MAX;
 /// instead (see [`World::departed`]); [`NO_SUPPORT`] has it too, so one test tells a support.
 const DEPARTED: u32 = 1 << 31;
 
+/// The bit of a stored support that says the body has just come off that segment's end point
+/// after turning about it (see [`World::released`]).
+const RELEASED: u32 = 1 << 30;
+
+/// Wall index `w` as stored in a support, below the flag bits.
+fn wall_bits(w: usize) -> u32 {
+    u32::try_from(w)
+        .ok()
+        .filter(|w| w & (DEPARTED | RELEASED) == 0)
+        .expect("fewer than 2^30 walls")
+}
+
+/// A body turning about the end point of a segment (see [`World::pivot`]), and what parking
+/// it hid: its own collision filter.
+#[derive(Clone, Copy, Debug)]
+struct Pivoting<const D: usize> {
+    body: usize,
+    pivot: crate::pivot::Pivot,
+    /// The segment whose end point it turns about.
+    wall: usize,
+    filter: CollisionFilter,
+    /// The velocity it started turning with (its parked one is zero), m/s.
+    velocity: Vector<D>,
+}
+
+/// `v` as a 2D vector (`D = 2` wherever bodies pivot).
+pub(crate) fn to_2d<const D: usize>(v: Vector<D>) -> Vector<2> {
+    Vector([v[0], v[1]])
+}
+
+/// A 2D vector as a `Vector<D>` (`D = 2` wherever bodies pivot).
+pub(crate) fn from_2d<const D: usize>(v: Vector<2>) -> Vector<D> {
+    let mut out = Vector::ZERO;
+    out[0] = v[0];
+    out[1] = v[1];
+    out
+}
+
 /// The hot part of one body's state: its stored motion, radius, mass and change count.
 ///
 /// `repr(C)` keeps the fields in this order: the ones every time of impact reads come first.
@@ -108,6 +146,9 @@ pub struct World<const D: usize> {
     /// Under `rest_speed`: the acceleration of a body sliding on each static wall, by wall
     /// index (`None` where no body rests); empty otherwise.
     slides: Vec<Option<Vector<D>>>,
+    /// Bodies turning about the end point of a segment (see [`crate::pivot`]), parked where
+    /// finders see them: at rest, falling by nothing, colliding with nothing. Few at a time.
+    pivots: Vec<Pivoting<D>>,
     /// The id the next added body gets unless it names its own: above every id so far.
     next_id: u64,
     laws: Laws<D>,
@@ -178,6 +219,7 @@ impl<const D: usize> World<D> {
             filters: scene.filters(),
             vacant: Vec::new(),
             free: Vec::new(),
+            pivots: Vec::new(),
             next_id: (0..n)
                 .map(|i| scene.id_of(i))
                 .max()
@@ -375,6 +417,7 @@ impl<const D: usize> World<D> {
     pub(crate) fn vacate(&mut self, i: usize) {
         let now = self.now;
         let pos = self.position_at(i, now);
+        self.pivots.retain(|p| p.body != i);
         self.allow_vacancies();
         let b = &mut self.bodies[i];
         b.motion = Motion {
@@ -445,6 +488,9 @@ impl<const D: usize> World<D> {
     /// callers stay small).
     #[inline(never)]
     fn position_at_resting(&self, i: usize, t: f64) -> Vector<D> {
+        if let Some((pivot, _)) = self.pivot(i) {
+            return from_2d(pivot.position(t));
+        }
         match self.gravity_of(i) {
             Some(a) => self.motion(i).falling_at(t, &a),
             None => self.motion(i).at(t),
@@ -455,6 +501,9 @@ impl<const D: usize> World<D> {
     /// `position_at_resting`).
     #[inline(never)]
     fn velocity_at_resting(&self, i: usize, t: f64) -> Vector<D> {
+        if let Some((pivot, _)) = self.pivot(i) {
+            return from_2d(pivot.velocity(t));
+        }
         match self.gravity_of(i) {
             Some(a) => self.bodies[i].motion.falling_velocity(t, &a),
             None => self.bodies[i].motion.vel,
@@ -478,6 +527,10 @@ impl<const D: usize> World<D> {
             .laws
             .gravity
             .filter(|_| !self.bodies[i].is_kinematic())?;
+        if !self.pivots.is_empty() && self.pivot(i).is_some() {
+            // Parked: finders see it at rest.
+            return None;
+        }
         Some(match self.support(i) {
             Some(w) => self.slides[w].unwrap_or(g),
             None => g,
@@ -498,7 +551,9 @@ impl<const D: usize> World<D> {
     #[inline]
     pub fn support(&self, i: usize) -> Option<usize> {
         match self.supports.get(i) {
-            Some(&(w, changes)) if w & DEPARTED == 0 && changes == self.bodies[i].changes => {
+            Some(&(w, changes))
+                if w & (DEPARTED | RELEASED) == 0 && changes == self.bodies[i].changes =>
+            {
                 Some(w as usize)
             }
             _ => None,
@@ -522,9 +577,100 @@ impl<const D: usize> World<D> {
 
     /// Body `i`, whose state was just set, has slid off segment `w` over an end.
     pub(crate) fn depart(&mut self, i: usize, w: usize) {
-        let w = u32::try_from(w).expect("fewer than 2^31 walls");
-        assert!(w & DEPARTED == 0, "fewer than 2^31 walls");
-        self.supports[i] = (w | DEPARTED, self.bodies[i].changes);
+        self.supports[i] = (wall_bits(w) | DEPARTED, self.bodies[i].changes);
+    }
+
+    /// The segment body `i` has just come off after turning about one of its end points (see
+    /// [`crate::pivot_end`]), while its state is still the one it came off with: it touches
+    /// that point then without pressing it, and leaves it falling (`v·g > 0`), so it meets
+    /// that point no more.
+    #[must_use]
+    pub fn released(&self, i: usize) -> Option<usize> {
+        match self.supports.get(i) {
+            Some(&(w, changes))
+                if w != NO_SUPPORT
+                    && w & DEPARTED == 0
+                    && w & RELEASED != 0
+                    && changes == self.bodies[i].changes =>
+            {
+                Some((w & !RELEASED) as usize)
+            }
+            _ => None,
+        }
+    }
+
+    /// Body `i`, whose state was just set, has come off an end point of segment `w`.
+    pub(crate) fn release(&mut self, i: usize, w: usize) {
+        self.supports[i] = (wall_bits(w) | RELEASED, self.bodies[i].changes);
+    }
+
+    /// The motion of body `i` if it is turning about the end point of a segment (see
+    /// [`crate::pivot`]; 2D only), and that segment's index. Finders see such a body parked
+    /// where the turn started, at rest, falling by nothing and colliding with nothing: the
+    /// simulation finds its events itself. [`World::position_at`], [`World::velocity_at`]
+    /// and [`World::filter`] tell its true state.
+    #[must_use]
+    pub fn pivot(&self, i: usize) -> Option<(&crate::pivot::Pivot, usize)> {
+        self.pivots
+            .iter()
+            .find(|p| p.body == i)
+            .map(|p| (&p.pivot, p.wall))
+    }
+
+    /// The bodies turning about segment ends, in the order they started ([`World::pivot`]).
+    pub fn pivoting(&self) -> impl Iterator<Item = usize> + '_ {
+        self.pivots.iter().map(|p| p.body)
+    }
+
+    /// Body `i`, at `pos` with velocity `vel` at the start time of `pivot` (the state `pivot`
+    /// was made from), starts turning with `pivot` about the end point of segment `w`: it is
+    /// parked there (see [`World::pivot`]) until its state is next set, which restores its
+    /// collision filter. Returns true when that changed the world's laws (its first
+    /// collision filter): a finder serving it must then be re-initialised, else told of `i`.
+    pub(crate) fn start_pivot(
+        &mut self,
+        i: usize,
+        pivot: crate::pivot::Pivot,
+        w: usize,
+        (pos, vel): (Vector<D>, Vector<D>),
+    ) -> bool {
+        self.set_state(i, pos, Vector::ZERO, pivot.start_time());
+        let filter = self.filter(i);
+        let first = self.filters.is_empty();
+        if first {
+            self.filters = vec![CollisionFilter::DEFAULT; self.bodies.len()];
+            self.laws.filtered = true;
+        }
+        self.filters[i] = CollisionFilter::NONE;
+        self.pivots.push(Pivoting {
+            body: i,
+            pivot,
+            wall: w,
+            filter,
+            velocity: vel,
+        });
+        first
+    }
+
+    /// The state a record gives body `i` after an event: its reference position and stored
+    /// velocity, or for a body turning about a segment's end the velocity it started with
+    /// (from which, with the position, [`crate::pivot::Pivot::new`] makes its turn again).
+    #[must_use]
+    pub fn recorded_state(&self, i: usize) -> (Vector<D>, Vector<D>) {
+        let vel = match self.pivots.iter().find(|p| p.body == i) {
+            Some(p) => p.velocity,
+            None => self.bodies[i].motion.vel,
+        };
+        (self.bodies[i].motion.pos, vel)
+    }
+
+    /// Ends body `i`'s turn, if it turns, giving it back its collision filter; its parked
+    /// state stays until set anew.
+    fn end_pivot(&mut self, i: usize) {
+        if let Some(k) = self.pivots.iter().position(|p| p.body == i) {
+            let p = self.pivots.swap_remove(k);
+            self.filters[i] = p.filter;
+        }
     }
 
     /// `settings.rest_speed`, m/s: bodies leaving a collision with a plane gravity presses
@@ -550,9 +696,7 @@ impl<const D: usize> World<D> {
     /// Body `i`, whose state was just set, rests on static wall `w` from now on.
     pub(crate) fn rest_on(&mut self, i: usize, w: usize) {
         debug_assert!(self.slide_of(w).is_some());
-        let w = u32::try_from(w).expect("fewer than 2^31 walls");
-        assert!(w & DEPARTED == 0, "fewer than 2^31 walls");
-        self.supports[i] = (w, self.bodies[i].changes);
+        self.supports[i] = (wall_bits(w), self.bodies[i].changes);
     }
 
     /// Puts body `i` on static wall `w` (`Some`), sliding along it, or lifts it off (`None`),
@@ -596,6 +740,9 @@ impl<const D: usize> World<D> {
     #[must_use]
     #[inline]
     pub fn filter(&self, i: usize) -> CollisionFilter {
+        if let Some(p) = self.pivots.iter().find(|p| p.body == i) {
+            return p.filter;
+        }
         self.filters.get(i).copied().unwrap_or_default()
     }
 
@@ -618,7 +765,10 @@ impl<const D: usize> World<D> {
             self.filters = vec![CollisionFilter::DEFAULT; self.bodies.len()];
             self.laws.filtered = true;
         }
-        self.filters[i] = filter;
+        match self.pivots.iter_mut().find(|p| p.body == i) {
+            Some(p) => p.filter = filter,
+            None => self.filters[i] = filter,
+        }
         first
     }
 
@@ -928,6 +1078,9 @@ impl<const D: usize> World<D> {
 
     /// Replaces body `i`'s state: position `pos` holding at time `t`, velocity `vel`.
     pub(crate) fn set_state(&mut self, i: usize, pos: Vector<D>, vel: Vector<D>, t: f64) {
+        if !self.pivots.is_empty() {
+            self.end_pivot(i);
+        }
         let b = &mut self.bodies[i];
         b.motion = Motion { pos, vel, time: t };
         // Counting the change lifts a resting body off its wall (see `World::support`); a

@@ -101,8 +101,17 @@ pub const VERSION_RESTING: u32 = 11;
 /// [`crate::ledge`]), flagged as resting when it goes on along the next segment, which
 /// the record then names.
 pub const VERSION_SEGMENT_RESTING: u32 = 12;
+/// Format version of run files of scenes where bodies rest on segments, in which they may
+/// also turn about a segment's end point (see [`crate::pivot`]): version 12 whose records
+/// may set tag bit 5 (`0x20`, body `a`) or bit 4 (`0x10`, body `b`) for a body that turns
+/// about an end point after the event, with the position and velocity its turn starts from.
+/// On a wall record naming a segment the body slid on, the bit says it rolls over that
+/// segment's end; a later wall record of that body, while it turns, ends the turn: naming
+/// the segment turned about without the rest bit, it comes off (falling, its state the
+/// record's); with the rest bit, it rests on the segment named (swung back or landed).
+pub const VERSION_PIVOTS: u32 = 13;
 /// The newest format version this build reads.
-pub const VERSION_NEWEST: u32 = VERSION_SEGMENT_RESTING;
+pub const VERSION_NEWEST: u32 = VERSION_PIVOTS;
 
 /// The format version a run of `scene` is written in.
 #[must_use]
@@ -112,7 +121,7 @@ pub fn version_for<const D: usize>(scene: &crate::scene::Scene<D>) -> u32 {
         .zip(&scene.walls)
         .any(|(slide, wall)| slide.is_some() && matches!(wall, crate::wall::Wall::Segment { .. }))
     {
-        VERSION_SEGMENT_RESTING
+        VERSION_PIVOTS
     } else if scene.settings.rest_speed.is_some() {
         VERSION_RESTING
     } else if !scene.moving_walls.is_empty() {
@@ -145,6 +154,10 @@ pub(crate) const TAG_EDIT: u8 = 5;
 pub(crate) const REST_A: u8 = 0x40;
 /// Tag bit: body `b` of a body event rests on a wall after it (version 11).
 pub(crate) const REST_B: u8 = 0x80;
+/// Tag bit: body `a` of the record turns about a segment's end point after it (version 13).
+pub(crate) const PIVOT_A: u8 = 0x20;
+/// Tag bit: body `b` of a body event turns about a segment's end point after it (version 13).
+pub(crate) const PIVOT_B: u8 = 0x10;
 
 /// Size in bytes of one record in a `D`-dimensional run file.
 #[must_use]

@@ -1,9 +1,9 @@
 //! Reading run files, tolerating a truncated tail.
 
 use super::{
-    fnv1a, record_len, RecordError, RunRecord, MAGIC, PREAMBLE_LEN, REST_A, REST_B, TAG_BODY,
-    TAG_EDIT, TAG_END, TAG_RESET, TAG_WALL, VERSION, VERSION_EDITS, VERSION_MOVING_WALLS,
-    VERSION_NEWEST, VERSION_SLOTS,
+    fnv1a, record_len, RecordError, RunRecord, MAGIC, PIVOT_A, PIVOT_B, PREAMBLE_LEN, REST_A,
+    REST_B, TAG_BODY, TAG_EDIT, TAG_END, TAG_RESET, TAG_WALL, VERSION, VERSION_EDITS,
+    VERSION_MOVING_WALLS, VERSION_NEWEST, VERSION_SLOTS,
 };
 use crate::event::Event;
 use crate::geom::Vector;
@@ -432,8 +432,9 @@ fn decode<const D: usize>(buf: &[u8]) -> Result<RunRecord<D>, String> {
         pos: [vec_at(0), vec_at(2)],
         vel: [vec_at(1), vec_at(3)],
         rests: [buf[0] & REST_A != 0, buf[0] & REST_B != 0],
+        pivots: [buf[0] & PIVOT_A != 0, buf[0] & PIVOT_B != 0],
     };
-    match buf[0] & !(REST_A | REST_B) {
+    match buf[0] & !(REST_A | REST_B | PIVOT_A | PIVOT_B) {
         TAG_BODY if a < b => Ok(RunRecord::Event(c(Event::body(t, a as usize, b as usize)))),
         TAG_WALL => Ok(RunRecord::Event(c(Event::wall(t, a as usize, b as usize)))),
         TAG_END => Ok(RunRecord::End(t)),

@@ -1,8 +1,8 @@
 //! Writing run files with buffering, as the run goes.
 
 use super::{
-    fnv1a, record_len, version_for, RecordError, MAGIC, REST_A, REST_B, TAG_BODY, TAG_EDIT,
-    TAG_END, TAG_RESET, TAG_WALL, VERSION_SLOTS,
+    fnv1a, record_len, version_for, RecordError, MAGIC, PIVOT_A, PIVOT_B, REST_A, REST_B, TAG_BODY,
+    TAG_EDIT, TAG_END, TAG_RESET, TAG_WALL, VERSION_SLOTS,
 };
 use crate::event::EventKind;
 use crate::scene::Scene;
@@ -151,6 +151,8 @@ impl<W: Write, const D: usize> RunWriter<W, D> {
         };
         // Resting bodies (version 11) set the tag's two high bits, one per body slot.
         let tag = tag | (u8::from(c.rests[0]) * REST_A) | (u8::from(c.rests[1]) * REST_B);
+        // Turning bodies (version 13) set the next two.
+        let tag = tag | (u8::from(c.pivots[0]) * PIVOT_A) | (u8::from(c.pivots[1]) * PIVOT_B);
         self.put(
             tag,
             c.event.a,

@@ -62,6 +62,7 @@ impl<const D: usize> Simulation<D> {
             pos: [p, Vector::ZERO],
             vel: [reset.velocity, Vector::ZERO],
             rests: [false; 2],
+            pivots: [false; 2],
         }
     }
 }

@@ -49,14 +49,39 @@ use crate::geom::Vector;
 use crate::growth::GrowthLaw;
 use crate::narrow::{wall_normal, Motion};
 use crate::periodic::min_image;
+use crate::pivot::Pivot;
+use crate::pivot_contact::{first_contact_points, toi_pivot_wall, Parabola};
 use crate::scene::Scene;
 use crate::sim::Collision;
 use crate::thermostat::ResetClock;
 use crate::wall::{wall_clearance, Wall};
+use crate::world::{from_2d, to_2d};
 use closest::{closest_approach, closest_approach_growing, closest_to_wall};
 use falling::{closest_to_point_falling, closest_to_wall_falling};
 use proximity::Proximity;
 use restitution::Restitutions;
+
+/// A body's motion between records as the pivot contact search takes it (2D).
+enum TurnOrFall {
+    /// Turning about a segment's end point.
+    Turn(Pivot),
+    /// Falling (or flying, or sliding) on a parabola.
+    Fall(Parabola),
+}
+
+/// A wall of `D` dimensions as a 2D one (bodies turn about points in 2D only).
+fn wall_2d<const D: usize>(w: &Wall<D>) -> Wall<2> {
+    match *w {
+        Wall::Segment { a, b } => Wall::Segment {
+            a: to_2d(a),
+            b: to_2d(b),
+        },
+        Wall::Plane { point, normal } => Wall::Plane {
+            point: to_2d(point),
+            normal: to_2d(normal),
+        },
+    }
+}
 
 /// Allowed overlap relative to the contact distance.
 pub const OVERLAP_TOLERANCE: f64 = 1e-9;
@@ -169,6 +194,9 @@ pub struct Verifier<const D: usize> {
     /// The static wall each body rests on, by index, as the records say; empty unless
     /// bodies rest on walls.
     supports: Vec<Option<usize>>,
+    /// The turn about a segment's end point each body makes, and that segment, by index, as
+    /// the records say (see [`crate::pivot`]); empty unless bodies rest on walls.
+    pivots: Vec<Option<(Pivot, usize)>>,
 }
 
 impl<const D: usize> Verifier<D> {
@@ -227,6 +255,10 @@ impl<const D: usize> Verifier<D> {
                 .filter_map(|b| b.restitution)
                 .fold(scene.settings.restitution, f64::min),
             supports: match scene.settings.rest_speed {
+                Some(_) => vec![None; scene.bodies.len()],
+                None => Vec::new(),
+            },
+            pivots: match scene.settings.rest_speed {
                 Some(_) => vec![None; scene.bodies.len()],
                 None => Vec::new(),
             },
@@ -289,12 +321,80 @@ impl<const D: usize> Verifier<D> {
 
     /// Body `i`'s position at `t` on its current motion.
     fn pos_of(&self, i: usize, t: f64) -> Vector<D> {
+        if let Some((p, _)) = self.pivot(i) {
+            return from_2d(p.position(t));
+        }
         self.pos_at(&self.motion[i], t, self.g(i))
     }
 
     /// Body `i`'s velocity at `t` on its current motion.
     fn vel_of(&self, i: usize, t: f64) -> Vector<D> {
+        if let Some((p, _)) = self.pivot(i) {
+            return from_2d(p.velocity(t));
+        }
         self.vel_at(&self.motion[i], t, self.g(i))
+    }
+
+    /// Body `i`'s turn about a segment's end point, if it turns, and that segment.
+    fn pivot(&self, i: usize) -> Option<&(Pivot, usize)> {
+        self.pivots.get(i).and_then(Option::as_ref)
+    }
+
+    /// Body `i`'s motion as the contact search of [`crate::pivot_contact`] takes it.
+    fn mover(&self, i: usize) -> TurnOrFall {
+        match self.pivot(i) {
+            Some((p, _)) => TurnOrFall::Turn(*p),
+            None => {
+                let m = self.motion[i];
+                TurnOrFall::Fall(Parabola {
+                    pos: to_2d(m.pos),
+                    vel: to_2d(m.vel),
+                    acc: to_2d(self.g(i).unwrap_or(Vector::ZERO)),
+                    time: m.time,
+                })
+            }
+        }
+    }
+
+    /// [`Verifier::pair_overlap`] when body `i` or `j` turns about a segment's end point: the
+    /// first time their centres come within `(1 − 2·OVERLAP_TOLERANCE)` of their contact
+    /// distance over `[t0, t1]`, by the search of [`crate::pivot_contact`] (which skips no
+    /// root), and the overlap then; `None` when they never do.
+    fn pivot_pair_overlap(&self, i: usize, j: usize, t0: f64, t1: f64) -> Option<(f64, f64)> {
+        let sigma = self.radius[i] + self.radius[j];
+        let reach = sigma * (1.0 - 2.0 * OVERLAP_TOLERANCE);
+        let at = match (self.mover(i), self.mover(j)) {
+            (TurnOrFall::Turn(p), TurnOrFall::Turn(q)) => {
+                first_contact_points(&p, &q, reach, t0, t1)
+            }
+            (TurnOrFall::Turn(p), TurnOrFall::Fall(q))
+            | (TurnOrFall::Fall(q), TurnOrFall::Turn(p)) => {
+                first_contact_points(&p, &q, reach, t0, t1)
+            }
+            (TurnOrFall::Fall(_), TurnOrFall::Fall(_)) => unreachable!("one of them turns"),
+        }?;
+        let d = (self.pos_of(j, at) - self.pos_of(i, at)).norm();
+        Some(((sigma - d) / sigma, at))
+    }
+
+    /// [`Verifier::wall_overlap`] for a body turning about a segment's end point, as
+    /// [`Verifier::pivot_pair_overlap`]: its own point, and the inside of segments ending
+    /// there, are the turn's business (checked at its end).
+    fn pivot_wall_overlap(&self, i: usize, w: usize, t: f64) -> (f64, f64) {
+        let Some((p, _)) = self.pivot(i) else {
+            unreachable!("a turning body");
+        };
+        let r = self.radius[i];
+        let t0 = self.motion[i].time;
+        let (wall, vel) = self.wall_at(w, t0);
+        let reach = r * (1.0 - 2.0 * OVERLAP_TOLERANCE);
+        match toi_pivot_wall(p, reach, &wall_2d(&wall), to_2d(vel), t0, t0, t) {
+            Some(at) => {
+                let clearance = wall_clearance(&self.wall_at(w, at).0, self.pos_of(i, at));
+                ((r - clearance) / r, at)
+            }
+            None => (0.0, t),
+        }
     }
 
     /// True when bodies `i` and `j` never meet: both kinematic, or kept apart by their
@@ -385,6 +485,10 @@ impl<const D: usize> Verifier<D> {
             };
             if let Some(slot) = self.supports.get_mut(i) {
                 *slot = supports[s];
+            }
+            let turn = self.turn_after(c, s, i)?;
+            if let Some(slot) = self.pivots.get_mut(i) {
+                *slot = turn;
             }
             self.refile(i, t);
         }
@@ -665,6 +769,7 @@ impl<const D: usize> Verifier<D> {
         if !moving && self.supports.get(i).copied().flatten() == Some(w) {
             return self.check_slide_end(c, i, w);
         }
+        self.check_turn_end(c, i)?;
         // Chosen before the collision counts for the TC model, as the simulation does.
         let e = self.restitutions.wall(i, t);
         self.restitutions.note(i, t);
@@ -740,6 +845,21 @@ impl<const D: usize> Verifier<D> {
         };
         // Rounding of the slide's position and speed, relative to `|v|²` and `r|g|`.
         let slack = 1e-9 * (v.norm_sq() + r * g.norm());
+        if c.pivots[0] {
+            // Rolling over the edge: too slow to fly clear.
+            if crate::ledge::edge_margin(&m, end, &g) >= slack {
+                return Err(self.fail(
+                    t,
+                    format!(
+                        "body {i} rolls over the end of segment {w} at {} m/s, fast enough to \
+                         fly clear",
+                        v.norm()
+                    ),
+                ));
+            }
+            self.report.wall_collisions += 1;
+            return Ok(());
+        }
         if crate::ledge::edge_margin(&m, end, &g) <= -slack {
             return Err(self.fail(
                 t,
@@ -751,6 +871,72 @@ impl<const D: usize> Verifier<D> {
             ));
         }
         self.report.wall_collisions += 1;
+        Ok(())
+    }
+
+    /// The turn body `i` (slot `s` of record `c`) makes after it, as the record's flag says
+    /// (see [`crate::pivot`]): about the end point of the segment the record names (the one
+    /// it slid to the end of), or, after a body collision, about the point it turned about
+    /// before; from the record's position and velocity.
+    fn turn_after(
+        &self,
+        c: &Collision<D>,
+        s: usize,
+        i: usize,
+    ) -> Result<Option<(Pivot, usize)>, Violation> {
+        let t = c.event.time;
+        if !c.pivots[s] {
+            return Ok(None);
+        }
+        let (Some(g), true) = (self.gravity, D == 2) else {
+            return Err(self.fail(t, format!("body {i} turns about a point without gravity")));
+        };
+        let segment = match (c.event.kind, self.pivot(i)) {
+            (EventKind::Wall, _) => c.event.b as usize,
+            (EventKind::Body, Some(&(_, w))) => w,
+            _ => return Err(self.fail(t, format!("body {i} starts turning at no segment end"))),
+        };
+        let Some(Wall::Segment { a, b }) = self.walls.get(segment).copied() else {
+            return Err(self.fail(
+                t,
+                format!("body {i} turns about wall {segment}, no segment"),
+            ));
+        };
+        let end = crate::ledge::end_reached(a, b, c.pos[s]);
+        let r = self.radius[i];
+        if ((c.pos[s] - end).norm() - r).abs() > 1e-9 * r {
+            return Err(self.fail(
+                t,
+                format!("body {i} turns about an end point of segment {segment} it does not touch"),
+            ));
+        }
+        let pivot = Pivot::new(to_2d(end), r, to_2d(g), to_2d(c.pos[s]), to_2d(c.vel[s]), t);
+        Ok(pivot.map(|p| (p, segment)))
+    }
+
+    /// A wall record of body `i` while it turns about a segment's end point: the turn ends
+    /// (the turn's position and velocity are checked as any motion's). Coming off (no rest
+    /// flag) must happen where the point stops pushing: `|g| cos θ = r θ̇²`.
+    fn check_turn_end(&self, c: &Collision<D>, i: usize) -> Result<(), Violation> {
+        let t = c.event.time;
+        let Some((p, _)) = self.pivot(i) else {
+            return Ok(());
+        };
+        if c.rests[0] {
+            // Swung back or landed: `check_rests` checks it rests with no normal speed.
+            return Ok(());
+        }
+        let (theta, rate) = p.angle_and_rate(t);
+        let g = p.gravity_norm();
+        let push = g * theta.cos() - p.radius() * rate * rate;
+        if push.abs() > 1e-9 * g {
+            return Err(self.fail(
+                t,
+                format!(
+                    "body {i} comes off the point it turns about while pressing it ({push} m/s²)"
+                ),
+            ));
+        }
         Ok(())
     }
 
@@ -937,8 +1123,18 @@ impl<const D: usize> Verifier<D> {
     /// Files body `i` in the grid (if any) anew from `t`, on its current motion.
     fn refile(&mut self, i: usize, t: f64) {
         let (r, acc) = (self.radius_until_slab_end(i), self.g(i));
+        // A turning body stays within its radius of its point: filed there, at rest, twice
+        // as large.
+        let turn = self.pivot(i).map(|(p, _)| Motion {
+            pos: from_2d(p.point()),
+            vel: Vector::ZERO,
+            time: t,
+        });
         if let Some(grid) = &mut self.grid {
-            grid.file(i, &self.motion[i], r, t, acc);
+            match turn {
+                Some(m) => grid.file(i, &m, 2.0 * r, t, None),
+                None => grid.file(i, &self.motion[i], r, t, acc),
+            }
         }
     }
 
@@ -958,6 +1154,9 @@ impl<const D: usize> Verifier<D> {
     /// The largest overlap of bodies `i` and `j` (relative to their contact distance) over
     /// `[t0, t1]`, and when; `None` when a cheap bound shows they stayed apart.
     fn pair_overlap(&self, i: usize, j: usize, t0: f64, t1: f64) -> Option<(f64, f64)> {
+        if self.pivot(i).is_some() || self.pivot(j).is_some() {
+            return self.pivot_pair_overlap(i, j, t0, t1);
+        }
         let (mi, mj) = (self.motion[i], self.motion[j]);
         let sigma0 = self.radius_at(i, t0) + self.radius_at(j, t0);
         let sigma1 = self.radius_at(i, t1) + self.radius_at(j, t1);
@@ -992,6 +1191,9 @@ impl<const D: usize> Verifier<D> {
     /// The largest overlap of body `i` with wall `w` (relative to its radius) from its
     /// reference time to `t`, and when.
     fn wall_overlap(&self, i: usize, w: usize, t: f64) -> (f64, f64) {
+        if self.pivot(i).is_some() {
+            return self.pivot_wall_overlap(i, w, t);
+        }
         let (mi, wall) = self.motion_against(i, w);
         let (d, at) = match &self.g(i) {
             Some(g) => closest_to_wall_falling(&wall, &mi, t, g, self.growth_speed(i)),
@@ -1071,6 +1273,16 @@ impl<const D: usize> Verifier<D> {
             .sum();
         self.report.potential_energy_end =
             potential_energy(&self.motion, &self.mass, self.gravity, end);
+        if let Some(g) = self.gravity {
+            // A turning body is where its turn puts it, not where it would have fallen to.
+            for (i, turn) in self.pivots.iter().enumerate() {
+                if let Some((p, _)) = turn {
+                    let fallen = self.motion[i].falling_at(end, &g);
+                    let turned = from_2d(p.position(end));
+                    self.report.potential_energy_end -= self.mass[i] * g.dot(turned - fallen);
+                }
+            }
+        }
         Ok(self.report)
     }
 
