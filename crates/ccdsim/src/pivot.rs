@@ -92,12 +92,7 @@ impl Pivot {
         vel: Vector<2>,
         time: f64,
     ) -> Option<Self> {
-        let g = gravity.norm();
-        if !(g > 0.0 && g.is_finite() && radius > 0.0 && radius.is_finite()) {
-            return None;
-        }
-        let up = gravity * (-1.0 / g);
-        let left = Vector([-up[1], up[0]]);
+        let (_, up, left) = frame(gravity).filter(|_| radius > 0.0 && radius.is_finite())?;
         let d = pos - point;
         let angle = d.dot(left).atan2(d.dot(up));
         let rate = vel.dot(tangent(up, left, angle)) / radius;
@@ -115,13 +110,8 @@ impl Pivot {
         angle: f64,
         rate: f64,
     ) -> Option<Self> {
-        let g = gravity.norm();
         let finite = radius.is_finite() && angle.is_finite() && rate.is_finite();
-        if !(g > 0.0 && g.is_finite() && radius > 0.0 && finite) {
-            return None;
-        }
-        let up = gravity * (-1.0 / g);
-        let left = Vector([-up[1], up[0]]);
+        let (g, up, left) = frame(gravity).filter(|_| radius > 0.0 && finite)?;
         let k = g / radius;
         let root_k = k.sqrt();
         let s0 = (0.5 * angle).sin();
@@ -332,6 +322,17 @@ impl Pivot {
         };
         (t.is_finite() && t > t0).then_some(t)
     }
+}
+
+/// `|g|`, `up = −g/|g|` and `left`, its quarter turn counter-clockwise: the frame angles are
+/// measured in; `None` for a gravity that is zero or not finite.
+fn frame(gravity: Vector<2>) -> Option<(f64, Vector<2>, Vector<2>)> {
+    let g = gravity.norm();
+    if !(g > 0.0 && g.is_finite()) {
+        return None;
+    }
+    let up = gravity * (-1.0 / g);
+    Some((g, up, Vector([-up[1], up[0]])))
 }
 
 /// The unit tangent of the circle at angle `theta` (the direction of increasing angle).
