@@ -234,6 +234,15 @@ pub fn event_resolved<const D: usize>(world: &World<D>, e: &Event) -> bool {
     let clock = crate::resolution::ulp_of_finite(e.time);
     let body = |i: u32| {
         let b = &world.bodies()[i as usize];
+        if world.has_pivots() && world.pivot(i as usize).is_some() {
+            // Its stored motion is where it is parked, not where it turns.
+            return crate::resolution::resolves(
+                e.time,
+                world.position_at(i as usize, e.time),
+                world.velocity_at(i as usize, e.time),
+                b.radius,
+            );
+        }
         let (pos, vel) = match world.gravity() {
             None => (b.motion.at(e.time), b.motion.vel),
             Some(g) => (

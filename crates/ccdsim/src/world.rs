@@ -462,6 +462,36 @@ impl<const D: usize> World<D> {
         }
     }
 
+    /// Position of body `i` at time `t` as the finders see it, metres: its stored motion
+    /// advanced by [`World::gravity_of`]. This is [`World::position_at`] except for a body
+    /// turning about a segment's end (see [`World::pivot`]), which the finders see parked
+    /// where its turn started.
+    #[must_use]
+    #[inline]
+    pub fn stored_position_at(&self, i: usize, t: f64) -> Vector<D> {
+        if self.pivots.is_empty() {
+            return self.position_at(i, t);
+        }
+        match self.gravity_of(i) {
+            Some(a) => self.motion(i).falling_at(t, &a),
+            None => self.motion(i).at(t),
+        }
+    }
+
+    /// Velocity of body `i` at time `t` as the finders see it, metres per second (see
+    /// [`World::stored_position_at`]): zero for a body turning about a segment's end.
+    #[must_use]
+    #[inline]
+    pub fn stored_velocity_at(&self, i: usize, t: f64) -> Vector<D> {
+        if self.pivots.is_empty() {
+            return self.velocity_at(i, t);
+        }
+        match self.gravity_of(i) {
+            Some(a) => self.bodies[i].motion.falling_velocity(t, &a),
+            None => self.bodies[i].motion.vel,
+        }
+    }
+
     /// [`World::position_at`] in a world where no body rests on a wall: without the call
     /// out that resting needs, so that hot callers that know it stay leaf functions.
     #[inline(always)]
@@ -615,6 +645,13 @@ impl<const D: usize> World<D> {
             .iter()
             .find(|p| p.body == i)
             .map(|p| (&p.pivot, p.wall))
+    }
+
+    /// True when some body turns about a segment's end ([`World::pivot`]).
+    #[must_use]
+    #[inline]
+    pub fn has_pivots(&self) -> bool {
+        !self.pivots.is_empty()
     }
 
     /// The bodies turning about segment ends, in the order they started ([`World::pivot`]).

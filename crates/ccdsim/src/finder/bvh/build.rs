@@ -36,7 +36,7 @@ impl<const D: usize> SweptTree<D> {
         self.finite = self.leaf_boxes.iter().all(is_finite_box);
         self.extent_now = (0..n).fold(Aabb::EMPTY, |acc, i| {
             acc.union(Aabb::of_ball(
-                world.position_at(i, now),
+                world.stored_position_at(i, now),
                 world.radius_at(i, now),
             ))
         });

@@ -224,7 +224,7 @@ impl<const D: usize> BvhFinder<D> {
         let v_max = match world.gravity() {
             None => world.velocities().map(l1).fold(0.0, f64::max),
             Some(_) => (0..world.len())
-                .map(|i| l1(world.velocity_at(i, now)))
+                .map(|i| l1(world.stored_velocity_at(i, now)))
                 .fold(0.0, f64::max),
         };
         // Under gravity bodies at rest now still fall into each other.

@@ -131,7 +131,7 @@ impl<const D: usize> SweptTree<D> {
         for t in [self.now, self.horizon] {
             if !node
                 .aabb
-                .contains(&Aabb::of_ball(world.position_at(i, t), r))
+                .contains(&Aabb::of_ball(world.stored_position_at(i, t), r))
             {
                 return fail(k, format!("leaf box misses body {i} at t = {t}"));
             }

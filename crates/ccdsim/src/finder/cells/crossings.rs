@@ -168,7 +168,7 @@ impl<const D: usize> Cells<D> {
                 ));
             }
             self.validate_cached(world, i)?;
-            let p = world.position_at(i, clock);
+            let p = world.stored_position_at(i, clock);
             let (lo, hi) = self.grid.cell_box(&k.map(|x| x as usize));
             for d in 0..D {
                 let dt = (clock - m.time).abs();

@@ -664,7 +664,7 @@ impl<const D: usize> Finder<D> for Cells<D> {
                 hi = hi.max(p);
             };
             for i in 0..n {
-                grow(world.position_at(i, now));
+                grow(world.stored_position_at(i, now));
             }
             for wall in world.walls() {
                 match *wall {
@@ -712,7 +712,7 @@ impl<const D: usize> Finder<D> for Cells<D> {
         };
         self.cached = vec![Cached::NONE; n];
         for i in 0..n {
-            let p = world.position_at(i, now);
+            let p = world.stored_position_at(i, now);
             let k = self.grid.coords_of_point(&p);
             self.cached[i].coords = self.grid.insert(i, k);
             if let Mode::Lists(lists) = &mut self.mode {
