@@ -55,7 +55,10 @@ def EVENT_DTYPE(dim: int) -> np.dtype:
 
     Fields: ``t`` (time, s), ``kind`` (0 body-body, 1 body-wall, 2 thermostat reset, 3 edit), ``a``, ``b``
     (body indices, or body and wall index; for a reset the body and 0), ``pos`` (2 x dim: the bodies' positions at ``t``; the second zero for a
-    wall event) and ``vel`` (2 x dim: their velocities after the event).
+    wall event) and ``vel`` (2 x dim: their velocities after the event), ``rests`` (2 bools:
+    the body rests on a wall after the event, see ``settings.rest_speed``) and ``pivots``
+    (2 bools: the body turns about a segment's end point after the event, rolling over an
+    edge, from ``pos`` and ``vel``).
     """
     return np.dtype(
         [
@@ -65,6 +68,8 @@ def EVENT_DTYPE(dim: int) -> np.dtype:
             ("b", "u4"),
             ("pos", "f8", (2, dim)),
             ("vel", "f8", (2, dim)),
+            ("rests", "?", (2,)),
+            ("pivots", "?", (2,)),
         ]
     )
 
@@ -72,7 +77,7 @@ def EVENT_DTYPE(dim: int) -> np.dtype:
 def events_array(arrays: Mapping[str, np.ndarray], dim: int) -> np.ndarray:
     """Events as a structured array (see :func:`EVENT_DTYPE`) from the extension's arrays."""
     out = np.zeros(len(arrays["t"]), dtype=EVENT_DTYPE(dim))
-    for name in ("t", "kind", "a", "b", "pos", "vel"):
+    for name in ("t", "kind", "a", "b", "pos", "vel", "rests", "pivots"):
         out[name] = arrays[name]
     return out
 

@@ -309,10 +309,11 @@ def test_a_ball_comes_to_rest_on_the_floor_and_slides():
         ccdsim.Simulation({**scene, "settings": {"rest_speed": 0.4}}, finder="cells")
 
 
-def test_a_ball_slides_along_a_shelf_and_flies_off_its_end_or_stops_the_run():
+def test_a_ball_slides_along_a_shelf_and_flies_off_its_end_or_rolls_over_it():
     # Put a hair above a shelf (y = 1, x from 0 to 2) at 2 m/s: it rests at once, slides to
     # x = 2 and, since 2^2 > r g = 0.2 * 10, flies off and falls 1 m onto the floor. At
-    # 1 m/s it would roll over the edge: the run stops there and says why.
+    # 1 m/s it rolls over the edge, turning about (2, 1) until the point stops pushing:
+    # g cos(theta) = r w^2 with w^2 = v^2/r^2 + 2 (g/r)(1 - cos(theta)), so cos(theta) = 5/6.
     def shelf(speed):
         return {
             "dim": 2,
@@ -330,6 +331,19 @@ def test_a_ball_slides_along_a_shelf_and_flies_off_its_end_or_stops_the_run():
     assert off["pos"][0][0] == pytest.approx(2.0, abs=1e-12)
     np.testing.assert_array_equal(off["vel"][0], land["vel"][0])
     assert floor["t"] - off["t"] == pytest.approx(0.2**0.5, abs=1e-9)
+    assert not land["pivots"].any() and not off["pivots"].any()
+    assert land["rests"][0] and not off["rests"][0]
     slow = ccdsim.Simulation(shelf(1.0), finder="cells")
-    assert slow.run_until(5.0) == 1
-    assert "roll over the edge" in slow.halt
+    land, edge, release, floor = slow.step(), slow.step(), slow.step(), slow.step()
+    assert (edge["kind"], edge["b"]) == (ccdsim.WALL, 1)
+    assert edge["pivots"][0] and not edge["rests"][0]
+    np.testing.assert_allclose(edge["pos"][0], [2.0, 1.2], atol=1e-9)
+    # It comes off at cos(theta) = 5/6, with v^2 = 1 + 2 g r (1 - 5/6), and meets the
+    # shelf's end no more: its next wall is the floor.
+    assert (release["kind"], release["b"]) == (ccdsim.WALL, 1)
+    assert not release["pivots"][0] and not release["rests"][0]
+    s = (1 - (5 / 6) ** 2) ** 0.5
+    np.testing.assert_allclose(release["pos"][0], [2.0 + 0.2 * s, 1.0 + 0.2 * 5 / 6], atol=1e-9)
+    assert release["vel"][0] @ release["vel"][0] == pytest.approx(1 + 4 / 6, rel=1e-9)
+    assert floor["b"] == 0
+    assert slow.halt is None

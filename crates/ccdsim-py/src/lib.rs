@@ -154,6 +154,16 @@ pub(crate) fn events_dict<'py, const D: usize>(
     out.set_item("b", PyArray1::from_vec(py, b))?;
     out.set_item("pos", pos)?;
     out.set_item("vel", vel)?;
+    let flags =
+        |f: fn(&Collision<D>) -> [bool; 2]| -> Vec<bool> { events.iter().flat_map(f).collect() };
+    out.set_item(
+        "rests",
+        PyArray1::from_vec(py, flags(|c| c.rests)).reshape([k, 2])?,
+    )?;
+    out.set_item(
+        "pivots",
+        PyArray1::from_vec(py, flags(|c| c.pivots)).reshape([k, 2])?,
+    )?;
     Ok(out)
 }
 

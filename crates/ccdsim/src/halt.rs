@@ -17,9 +17,6 @@
 //!   would come again at the same time for ever. When a wall collision left the body's state
 //!   as it was and the finder names that very event again, the run stops.
 //!
-//! * **Over an edge.** A body sliding on a segment that reaches its end too slowly to fly
-//!   clear would roll over the edge ([`crate::ledge`]): the run stops before that event.
-//!
 //! Each check depends only on the world's stored states and the events, never on the finder,
 //! so every finder halts at the same event with the same reason.
 
@@ -121,7 +118,7 @@ pub enum Halt {
     /// clear of the edge. No longer raised: such a body rolls over the edge, turning about
     /// the end point ([`crate::pivot`]). Kept so that code matching on halts still builds.
     #[error(
-        "at t = {time:e} s body {body} slides off the end of wall {wall} too slowly to fly clear of it: it would roll over the edge, a motion that is not simulated, so the run stops (a faster slide, a segment going straight on, or settings.rest_speed unset avoid it)"
+        "at t = {time:e} s body {body} slides off the end of wall {wall} too slowly to fly clear of it (this build does not stop there: such a body rolls over the edge)"
     )]
     OverEdge {
         /// The time, seconds.

@@ -21,13 +21,17 @@
 //!    time it comes back to `e` (a body thrown up over the upper end of an incline falls
 //!    back onto it). `q` is used instead of `|x|² − r²` because the touch it leaves at is a
 //!    double root of the latter, which rounding would turn into a spurious contact.
-//! 3. **Otherwise it would roll over the edge:** held against `e` by gravity, it would turn
-//!    about `e` on a circle until it comes off. That motion is a pendulum's, not a
-//!    polynomial, and no finder could bound its contacts exactly; the run stops before the
-//!    event with [`crate::Halt::OverEdge`], the same event for every finder.
+//! 3. **Otherwise it rolls over the edge** (2D): held against `e` by gravity, it turns about
+//!    `e` on a circle of radius `r`, an inverted pendulum in closed form ([`crate::pivot`]),
+//!    until it comes off where `e` stops pushing, swings back onto its segment, or lands on
+//!    another segment ending at `e` ([`crate::pivot_end`]). That motion is not a polynomial,
+//!    so the finders do not search it: they see the body parked where its turn started
+//!    ([`crate::World::pivot`]) and the simulation finds its contacts itself
+//!    ([`crate::pivot_contact`]), the same events for every finder.
 //!
 //! A body reaching a segment's end is a wall event of that body and segment in run files:
-//! with the rest flag and naming the next segment for case 1, without it for case 2.
+//! with the rest flag and naming the next segment for case 1, without it for case 2, with
+//! the pivot flag (format version 13) for case 3.
 
 use crate::geom::Vector;
 use crate::gravity::{first_entry, toi_circle_segment_falling_ends};

@@ -101,7 +101,7 @@ pub fn first_contact_points(
         (d.norm_sq() - reach * reach, 2.0 * d.dot(dv), d.norm())
     };
     let curvature = |x: f64, y: f64, m: f64, w: f64| points_curvature(a, b, x, y, m, w);
-    first_approach(gap, curvature, |_| true, lo, hi)
+    first_approach(gap, curvature, |_| true, |_, _, _| false, lo, hi)
 }
 
 /// The first time in `[lo, hi]` (s) at which centres `a` and `b` are at least `reach` (m)
@@ -120,7 +120,7 @@ pub fn first_exit_points(
         (reach * reach - d.norm_sq(), -2.0 * d.dot(dv), d.norm())
     };
     let curvature = |x: f64, y: f64, m: f64, w: f64| points_curvature(a, b, x, y, m, w);
-    first_approach(gap, curvature, |_| true, lo, hi)
+    first_approach(gap, curvature, |_| true, |_, _, _| false, lo, hi)
 }
 
 /// A bound of `|f''|` over `[x, y]` (half-width `w`) for `f = ±(|d|² − reach²)`, `d` the
@@ -135,14 +135,19 @@ fn points_curvature(a: &impl Mover, b: &impl Mover, x: f64, y: f64, m: f64, w: f
 
 /// The first time in `[lo, hi]` (s) at which centre `a` is within `reach` (m) of the line
 /// through the moving point `line` with unit normal `normal`, on the normal's side and
-/// approaching it, with `counts(t)` true (e.g. its foot on a segment), or `None`.
+/// approaching it, or `None`. With `span = Some((u, len2))` only a contact whose foot lies
+/// on the segment from `line` to `line + u` counts (`0 ≤ (a − line)·u ≤ len2`, `len2 = |u|²`).
+///
+/// The span is bounded like the gap: where the foot is off the segment throughout an
+/// interval, it is dropped, so a ball crossing the segment's line beyond its ends is never
+/// searched down to adjacent floats.
 #[must_use]
 pub fn first_contact_line(
     a: &impl Mover,
     line: &impl Mover,
     normal: Vector<2>,
     reach: f64,
-    counts: impl Fn(f64) -> bool,
+    span: Option<(Vector<2>, f64)>,
     lo: f64,
     hi: f64,
 ) -> Option<f64> {
@@ -153,7 +158,21 @@ pub fn first_contact_line(
     };
     let curvature =
         |x: f64, y: f64, _m: f64, _w: f64| (a.bounds(x, y).1 + line.bounds(x, y).1) * BOUND_SLACK;
-    first_approach(gap, curvature, counts, lo, hi)
+    let foot = |t: f64, u: Vector<2>| {
+        let ((p, v), (q, w)) = (a.state(t), line.state(t));
+        ((p - q).dot(u), (v - w).dot(u))
+    };
+    let counts = |t: f64| span.is_none_or(|(u, len2)| (0.0..=len2).contains(&foot(t, u).0));
+    // `|foot''| ≤ (|a''| + |line''|)·|u|`: the foot stays within its second-order spread.
+    let outside = |x: f64, y: f64, w: f64| {
+        span.is_some_and(|(u, len2)| {
+            let (f, df) = foot(0.5 * (x + y), u);
+            let bend = curvature(x, y, 0.0, w) * u.norm() * BOUND_SLACK;
+            let spread = (df.abs() * w + 0.5 * bend * w * w) * BOUND_SLACK;
+            f + spread < 0.0 || f - spread > len2
+        })
+    };
+    first_approach(gap, curvature, counts, outside, lo, hi)
 }
 
 /// The first time in `[lo, hi]` (s) at which the ball of radius `r` (m) turning with `pivot`
@@ -178,10 +197,17 @@ pub fn toi_pivot_wall(
         acc: Vector::ZERO,
         time: wall_time,
     };
+    // The centre stays on the circle of radius `r` about the pivot's point (to rounding far
+    // below this margin): a static wall farther than `2r` from the point is never reached.
+    if wall_vel == Vector::ZERO
+        && crate::wall::wall_clearance(wall, pivot.point()).abs() > 2.0 * r * (1.0 + 1e-9)
+    {
+        return None;
+    }
     match *wall {
         Wall::Plane { point, normal } => {
             let n = normal * (1.0 / normal.norm());
-            first_contact_line(pivot, &mover(point), n, r, |_| true, lo, hi)
+            first_contact_line(pivot, &mover(point), n, r, None, lo, hi)
         }
         Wall::Segment { a, b } => {
             let e = pivot.point();
@@ -199,11 +225,7 @@ pub fn toi_pivot_wall(
                 if (pivot.position(lo) - start.state(lo).0).dot(n) < 0.0 {
                     n = -n;
                 }
-                let foot_on = |t: f64| {
-                    let f = (pivot.position(t) - start.state(t).0).dot(u);
-                    (0.0..=len2).contains(&f)
-                };
-                first_contact_line(pivot, &start, n, r, foot_on, lo, hi)
+                first_contact_line(pivot, &start, n, r, Some((u, len2)), lo, hi)
             };
             ends.chain(inside).reduce(f64::min)
         }
@@ -212,11 +234,13 @@ pub fn toi_pivot_wall(
 
 /// The search of the module docs: `gap(t)` gives the gap, its derivative and a size from
 /// which `curvature(a, b, size, w)` bounds `|gap''|` over `[a, b]` (`w` its half-width);
-/// `counts(t)` must also hold at the answer.
+/// `counts(t)` must also hold at the answer, and `outside(a, b, w)` is true only where it
+/// holds nowhere in `[a, b]` (such an interval is dropped).
 fn first_approach(
     gap: impl Fn(f64) -> (f64, f64, f64),
     curvature: impl Fn(f64, f64, f64, f64) -> f64,
     counts: impl Fn(f64) -> bool,
+    outside: impl Fn(f64, f64, f64) -> bool,
     lo: f64,
     hi: f64,
 ) -> Option<f64> {
@@ -249,7 +273,7 @@ fn first_approach(
         let bend = curvature(a, b, size, w);
         let apart = f - df.abs() * w - 0.5 * bend * w * w > 0.0;
         let receding = df - bend * w >= 0.0;
-        if apart || receding {
+        if apart || receding || outside(a, b, w) {
             continue;
         }
         stack.push((m, b));
@@ -325,7 +349,7 @@ mod tests {
             &at_rest(Vector([0.8, 0.0])),
             Vector([-1.0, 0.0]),
             0.5,
-            |_| true,
+            None,
             0.0,
             end,
         )
@@ -334,20 +358,20 @@ mod tests {
         assert!((0.3..0.3 + 1e-12).contains(&x), "{x}");
         // The floor it slid off (x ≤ 0) is touched at the start, but its centre goes below
         // the floor's line only with its foot beyond the floor's end: no contact.
-        let floor = |counts: &dyn Fn(f64) -> bool| {
+        let floor = |span| {
             first_contact_line(
                 &p,
                 &at_rest(Vector([-5.0, 0.0])),
                 Vector([0.0, 1.0]),
                 0.5,
-                counts,
+                span,
                 0.0,
                 end,
             )
         };
-        assert_eq!(floor(&|t| p.position(t)[0] <= 0.0), None);
+        assert_eq!(floor(Some((Vector([5.0, 0.0]), 25.0))), None);
         // The whole line would be met at once.
-        assert!(floor(&|_| true).is_some_and(|t| t < 1e-3));
+        assert!(floor(None).is_some_and(|t| t < 1e-3));
     }
 
     fn ledge_ball() -> (Pivot, f64) {

@@ -262,8 +262,8 @@ pub fn resolve_slide_end<const D: usize>(
     };
     let pivot = (D == 2 && !crate::ledge::flies_clear(&m, end, &g))
         .then(|| {
-            let two = |x: Vector<D>| Vector([x[0], x[1]]);
-            crate::pivot::Pivot::new(two(end), world.radius(i), two(g), two(p), two(v), t)
+            use crate::world::to_2d;
+            crate::pivot::Pivot::new(to_2d(end), world.radius(i), to_2d(g), to_2d(p), to_2d(v), t)
         })
         .flatten();
     match pivot {

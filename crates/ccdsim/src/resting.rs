@@ -55,8 +55,8 @@
 //!
 //! **Segments end.** A body sliding on a segment reaches one of its ends: it slides on along
 //! a segment that goes straight on from there, flies off if it is fast enough to clear the
-//! edge, and otherwise (it would roll over the edge, a motion no finder can bound exactly)
-//! the run stops with [`crate::Halt::OverEdge`]. See [`crate::ledge`].
+//! edge, and otherwise rolls over the edge, turning about the end point until it comes off
+//! or lands ([`crate::pivot`]). See [`crate::ledge`].
 //!
 //! Every finder reads each body's acceleration from the world ([`crate::World::acceleration`])
 //! and skips its support ([`crate::World::support`]), so all of them return the oracle's

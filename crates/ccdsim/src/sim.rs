@@ -353,8 +353,7 @@ impl<const D: usize> Simulation<D> {
 
     /// Under gravity, true (with [`Simulation::halt`] set) when the run stops before the
     /// finder's event `e`: it repeats a collision that changed nothing ([`Halt::Resting`],
-    /// [`Halt::RestingOnBody`]), or brings a slow body to the end of the segment it slides
-    /// on ([`Halt::OverEdge`]).
+    /// [`Halt::RestingOnBody`]).
     #[inline(never)]
     fn halts_before(&mut self, e: &Event) -> bool {
         // The same event again after collisions that changed nothing, or one wall event too

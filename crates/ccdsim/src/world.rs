@@ -63,6 +63,20 @@ pub(crate) fn from_2d<const D: usize>(v: Vector<2>) -> Vector<D> {
     out
 }
 
+/// A wall of `D` dimensions as a 2D one (`D = 2` wherever bodies pivot).
+pub(crate) fn wall_2d<const D: usize>(w: &Wall<D>) -> Wall<2> {
+    match *w {
+        Wall::Segment { a, b } => Wall::Segment {
+            a: to_2d(a),
+            b: to_2d(b),
+        },
+        Wall::Plane { point, normal } => Wall::Plane {
+            point: to_2d(point),
+            normal: to_2d(normal),
+        },
+    }
+}
+
 /// The hot part of one body's state: its stored motion, radius, mass and change count.
 ///
 /// `repr(C)` keeps the fields in this order: the ones every time of impact reads come first.

@@ -60,6 +60,39 @@ fn refuses_other_versions_and_other_files() {
 }
 
 #[test]
+fn refuses_flags_its_format_version_does_not_have() {
+    // A plain run (version 1) whose first record claims a resting or turning body: bits
+    // only versions 11 and 13 have. The checksum is made right, so only the tag is wrong.
+    let scene = rack(&RackConfig::default());
+    let clean = record(&scene, 5, "all-pairs");
+    let header = u64::from_le_bytes(clean[16..24].try_into().unwrap()) as usize;
+    let first = PREAMBLE_LEN + header;
+    let len = record_len(2);
+    for flag in [0x40u8, 0x20, 0x10] {
+        let mut bytes = clean.clone();
+        bytes[first] |= flag;
+        let sum = fnv1a(&bytes[first..first + len - 4]);
+        bytes[first + len - 4..first + len].copy_from_slice(&sum.to_le_bytes());
+        let mut r = RunReader::<_, 2>::new(&bytes[..], "x.ccd".into()).unwrap();
+        let err = r
+            .next_record()
+            .expect_err("a flag version 1 lacks")
+            .to_string();
+        assert!(
+            err.contains("bad tag") && err.contains("version 1"),
+            "{err}"
+        );
+    }
+}
+
+/// FNV-1a, 32 bits: the run file's record checksum.
+fn fnv1a(bytes: &[u8]) -> u32 {
+    bytes.iter().fold(0x811c_9dc5u32, |h, &b| {
+        (h ^ u32::from(b)).wrapping_mul(0x0100_0193)
+    })
+}
+
+#[test]
 fn truncated_at_any_offset_reads_back_to_the_last_complete_event() {
     let scene: Scene<3> = gas(&GasConfig {
         n: 40,

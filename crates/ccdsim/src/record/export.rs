@@ -95,6 +95,11 @@ struct EventOut<'a, const D: usize> {
     /// wall after the event (see [`crate::resting`]); absent when none does.
     #[serde(skip_serializing_if = "Option::is_none")]
     rests: Option<&'a [bool]>,
+    /// Runs where bodies roll over segment ends: for each body of the line, whether it turns
+    /// about a segment's end point after the event (see [`crate::pivot`]), from the line's
+    /// position and velocity; absent when none does.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pivots: Option<&'a [bool]>,
 }
 
 /// Writes a run as JSON Lines: a header object, then one object per event (see the README).
@@ -163,6 +168,7 @@ pub fn export_jsonl<R: Read, W: Write, const D: usize>(
             mask: None,
             restitution: None,
             rests: (c.rests != [false; 2]).then_some(&c.rests[..k]),
+            pivots: (c.pivots != [false; 2]).then_some(&c.pivots[..k]),
         };
         let added;
         match c.event.kind {

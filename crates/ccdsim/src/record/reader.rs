@@ -3,7 +3,7 @@
 use super::{
     fnv1a, record_len, RecordError, RunRecord, MAGIC, PIVOT_A, PIVOT_B, PREAMBLE_LEN, REST_A,
     REST_B, TAG_BODY, TAG_EDIT, TAG_END, TAG_RESET, TAG_WALL, VERSION, VERSION_EDITS,
-    VERSION_MOVING_WALLS, VERSION_NEWEST, VERSION_SLOTS,
+    VERSION_MOVING_WALLS, VERSION_NEWEST, VERSION_PIVOTS, VERSION_RESTING, VERSION_SLOTS,
 };
 use crate::event::Event;
 use crate::geom::Vector;
@@ -267,7 +267,7 @@ impl<R: Read, const D: usize> RunReader<R, D> {
             self.tail = Tail::Truncated { bytes: got as u64 };
             return Ok(None);
         }
-        match decode::<D>(&self.buf).and_then(|rec| self.check_indices(rec)) {
+        match decode::<D>(&self.buf, self.version).and_then(|rec| self.check_indices(rec)) {
             Ok(rec) => {
                 self.index += 1;
                 if let RunRecord::End(_) = rec {
@@ -408,7 +408,8 @@ impl<R: Read + Seek, const D: usize> RunReader<R, D> {
     }
 }
 
-fn decode<const D: usize>(buf: &[u8]) -> Result<RunRecord<D>, String> {
+/// One record of a file of format `version`: its flags must be ones that version has.
+fn decode<const D: usize>(buf: &[u8], version: u32) -> Result<RunRecord<D>, String> {
     let n = buf.len();
     let sum = u32::from_le_bytes(buf[n - 4..].try_into().expect("4 bytes"));
     if fnv1a(&buf[..n - 4]) != sum {
@@ -434,7 +435,12 @@ fn decode<const D: usize>(buf: &[u8]) -> Result<RunRecord<D>, String> {
         rests: [buf[0] & REST_A != 0, buf[0] & REST_B != 0],
         pivots: [buf[0] & PIVOT_A != 0, buf[0] & PIVOT_B != 0],
     };
-    match buf[0] & !(REST_A | REST_B | PIVOT_A | PIVOT_B) {
+    let flags = match version {
+        v if v >= VERSION_PIVOTS => REST_A | REST_B | PIVOT_A | PIVOT_B,
+        v if v >= VERSION_RESTING => REST_A | REST_B,
+        _ => 0,
+    };
+    match buf[0] & !flags {
         TAG_BODY if a < b => Ok(RunRecord::Event(c(Event::body(t, a as usize, b as usize)))),
         TAG_WALL => Ok(RunRecord::Event(c(Event::wall(t, a as usize, b as usize)))),
         TAG_END => Ok(RunRecord::End(t)),
@@ -443,6 +449,9 @@ fn decode<const D: usize>(buf: &[u8]) -> Result<RunRecord<D>, String> {
             b,
             ..Event::edit(t, a as usize)
         }))),
-        tag => Err(format!("bad tag {tag} or body order {a} ≥ {b}")),
+        _ => Err(format!(
+            "bad tag {:#04x} (for format version {version}) or body order {a} ≥ {b}",
+            buf[0]
+        )),
     }
 }

@@ -14,7 +14,7 @@ use crate::pivot::Pivot;
 use crate::pivot_contact::{first_contact_points, toi_pivot_wall, Parabola};
 use crate::pivot_end::{pivot_end, PivotEnd};
 use crate::wall::Wall;
-use crate::world::{to_2d, World};
+use crate::world::{to_2d, wall_2d, World};
 
 /// One pivoting body's next events.
 #[derive(Clone, Debug)]
@@ -171,20 +171,6 @@ pub(crate) fn turn_end<const D: usize>(world: &World<D>, i: usize) -> Option<Piv
     let (pivot, w) = world.pivot(i)?;
     let walls: Vec<Wall<2>> = world.walls().iter().map(wall_2d).collect();
     pivot_end(pivot, &walls, w)
-}
-
-/// A wall of `D` dimensions as a 2D one (pivots happen in 2D only).
-fn wall_2d<const D: usize>(w: &Wall<D>) -> Wall<2> {
-    match *w {
-        Wall::Segment { a, b } => Wall::Segment {
-            a: to_2d(a),
-            b: to_2d(b),
-        },
-        Wall::Plane { point, normal } => Wall::Plane {
-            point: to_2d(point),
-            normal: to_2d(normal),
-        },
-    }
 }
 
 /// The first contact of pivoting body `i` (its turn ending as `end` says) with body `j`, from

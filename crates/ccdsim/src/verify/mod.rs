@@ -55,7 +55,7 @@ use crate::scene::Scene;
 use crate::sim::Collision;
 use crate::thermostat::ResetClock;
 use crate::wall::{wall_clearance, Wall};
-use crate::world::{from_2d, to_2d};
+use crate::world::{from_2d, to_2d, wall_2d};
 use closest::{closest_approach, closest_approach_growing, closest_to_wall};
 use falling::{closest_to_point_falling, closest_to_wall_falling};
 use proximity::Proximity;
@@ -67,20 +67,6 @@ enum TurnOrFall {
     Turn(Pivot),
     /// Falling (or flying, or sliding) on a parabola.
     Fall(Parabola),
-}
-
-/// A wall of `D` dimensions as a 2D one (bodies turn about points in 2D only).
-fn wall_2d<const D: usize>(w: &Wall<D>) -> Wall<2> {
-    match *w {
-        Wall::Segment { a, b } => Wall::Segment {
-            a: to_2d(a),
-            b: to_2d(b),
-        },
-        Wall::Plane { point, normal } => Wall::Plane {
-            point: to_2d(point),
-            normal: to_2d(normal),
-        },
-    }
 }
 
 /// Allowed overlap relative to the contact distance.
@@ -197,6 +183,9 @@ pub struct Verifier<const D: usize> {
     /// The turn about a segment's end point each body makes, and that segment, by index, as
     /// the records say (see [`crate::pivot`]); empty unless bodies rest on walls.
     pivots: Vec<Option<(Pivot, usize)>>,
+    /// Each static wall's slide acceleration where bodies rest on it
+    /// ([`crate::resting::slides`]); empty unless bodies rest on walls.
+    slides: Vec<Option<Vector<D>>>,
 }
 
 impl<const D: usize> Verifier<D> {
@@ -262,6 +251,7 @@ impl<const D: usize> Verifier<D> {
                 Some(_) => vec![None; scene.bodies.len()],
                 None => Vec::new(),
             },
+            slides: crate::resting::slides(scene),
             growth,
             gravity,
             vacant: Vec::new(),
@@ -770,9 +760,13 @@ impl<const D: usize> Verifier<D> {
             return self.check_slide_end(c, i, w);
         }
         self.check_turn_end(c, i)?;
-        // Chosen before the collision counts for the TC model, as the simulation does.
+        // Chosen before the collision counts for the TC model, as the simulation does; going
+        // on along the segment that continues the one it slides on (a shelf in pieces) is no
+        // collision there.
         let e = self.restitutions.wall(i, t);
-        self.restitutions.note(i, t);
+        if !(c.rests[0] && !moving && self.goes_on(i, w, c.pos[0])) {
+            self.restitutions.note(i, t);
+        }
         // In a moving wall's frame the collision is a static wall's (a static wall's velocity
         // is zero, and `v − 0` is `v`).
         let (v0, v1) = (before - wall_velocity, c.vel[0] - wall_velocity);
@@ -872,6 +866,19 @@ impl<const D: usize> Verifier<D> {
         }
         self.report.wall_collisions += 1;
         Ok(())
+    }
+
+    /// True when body `i`, at `pos`, slides on a segment that segment `w` continues straight
+    /// on from the end it has reached ([`crate::ledge::continuation`]).
+    fn goes_on(&self, i: usize, w: usize, pos: Vector<D>) -> bool {
+        let Some(s) = self.supports.get(i).copied().flatten() else {
+            return false;
+        };
+        let Wall::Segment { a, b } = self.walls[s] else {
+            return false;
+        };
+        let end = crate::ledge::end_reached(a, b, pos);
+        crate::ledge::continuation(&self.walls, &self.slides, s, end) == Some(w)
     }
 
     /// The turn body `i` (slot `s` of record `c`) makes after it, as the record's flag says

@@ -145,6 +145,7 @@ impl<const D: usize> Verifier<D> {
             }
             if self.rest_speed.is_some() {
                 self.supports.push(None);
+                self.pivots.push(None);
             }
             if let Some(grid) = &mut self.grid {
                 grid.resize(k + 1);
