@@ -522,3 +522,46 @@ fn a_ball_rolling_over_a_shelfs_end_is_rendered_on_its_circle() {
         assert_ne!(pixel(&pm, &cam, b + d * (RADIUS + 2.0 * px)), id, "{d:?}");
     }
 }
+
+#[test]
+fn a_ball_turning_over_the_top_of_an_incline_is_inside_the_extent_at_its_highest() {
+    // Up a 20° incline and off its top end at 0.8 m/s: too slow to fly clear (v² < r g cos
+    // 20°), fast enough to turn over the top of the end point and come off on the far side.
+    // Its highest point, straight above the end, lies between its records: the extent must
+    // still reach it.
+    let a = 20f64.to_radians();
+    let (c, s) = (a.cos(), a.sin());
+    let top = Vector([2.0 * c, SHELF_Y + 2.0 * s]);
+    let start = Vector([
+        1.5 * c - s * (RADIUS + 1e-7),
+        SHELF_Y + 1.5 * s + c * (RADIUS + 1e-7),
+    ]);
+    let v0 = (0.8f64 * 0.8 + 2.0 * 10.0 * s * 0.5).sqrt();
+    let mut scene = roll_scene();
+    scene.bodies[0] = ccdsim::BodySpec::new(start, Vector([v0 * c, v0 * s]), RADIUS);
+    scene.walls = vec![
+        scene.walls[FLOOR],
+        ccdsim::Wall::Segment {
+            a: Vector([0.0, SHELF_Y]),
+            b: top,
+        },
+    ];
+    let (path, run) = recorded("ledge-over-the-top", &scene, 2.0, 0.05);
+    let over = run.roll_overs();
+    assert_eq!(over.len(), 1, "{:?}", run.events);
+    let roll = run.events[over[0]];
+    assert!(
+        roll.pos[0][1] + RADIUS < top[1] + 2.0 * RADIUS - 1e-3,
+        "{roll:?}"
+    );
+    // Over the top: on the far side of the end point when it comes off.
+    let off = run.events[over[0] + 1];
+    assert!(off.pos[0][0] > top[0] && !off.rests[0], "{off:?}");
+    let p = assert_plays(&path, &run, &DENSE);
+    let e = p.extent();
+    assert!(
+        (e.bounds.max[1] - (top[1] + 2.0 * RADIUS)).abs() < 1e-12,
+        "{e:?}, the top of the turn at {}",
+        top[1] + 2.0 * RADIUS
+    );
+}
