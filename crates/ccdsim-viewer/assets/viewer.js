@@ -192,9 +192,11 @@
 
   // The turn of body i about `point` from time t0, where it was at `pos` moving at `vel`: its
   // angle from up (−g, counter-clockwise towards `left`) and rate then, as ccdsim::pivot's
-  // Pivot::new takes them (the ball at its radius from the point).
+  // Pivot::new takes them (the ball at its radius from the point); null where Pivot::new gives
+  // no turn (no gravity, no radius), as the server then has none.
   function makeTurn(i, point, t0, pos, vel) {
-    const G = S.G, g = Math.hypot(G[0], G[1]), r = S.radius[i];
+    const G = S.G, g = G ? Math.hypot(G[0], G[1]) : 0, r = S.radius[i];
+    if (!(g > 0 && Number.isFinite(g) && r > 0 && Number.isFinite(r))) return null;
     const up = [-G[0] / g, -G[1] / g], left = [G[1] / g, -G[0] / g];
     const d = [pos[0] - point[0], pos[1] - point[1]];
     const theta = Math.atan2(d[0] * left[0] + d[1] * left[1], d[0] * up[0] + d[1] * up[1]);
@@ -379,7 +381,7 @@
         // of its own (as the server's rest section has it).
         const at = Array.from(d.subarray(o + 4, o + 6)), vel = Array.from(d.subarray(o + 6, o + 8));
         S.turns[a] = makeTurn(a, endReached(S.meta.walls[b], at), t, at, vel);
-        S.A.fill(0, a * D, (a + 1) * D);
+        if (S.turns[a]) S.A.fill(0, a * D, (a + 1) * D);
       }
     }
     markEvent(S.lastEvent);
