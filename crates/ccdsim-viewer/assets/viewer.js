@@ -18,6 +18,14 @@
 // format 12, a ball's wall event with the segment it slides on is its flight off the end). Snapshots carry
 // every body's acceleration (src/wire.rs's rest section), events their rest flags.
 //
+// In such a run with 2D segments (format 13), a ball too slow to fly off a segment's end rolls
+// over it: a wall event whose rest flags have bit 2 starts a turn of its body about the end
+// point of the event's segment it reached, and the next event naming the body ends it.
+// While it turns, the ball is drawn on its circle about that point, not on a parabola: its
+// angle θ from "up" (−g) obeys θ̈ = (|g|/r)·sin θ, integrated here with RK4 in small steps
+// from the turn's start (cached per body, so that playing forwards costs a few steps a frame).
+// Snapshots carry the turns under way (src/wire.rs's pivot section).
+//
 // Moving walls (meta.moving_walls) are kept the same way: wall k is its scene geometry
 // translated by WM's offset + velocity·(t − time); snapshots carry every wall's (time,
 // offset, velocity) and edit events of code 5 restate one wall's (their `a` names the wall,
@@ -39,6 +47,11 @@
   const SLOT_SECTION = 1; // opens a snapshot's slot section (src/wire.rs)
   const WALL_SECTION = 2; // opens a snapshot's wall section (src/wire.rs)
   const REST_SECTION = 3; // opens a snapshot's rest section (src/wire.rs)
+  const PIVOT_SECTION = 4; // opens a snapshot's pivot section (src/wire.rs)
+  const PIVOT_A = 4; // bit of an event's rest flags: body a turns about a segment's end after it
+  const PIVOT_STRIDE = 8; // f64s per turning body in the pivot section
+  // RK4 steps of a turn, in units of the pendulum's time scale √(r/|g|).
+  const TURN_STEP = 0.005;
   const EDIT = 3; // event kind of edits; their codes (b) as in crates/ccdsim/src/edit.rs:
   const ADD = 1, ADD_ID = 2, REMOVE = 3, WALL_MOTION = 5;
 
@@ -47,6 +60,7 @@
     radius: null, ids: null, idBucket: null, kin: null, scene: null,
     P: null, V: null, T0: null, G: null, flash: null, evTime: null,
     A: null, slides: null, // resting runs only: per body acceleration; per static wall slide (or null)
+    turns: null, // 2D resting runs only: per body its turn about a segment's end point, or null
     walls: [], WM: new Float64Array(0), // moving walls: scene geometry; per wall time, offset, velocity
     time: 0, applied: 0, lastEvent: null,
     buf: { start: 0, count: 0, data: new Float64Array(0) },
@@ -95,7 +109,8 @@
     S.P.set(pos.subarray(0, m * D));
     S.V.set(vel.subarray(0, m * D));
     S.T0.fill(S.time);
-    loadRests(ab, loadWalls(ab, loadSlots(ab, 8 * STATE_HEADER + 8 * n * D, n, m)), n, m);
+    const rests = loadRests(ab, loadWalls(ab, loadSlots(ab, 8 * STATE_HEADER + 8 * n * D, n, m)), n, m);
+    loadTurns(ab, rests, m);
     S.lastEvent = h[4] >= 0 ? { t: h[5], kind: h[4], a: h[6], b: h[7] } : null;
     // Flashes of the events played before a jump mean nothing after it.
     S.flash.fill(-Infinity);
@@ -145,16 +160,88 @@
 
   // The bodies' accelerations in a run where bodies rest on walls: the snapshot's rest
   // section (n supports, then n·D accelerations), from the next multiple of 8 bytes on.
+  // Returns the offset after it.
   function loadRests(ab, off, n, m) {
-    if (!S.A) return;
+    if (!S.A) return off;
     off = Math.ceil(off / 8) * 8;
     const D = S.D;
+    S.A.fill(0, m * D);
     if (ab.byteLength >= off + 8 * (1 + n + n * D) && new Float64Array(ab, off, 1)[0] === REST_SECTION) {
       S.A.set(new Float64Array(ab, off + 8 + 8 * n, n * D).subarray(0, m * D));
-    } else {
-      for (let i = 0; i < m; i++) fall(i);
+      return off + 8 * (1 + n + n * D);
     }
-    S.A.fill(0, m * D);
+    for (let i = 0; i < m; i++) fall(i);
+    return off;
+  }
+
+  // The turns under way at the snapshot: its pivot section (count, then per turning body
+  // its slot, the point, the turn's start time, and its position and velocity then), from the
+  // next multiple of 8 bytes after the rest section; no section, no body turns.
+  function loadTurns(ab, off, m) {
+    if (!S.turns) return;
+    S.turns.fill(null);
+    off = Math.ceil(off / 8) * 8;
+    if (ab.byteLength < off + 16 || new Float64Array(ab, off, 1)[0] !== PIVOT_SECTION) return;
+    const count = new Float64Array(ab, off + 8, 1)[0];
+    const d = new Float64Array(ab, off + 16, count * PIVOT_STRIDE);
+    for (let j = 0; j < count; j++) {
+      const o = j * PIVOT_STRIDE, i = d[o];
+      if (i < m) S.turns[i] = makeTurn(i, [d[o + 1], d[o + 2]], d[o + 3], [d[o + 4], d[o + 5]], [d[o + 6], d[o + 7]]);
+    }
+  }
+
+  // The turn of body i about `point` from time t0, where it was at `pos` moving at `vel`: its
+  // angle from up (−g, counter-clockwise towards `left`) and rate then, as ccdsim::pivot's
+  // Pivot::new takes them (the ball at its radius from the point); null where Pivot::new gives
+  // no turn (no gravity, no radius), as the server then has none.
+  function makeTurn(i, point, t0, pos, vel) {
+    const G = S.G, g = G ? Math.hypot(G[0], G[1]) : 0, r = S.radius[i];
+    if (!(g > 0 && Number.isFinite(g) && r > 0 && Number.isFinite(r))) return null;
+    const up = [-G[0] / g, -G[1] / g], left = [G[1] / g, -G[0] / g];
+    const d = [pos[0] - point[0], pos[1] - point[1]];
+    const theta = Math.atan2(d[0] * left[0] + d[1] * left[1], d[0] * up[0] + d[1] * up[1]);
+    const [s, c] = [Math.sin(theta), Math.cos(theta)];
+    const rate = (vel[0] * (left[0] * c - up[0] * s) + vel[1] * (left[1] * c - up[1] * s)) / r;
+    return { point, up, left, r, k: g / r, t0, theta0: theta, rate0: rate, t: t0, theta, rate };
+  }
+
+  // The angle and rate of turn `u` at time t (not before its start): θ̈ = k·sin θ, k = |g|/r,
+  // by RK4 from the cached state when t is past it, else from the start.
+  function turnAt(u, t) {
+    if (t < u.t) { u.t = u.t0; u.theta = u.theta0; u.rate = u.rate0; }
+    const k = u.k, hmax = TURN_STEP / Math.sqrt(k);
+    let th = u.theta, w = u.rate, now = u.t;
+    while (now < t) {
+      const h = Math.min(hmax, t - now);
+      const a1 = k * Math.sin(th);
+      const w2 = w + 0.5 * h * a1, a2 = k * Math.sin(th + 0.5 * h * w);
+      const w3 = w + 0.5 * h * a2, a3 = k * Math.sin(th + 0.5 * h * w2);
+      const w4 = w + h * a3, a4 = k * Math.sin(th + h * w3);
+      th += (h / 6) * (w + 2 * w2 + 2 * w3 + w4);
+      w += (h / 6) * (a1 + 2 * a2 + 2 * a3 + a4);
+      now = h === t - now ? t : now + h;
+    }
+    u.t = now; u.theta = th; u.rate = w;
+    return u;
+  }
+
+  // Where turning body u is at time t, into `out`.
+  function turnPosition(u, t, out) {
+    const { theta } = turnAt(u, t), c = Math.cos(theta), s = Math.sin(theta);
+    out[0] = u.point[0] + u.r * (c * u.up[0] + s * u.left[0]);
+    out[1] = u.point[1] + u.r * (c * u.up[1] + s * u.left[1]);
+    return out;
+  }
+
+  // Turning body u's speed at time t.
+  const turnSpeed = (u, t) => u.r * Math.abs(turnAt(u, t).rate);
+
+  // The end point of segment w (a static wall) that a body at p reached: as
+  // ccdsim::ledge::end_reached, the end nearer the foot of p.
+  function endReached(w, p) {
+    const u = [w.b[0] - w.a[0], w.b[1] - w.a[1]];
+    const along = (p[0] - w.a[0]) * u[0] + (p[1] - w.a[1]) * u[1];
+    return along >= 0.5 * (u[0] * u[0] + u[1] * u[1]) ? w.b.slice(0, 2) : w.a.slice(0, 2);
   }
 
   // Body i falls under g from now on (kinematic bodies and vacant slots do not fall).
@@ -253,6 +340,8 @@
         S.V[i * D + k] = d[p + D + k];
       }
       S.T0[i] = t;
+      // Any event naming a turning body ends its turn (one that turns it starts another).
+      if (S.turns) S.turns[i] = null;
     };
     S.lastEvent = { t, kind, a, b };
     S.applied++;
@@ -287,6 +376,13 @@
       if (kind === 1 && rests & 1) slide(a, b);
       else if (!(kind === 0 && rests & 1)) fall(a);
       if (kind === 0 && !(rests & 2)) fall(b);
+      if (kind === 1 && rests & PIVOT_A && S.turns) {
+        // Rolls over the end of segment b: turns about its end point, with no acceleration
+        // of its own (as the server's rest section has it).
+        const at = Array.from(d.subarray(o + 4, o + 6)), vel = Array.from(d.subarray(o + 6, o + 8));
+        S.turns[a] = makeTurn(a, endReached(S.meta.walls[b], at), t, at, vel);
+        if (S.turns[a]) S.A.fill(0, a * D, (a + 1) * D);
+      }
     }
     markEvent(S.lastEvent);
     flashEvent(S.lastEvent);
@@ -397,6 +493,7 @@
   }
 
   function position(i, t, out) {
+    if (S.turns && S.turns[i]) return turnPosition(S.turns[i], t, out);
     const D = S.D, dt = t - S.T0[i], G = S.kin[i] ? null : S.G;
     for (let k = 0; k < D; k++) out[k] = S.P[i * D + k] + S.V[i * D + k] * dt;
     if (S.A) for (let k = 0; k < D; k++) out[k] += 0.5 * S.A[i * D + k] * dt * dt;
@@ -406,6 +503,9 @@
 
   // Body i's colour word at time t (its speed changes between events under gravity).
   function bodyWord(i, t) {
+    if (S.colour === 'speed' && S.turns && S.turns[i]) {
+      return Raster.SPEED_WORDS[Raster.speedBucket(turnSpeed(S.turns[i], t), S.meta.max_speed)];
+    }
     if (S.colour === 'speed') {
       const D = S.D, G = S.kin[i] ? null : S.G, dt = t - S.T0[i];
       let v2 = 0;
@@ -803,6 +903,7 @@
       S.V = new Float64Array(S.n * S.D);
       S.T0 = new Float64Array(S.n);
       S.A = resting ? new Float64Array(S.n * S.D) : null;
+      S.turns = resting && S.D === 2 ? new Array(S.n).fill(null) : null;
       S.flash = new Float64Array(S.n).fill(-Infinity);
       S.evTime = new Float64Array(S.n).fill(-Infinity);
       const bodyCount = meta.slot_edits ? `${meta.scene_bodies} bodies at the start, bodies added and removed (${meta.bodies} slots)` : `${meta.bodies} bodies`;
@@ -834,6 +935,13 @@
     slot: (i) => ({ radius: S.radius[i], id: S.ids[i], kinematic: S.kin[i] === 1 }),
     // Body i's acceleration as the page holds it (a resting run), or null.
     acceleration: (i) => (S.A ? Array.from(S.A.subarray(i * S.D, (i + 1) * S.D)) : null),
+    // Body i's position at the current time as the page draws it (metres, f64).
+    position: (i) => position(i, S.time, [0, 0, 0]).slice(0, S.D),
+    // Body i's turn about a segment's end point as the page holds it, or null.
+    turn(i) {
+      const u = S.turns && S.turns[i];
+      return u ? { point: u.point.slice(), start: u.t0, theta0: u.theta0, rate0: u.rate0 } : null;
+    },
     // Sensor k's centre and radius, in CSS pixels from the canvas's top-left corner.
     sensorOnScreen(k) {
       const s = S.meta.sensors[k];

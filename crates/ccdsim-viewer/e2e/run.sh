@@ -2,7 +2,8 @@
 # End-to-end tests of the browser viewer in headless Chromium.
 #
 # Needs Debian's chromium (apt-get install -y chromium) and Node.js with npm. Builds the
-# `ccdsim` binary (which also records examples/shelves.json, balls resting on segments) and
+# `ccdsim` binary (which also records examples/shelves.json, balls resting on segments, and
+# a scene pivots.test.mjs writes, balls rolling over shelves' ends) and
 # the viewer's `slot_run`, `wall_run` and `rest_run` examples (which write a run that adds
 # and removes bodies, one with moving walls and one where balls rest on planes), installs
 # playwright-core from
@@ -32,4 +33,4 @@ cd "$here"
 npm ci --no-audit --no-fund
 CCDSIM_BIN="$bin" SLOT_RUN_BIN="$slot_run" WALL_RUN_BIN="$wall_run" REST_RUN_BIN="$rest_run" \
   node --test viewer.test.mjs viewer3d.test.mjs slots.test.mjs sensors.test.mjs walls.test.mjs \
-  resting.test.mjs
+  resting.test.mjs pivots.test.mjs

@@ -1,6 +1,7 @@
 //! Where and how fast things go over a whole run, for framing views and colouring by speed.
 
 use ccdsim::moving_wall::translated;
+use ccdsim::pivot::Pivot;
 use ccdsim::{Aabb, Collision, EventKind, Scene, Vector, Wall};
 
 use crate::states::{edit_code, BodyStates};
@@ -11,7 +12,8 @@ pub struct Extent<const D: usize> {
     /// A box holding every body over the whole run (at the start or when added, at each of
     /// its collisions and edits, and at the end or when removed: motion is straight in
     /// between; under gravity, also at the vertices of the parabolas in between, per axis,
-    /// a resting body's under the acceleration it slides with),
+    /// a resting body's under the acceleration it slides with; for a body turning about a
+    /// segment's end point, also where its arc is furthest along each axis),
     /// the segment walls and the offsets of axis-aligned planes, and the moving walls
     /// likewise wherever they are at the start, at each of their edits and at the end
     /// (they move straight in between), metres.
@@ -81,8 +83,13 @@ impl<const D: usize> ExtentBuilder<D> {
     /// Under gravity: takes in body `i`'s arc from its reference time to `t` (as `states`
     /// hold it, under its own acceleration: a resting body's slide along its wall), the
     /// vertex of the parabola on each axis where it lies in between, and its speed at `t`.
-    /// The ends of the arc are taken in elsewhere.
+    /// The ends of the arc are taken in elsewhere. A body turning about a point: its arc
+    /// along its circle ([`ExtentBuilder::add_turn`]).
     fn add_arc(&mut self, states: &BodyStates<D>, i: usize, t: f64) {
+        if let Some(&p) = states.turn(i) {
+            self.add_turn(&p, states.motion(i).pos, states.radius(i), t);
+            return;
+        }
         let Some(g) = states.acceleration(i) else {
             return;
         };
@@ -98,6 +105,42 @@ impl<const D: usize> ExtentBuilder<D> {
             }
         }
         let speed = m.falling_velocity(t, &g).norm();
+        self.extent.max_speed = self.extent.max_speed.max(speed);
+    }
+
+    /// Takes in the arc of a body of radius `r` turning with `p` (2D), which started at
+    /// `start`, from its start to `t`: where it is furthest along each axis on the way, and
+    /// its speed at `t`. The angle goes one way, or (a ball swinging back) up to its turn
+    /// and back, so the arc covers the angles between the start, the turn if passed, and
+    /// `t`; its speed is largest at one of those ends (it grows with the distance from the
+    /// top), and zero at the turn.
+    fn add_turn(&mut self, p: &Pivot, start: Vector<D>, r: f64, t: f64) {
+        let point = p.point();
+        let mut lo = p.angle_of(Vector([start[0], start[1]]) - point);
+        let mut hi = lo;
+        let t0 = p.start_time();
+        let mut take = |theta: f64| {
+            lo = lo.min(theta);
+            hi = hi.max(theta);
+        };
+        take(p.angle_and_rate(t).0);
+        if let Some(back) = p.return_time() {
+            let turn = t0 + 0.5 * (back - t0);
+            if turn < t {
+                take(p.angle_and_rate(turn).0);
+            }
+        }
+        for dir in [[1.0, 0.0], [-1.0, 0.0], [0.0, 1.0], [0.0, -1.0]] {
+            let theta = p.angle_of(Vector(dir));
+            if (lo..=hi).contains(&theta) {
+                let c = point + Vector(dir) * p.radius();
+                let mut centre = Vector::<D>::ZERO;
+                centre[0] = c[0];
+                centre[1] = c[1];
+                self.extent.bounds = self.extent.bounds.union(Aabb::of_ball(centre, r));
+            }
+        }
+        let speed = p.velocity(t).norm();
         self.extent.max_speed = self.extent.max_speed.max(speed);
     }
 

@@ -288,7 +288,11 @@ impl<const D: usize> Playback<D> {
     ///
     /// Until a body is added or removed, this is the scene's world with every body's stored
     /// state as the simulation had it, resting bodies on their walls (its moving walls move as
-    /// the scene started them, not as the run steered them: no finder sees moving walls).
+    /// the scene started them, not as the run steered them: no finder sees moving walls). A
+    /// body turning about a segment's end point ([`BodyStates::turn`]) is put where its turn
+    /// has it at the snapshot's time, with its velocity then, and falls from there: the
+    /// library offers no way to start a turn in a world it did not simulate (its own world
+    /// shows finders such a body parked where its turn started).
     /// After that (the snapshot's states have slot edits), the world holds the snapshot's
     /// bodies only, vacant slots left out (so its indices are not the run's slots), each with
     /// its stored state, radius and kinematic flag, and the scene's settings; it has no walls
@@ -302,7 +306,7 @@ impl<const D: usize> Playback<D> {
         if !s.has_slot_edits() {
             let mut world = World::from_scene(&self.scene)?;
             for i in 0..s.len() {
-                world.set_motion(i, s.motion(i));
+                world.set_motion(i, world_motion(s, i, snap.time));
                 if let Some(w) = s.support(i) {
                     // A wall bodies rest on: the keyframe pass checked it.
                     world.set_support(i, Some(w));
@@ -332,7 +336,7 @@ impl<const D: usize> Playback<D> {
         };
         let mut world = World::from_scene(&scene)?;
         for (k, &i) in present.iter().enumerate() {
-            world.set_motion(k, s.motion(i));
+            world.set_motion(k, world_motion(s, i, snap.time));
         }
         world.set_time(snap.time);
         Ok(world)
@@ -350,6 +354,19 @@ impl<const D: usize> Playback<D> {
         let mut f = make_finder::<D>(finder, options)?;
         f.init(&world)?;
         Ok(f.debug_boxes(&world))
+    }
+}
+
+/// Body `i`'s motion in a world rebuilt at time `t` (see [`Playback::world_at`]): its stored
+/// state, or for a turning body its state on its turn at `t`.
+fn world_motion<const D: usize>(s: &BodyStates<D>, i: usize, t: f64) -> ccdsim::narrow::Motion<D> {
+    match s.turn(i) {
+        Some(_) => ccdsim::narrow::Motion {
+            pos: s.position_at(i, t),
+            vel: s.velocity_at(i, t),
+            time: t,
+        },
+        None => s.motion(i),
     }
 }
 

@@ -3,6 +3,7 @@
 
 use ccdsim::moving_wall::{start_motions, translated, WallMotion};
 use ccdsim::narrow::Motion;
+use ccdsim::pivot::Pivot;
 use ccdsim::{Collision, EventKind, Scene, Vector, Wall};
 use std::sync::Arc;
 
@@ -83,6 +84,16 @@ impl SlotTable {
 /// (format 12, see [`ccdsim::ledge`]) flies off when that wall event has no flag, and rests
 /// on the segment going straight on when the event is flagged and names that one.
 ///
+/// In such a run with 2D segments (format version 13, see [`ccdsim::pivot`]), a body too slow
+/// to fly off a segment's end rolls over it: a wall event of a body with the segment it slid
+/// on, flagged as turning (`pivots[0]`), starts a *turn* about the end point of that segment
+/// it reached ([`ccdsim::ledge::end_reached`]), from the record's position and velocity
+/// ([`BodyStates::turn`]). Until the next record naming the body, its position and velocity
+/// come from that turn ([`Pivot::position`], [`Pivot::velocity`]), not from its stored state
+/// and an acceleration (a turning body has none: [`BodyStates::acceleration`] is `None` for
+/// it, as the simulation's [`ccdsim::World::gravity_of`]). That next record ends the turn and
+/// gives the body its new state (released and falling, or resting on a segment).
+///
 /// The moving walls of a run (a scene's `moving_walls`, see [`ccdsim::moving_wall`]) are kept
 /// here too, since the same records move them: moving wall `k` is its scene geometry
 /// displaced by [`BodyStates::wall_motion`]`(k)`, which each of its edit records
@@ -109,6 +120,13 @@ pub struct BodyStates<const D: usize> {
     /// The acceleration of a body sliding on each static wall (`None` where none rests),
     /// which never changes: shared by every copy; empty where bodies never rest.
     slides: Arc<[Option<Vector<D>>]>,
+    /// The bodies turning about a segment's end point (slot and turn), in the order they
+    /// started; empty unless some body turns (never outside 2D runs with gravity where
+    /// bodies rest on segments).
+    turns: Vec<(usize, Pivot)>,
+    /// The scene's static walls, which never change: shared by every copy (a turn is about
+    /// the end point of one of its segments).
+    walls: Arc<[Wall<D>]>,
     slots: Arc<SlotTable>,
     /// The moving walls' scene geometry, which never changes: shared by every copy.
     wall_bases: Arc<[Wall<D>]>,
@@ -131,6 +149,8 @@ impl<const D: usize> BodyStates<D> {
                 None => Vec::new(),
             },
             slides: ccdsim::resting::slides(scene).into(),
+            turns: Vec::new(),
+            walls: scene.walls.clone().into(),
             slots: Arc::new(SlotTable {
                 radius: scene.bodies.iter().map(|b| b.radius).collect(),
                 id: (0..n).map(|i| scene.id_of(i)).collect(),
@@ -217,10 +237,17 @@ impl<const D: usize> BodyStates<D> {
     /// added body's id record ([`edit_code::ADD_ID`]) is checked by the caller, which knows
     /// the record before. A body flagged as resting after the record (versions 11 and 12) must
     /// rest on a static plane or segment bodies can rest on (a wall event's wall) or have
-    /// rested before (a body event's body).
+    /// rested before (a body event's body). A body flagged as turning about a point after the
+    /// record (version 13) must be body `a` of a wall event naming a static segment, in a 2D
+    /// run with gravity where bodies rest, not flagged as resting too, and must touch the end
+    /// point of that segment it reached (see [`BodyStates::turn`]).
     pub fn check(&self, c: &Collision<D>) -> Result<(), String> {
         let a = c.event.a as usize;
         self.check_rests(c)?;
+        if c.pivots != [false; 2] && c.event.kind != EventKind::Wall {
+            // Refused whatever the record names (a wall event's flag is checked below).
+            self.turn_after(c)?;
+        }
         let present = |i: usize| -> Result<(), String> {
             if i >= self.len() {
                 Err(format!(
@@ -235,7 +262,8 @@ impl<const D: usize> BodyStates<D> {
         };
         match c.event.kind {
             EventKind::Body => present(a).and_then(|()| present(c.event.b as usize)),
-            EventKind::Wall | EventKind::Reset => present(a),
+            EventKind::Wall => present(a).and_then(|()| self.turn_after(c).map(|_| ())),
+            EventKind::Reset => present(a),
             EventKind::Edit => match c.event.b {
                 MOTION | REMOVE | FILTER => present(a),
                 ADD => {
@@ -263,6 +291,72 @@ impl<const D: usize> BodyStates<D> {
                 code => Err(format!("an edit of unknown code {code}")),
             },
         }
+    }
+
+    /// The turn body `a` of record `c` starts after it, as its turning flag says (see
+    /// [`BodyStates::turn`]): `None` without the flag, or when the record's state makes no
+    /// turn ([`Pivot::new`] gives none: a body at rest straight above the point stays there
+    /// as its stored state has it). Refuses a flag that cannot be (see
+    /// [`BodyStates::check`]). Body `a` is present.
+    fn turn_after(&self, c: &Collision<D>) -> Result<Option<Pivot>, String> {
+        let (a, b) = (c.event.a as usize, c.event.b as usize);
+        if c.pivots[1] {
+            return Err(format!(
+                "flags body {b} (slot 1) as turning about a point: only a wall event's body turns"
+            ));
+        }
+        if !c.pivots[0] {
+            return Ok(None);
+        }
+        if c.event.kind != EventKind::Wall {
+            return Err(format!(
+                "flags body {a} as turning about a point after a {:?} event, not a wall event",
+                c.event.kind
+            ));
+        }
+        let Some(g) = self.gravity else {
+            return Err(format!(
+                "turns body {a} about a point in a run without gravity"
+            ));
+        };
+        if D != 2 {
+            return Err(format!("turns body {a} about a point in a {D}D run"));
+        }
+        if self.supports.is_empty() {
+            return Err(format!(
+                "turns body {a} about a point in a run where no body rests"
+            ));
+        }
+        if c.rests[0] {
+            return Err(format!(
+                "flags body {a} as both resting on wall {b} and turning about its end"
+            ));
+        }
+        if self.is_kinematic(a) {
+            return Err(format!("turns kinematic body {a} about a point"));
+        }
+        let Some(&Wall::Segment { a: p, b: q }) = self.walls.get(b) else {
+            return Err(format!(
+                "turns body {a} about an end of wall {b}, which is no static segment"
+            ));
+        };
+        let end = ccdsim::ledge::end_reached(p, q, c.pos[0]);
+        let r = self.radius(a);
+        let dist = (c.pos[0] - end).norm();
+        if (dist - r).abs() > 1e-9 * r {
+            return Err(format!(
+                "turns body {a} about an end point of segment {b} it does not touch (its centre \
+                 {dist} m from it, its radius {r} m)"
+            ));
+        }
+        Ok(Pivot::new(
+            to_2d(end),
+            r,
+            to_2d(g),
+            to_2d(c.pos[0]),
+            to_2d(c.vel[0]),
+            c.event.time,
+        ))
     }
 
     /// Checks the record's resting flags (see [`BodyStates::check`]).
@@ -298,7 +392,9 @@ impl<const D: usize> BodyStates<D> {
     /// vacant, an id record sets the added body's id, a moving wall's edit gives that wall
     /// its new motion (and touches no body). Every body the record names leaves its wall
     /// unless the record says it rests: on the wall of a wall event, or, after a body event,
-    /// on the wall it rested on before. Assumes [`BodyStates::check`] passed.
+    /// on the wall it rested on before. Every body the record names ends its turn, if it
+    /// turned; a wall event flagged as turning starts body `a`'s (see [`BodyStates::turn`]).
+    /// Assumes [`BodyStates::check`] passed.
     pub fn apply(&mut self, c: &Collision<D>) {
         let t = c.event.time;
         let a = c.event.a as usize;
@@ -318,6 +414,9 @@ impl<const D: usize> BodyStates<D> {
                 self.set(a, c.pos[0], c.vel[0], t);
                 if c.rests[0] {
                     self.supports[a] = c.event.b;
+                }
+                if let Ok(Some(turn)) = self.turn_after(c) {
+                    self.turns.push((a, turn));
                 }
             }
             EventKind::Reset => self.set(a, c.pos[0], c.vel[0], t),
@@ -380,7 +479,7 @@ impl<const D: usize> BodyStates<D> {
     }
 
     /// Sets body `i`'s state, which lifts it off its wall (a record that leaves it resting
-    /// puts it back).
+    /// puts it back) and ends its turn (a record that turns it starts a new one).
     fn set(&mut self, i: usize, p: Vector<D>, v: Vector<D>, t: f64) {
         self.pos[i] = p;
         self.vel[i] = v;
@@ -388,6 +487,27 @@ impl<const D: usize> BodyStates<D> {
         if let Some(s) = self.supports.get_mut(i) {
             *s = NO_SUPPORT;
         }
+        if !self.turns.is_empty() {
+            self.turns.retain(|&(j, _)| j != i);
+        }
+    }
+
+    /// The turn of the body in slot `i` about a segment's end point, if it turns (see
+    /// [`ccdsim::pivot`]): started by a wall event flagged as turning, from that event's
+    /// position and velocity (its stored state, [`BodyStates::motion`]), about the end point
+    /// of the event's segment it reached; it lasts until the next record naming the body.
+    #[must_use]
+    pub fn turn(&self, i: usize) -> Option<&Pivot> {
+        if self.turns.is_empty() {
+            return None;
+        }
+        self.turns.iter().find(|&&(j, _)| j == i).map(|(_, p)| p)
+    }
+
+    /// The bodies turning about a segment's end point and their turns, in the order they
+    /// started (see [`BodyStates::turn`]).
+    pub fn turning(&self) -> impl Iterator<Item = (usize, &Pivot)> + '_ {
+        self.turns.iter().map(|(i, p)| (*i, p))
     }
 
     /// The static wall (by index among the scene's `walls`) the body in slot `i` rests on,
@@ -410,19 +530,23 @@ impl<const D: usize> BodyStates<D> {
     /// The acceleration of the body in slot `i` between events, metres per second squared:
     /// the run's gravity, or for a body resting on a wall the acceleration it slides with
     /// (`g − n (g·n)/(n·n)`); `None` without gravity or for a kinematic body (or a vacant
-    /// slot), which moves in a straight line. As the simulation's
+    /// slot), which moves in a straight line, and for a body turning about a point, whose
+    /// motion is its turn ([`BodyStates::turn`]). As the simulation's
     /// [`ccdsim::World::gravity_of`].
     #[must_use]
     #[inline]
     pub fn acceleration(&self, i: usize) -> Option<Vector<D>> {
         let g = self.gravity.filter(|_| !self.is_kinematic(i))?;
+        if self.turn(i).is_some() {
+            return None;
+        }
         Some(match self.support(i) {
             Some(w) => self.slides[w].unwrap_or(g),
             None => g,
         })
     }
 
-    /// Body `i`'s stored state.
+    /// Body `i`'s stored state: for a turning body, the state its turn started from.
     #[must_use]
     pub fn motion(&self, i: usize) -> Motion<D> {
         Motion {
@@ -434,9 +558,13 @@ impl<const D: usize> BodyStates<D> {
 
     /// Position of body `i` at time `t`, metres: on its straight line, or on its parabola
     /// in a run with gravity (under [`BodyStates::acceleration`]: a resting body's slides
-    /// along its wall).
+    /// along its wall), or on its circle about the point it turns about
+    /// ([`BodyStates::turn`]).
     #[must_use]
     pub fn position_at(&self, i: usize, t: f64) -> Vector<D> {
+        if let Some(p) = self.turn(i) {
+            return from_2d(p.position(t));
+        }
         match self.acceleration(i) {
             Some(a) => self.motion(i).falling_at(t, &a),
             None => self.motion(i).at(t),
@@ -444,21 +572,26 @@ impl<const D: usize> BodyStates<D> {
     }
 
     /// Velocity of body `i` at time `t`, metres per second: the stored one, or in a run with
-    /// gravity that plus `a·(t − time)`, `a` its [`BodyStates::acceleration`].
+    /// gravity that plus `a·(t − time)`, `a` its [`BodyStates::acceleration`]; along its
+    /// circle for a turning body ([`BodyStates::turn`]).
     #[must_use]
     pub fn velocity_at(&self, i: usize, t: f64) -> Vector<D> {
+        if let Some(p) = self.turn(i) {
+            return from_2d(p.velocity(t));
+        }
         match self.acceleration(i) {
             Some(a) => self.motion(i).falling_velocity(t, &a),
             None => self.vel[i],
         }
     }
 
-    /// Heap bytes held: the motions (the bodies' and the moving walls'), the supports, and
-    /// the slot table as if this were its only holder.
+    /// Heap bytes held: the motions (the bodies' and the moving walls'), the supports, the
+    /// turns, and the slot table as if this were its only holder.
     #[must_use]
     pub fn heap_bytes(&self) -> usize {
         Self::bytes_per_body() * self.len()
             + std::mem::size_of::<u32>() * self.supports.len()
+            + std::mem::size_of::<(usize, Pivot)>() * self.turns.len()
             + std::mem::size_of::<WallMotion<D>>() * self.wall_count()
             + self.slot_table_bytes()
     }
@@ -495,6 +628,19 @@ impl<const D: usize> BodyStates<D> {
                 0
             }
     }
+}
+
+/// The first two components of `v` (2D runs, where bodies turn about points).
+fn to_2d<const D: usize>(v: Vector<D>) -> Vector<2> {
+    Vector([v[0], v[1]])
+}
+
+/// A 2D vector as a `Vector<D>` (`D = 2` wherever bodies turn about points).
+fn from_2d<const D: usize>(v: Vector<2>) -> Vector<D> {
+    let mut out = Vector::ZERO;
+    out[0] = v[0];
+    out[1] = v[1];
+    out
 }
 
 #[cfg(test)]
@@ -654,6 +800,7 @@ mod tests {
             pos: [Vector([0.0, 0.5]), Vector([3.0, 0.5])],
             vel: [Vector([1.0, 0.0]), Vector([-1.0, 0.0])],
             rests,
+            pivots: [false; 2],
         };
         let mut s = BodyStates::from_scene(&scene);
         assert!(s.has_supports());
@@ -781,5 +928,190 @@ mod tests {
         let mut again = add[0];
         again.event.a = 1;
         s.check(&again).unwrap();
+    }
+
+    /// A ball of radius 0.2 on a shelf at y = 1 from x = 0 to 2 over a floor, moving right at
+    /// 1 m/s under g = (0, −10): too slow to fly off the end (1² < r g), it rolls over it.
+    fn roll_over_scene() -> Scene<2> {
+        use ccdsim::gravity::Gravity;
+        use ccdsim::Settings;
+        Scene {
+            settings: Settings {
+                restitution: 0.5,
+                gravity: Gravity::new(&[0.0, -10.0]),
+                rest_speed: Some(1.0),
+                ..Settings::default()
+            },
+            bodies: vec![BodySpec::new(
+                Vector([1.5, 1.2 + 1e-6]),
+                Vector([1.0, 0.0]),
+                0.2,
+            )],
+            walls: vec![
+                Wall::Plane {
+                    point: Vector([0.0, 0.0]),
+                    normal: Vector([0.0, 1.0]),
+                },
+                Wall::Segment {
+                    a: Vector([0.0, 1.0]),
+                    b: Vector([2.0, 1.0]),
+                },
+            ],
+            ..Scene::default()
+        }
+    }
+
+    #[test]
+    fn a_turning_flag_turns_the_body_about_the_segments_end_until_its_next_record() {
+        use ccdsim::Simulation;
+        let scene = roll_over_scene();
+        let mut sim = Simulation::new(&scene, "all-pairs").unwrap();
+        let mut s = BodyStates::from_scene(&scene);
+        let mut records = Vec::new();
+        while let Some(c) = sim.step_event_until(3.0) {
+            s.check(&c).unwrap();
+            s.apply(&c);
+            records.push((c, s.clone()));
+            if records.len() == 4 {
+                break;
+            }
+        }
+        // Land, roll over the end, come off, the floor.
+        let roll = records[1].0;
+        assert!(
+            roll.pivots[0] && roll.event.kind == EventKind::Wall,
+            "{roll:?}"
+        );
+        let turning = &records[1].1;
+        let pivot = *turning.turn(0).expect("the flag starts a turn");
+        assert_eq!(
+            pivot.point(),
+            Vector([2.0, 1.0]),
+            "about the end it reached"
+        );
+        assert_eq!(pivot.start_time(), roll.event.time);
+        assert_eq!(turning.turning().map(|(i, _)| i).collect::<Vec<_>>(), [0]);
+        assert_eq!(turning.acceleration(0), None, "a turn, not a parabola");
+        assert_eq!(turning.support(0), None);
+        assert!(turning.heap_bytes() > records[0].1.heap_bytes());
+        let off = records[2].0;
+        assert!(
+            !off.pivots[0] && off.event.kind == EventKind::Wall,
+            "{off:?}"
+        );
+        // Mid-turn, the states are where the simulation has the ball, to the bit, and on
+        // the circle about the end point; the parabola from the same state is elsewhere.
+        let (t0, t1) = (roll.event.time, off.event.time);
+        let mut again = Simulation::new(&scene, "all-pairs").unwrap();
+        for f in [0.1, 0.37, 0.5, 0.83, 0.99] {
+            let t = t0 + f * (t1 - t0);
+            again.run_until(t);
+            assert_eq!(turning.position_at(0, t), again.position(0), "t = {t}");
+            assert_eq!(turning.velocity_at(0, t), again.world().velocity_at(0, t));
+            assert_eq!(turning.position_at(0, t), pivot.position(t));
+            let from_end = turning.position_at(0, t) - Vector([2.0, 1.0]);
+            assert!((from_end.norm() - 0.2).abs() < 1e-12, "{from_end:?}");
+            let g = Vector([0.0, -10.0]);
+            let falling = turning.motion(0).falling_at(t, &g);
+            assert!((falling - turning.position_at(0, t)).norm() > 1e-6);
+        }
+        // Its next record ends the turn: it falls under g from the record's state.
+        let released = &records[2].1;
+        assert!(released.turn(0).is_none() && released.turning().next().is_none());
+        assert_eq!(released.acceleration(0), Some(Vector([0.0, -10.0])));
+        assert_eq!(released.motion(0).pos, off.pos[0]);
+        // So does an edit, and the copy kept as a keyframe keeps its turn.
+        let mut edited = turning.clone();
+        let kick = Edit::Motion {
+            body: 0,
+            pos: turning.position_at(0, t0 + 0.01),
+            vel: Vector([0.0, 3.0]),
+        }
+        .records(t0 + 0.01)[0];
+        edited.check(&kick).unwrap();
+        edited.apply(&kick);
+        assert!(edited.turn(0).is_none() && turning.turn(0).is_some());
+    }
+
+    #[test]
+    fn turning_flags_that_cannot_be_are_refused() {
+        use ccdsim::gravity::Gravity;
+        use ccdsim::{Settings, Simulation};
+        let scene = roll_over_scene();
+        let mut sim = Simulation::new(&scene, "all-pairs").unwrap();
+        let land = sim.step_event_until(3.0).unwrap();
+        let roll = sim.step_event_until(3.0).unwrap();
+        assert!(roll.pivots[0], "{roll:?}");
+        let mut s = BodyStates::from_scene(&scene);
+        s.check(&land).unwrap();
+        s.apply(&land);
+        s.check(&roll).unwrap();
+        let refused = |s: &BodyStates<2>, c: Collision<2>, why: &str| {
+            let err = s.check(&c).expect_err(why);
+            assert!(err.contains(why), "{err}: not {why}");
+        };
+        let mut body = roll;
+        body.event.kind = EventKind::Body;
+        body.event.b = 0;
+        refused(&s, body, "not a wall event");
+        let mut reset = roll;
+        reset.event.kind = EventKind::Reset;
+        refused(&s, reset, "not a wall event");
+        let mut second = roll;
+        second.pivots = [false, true];
+        refused(&s, second, "slot 1");
+        let mut both = roll;
+        both.rests[0] = true;
+        refused(&s, both, "both resting");
+        let mut floor = roll;
+        floor.event.b = 0;
+        refused(&s, floor, "no static segment");
+        let mut past = roll;
+        past.event.b = 7;
+        refused(&s, past, "no static segment");
+        let mut away = roll;
+        away.pos[0] += Vector([0.0, 0.05]);
+        refused(&s, away, "does not touch");
+        // The same record in runs where it cannot be: no gravity, no resting, 3D.
+        let mut weightless = scene.clone();
+        weightless.settings.gravity = None;
+        refused(
+            &BodyStates::from_scene(&weightless),
+            roll,
+            "without gravity",
+        );
+        let mut restless = scene.clone();
+        restless.settings.rest_speed = None;
+        refused(
+            &BodyStates::from_scene(&restless),
+            roll,
+            "where no body rests",
+        );
+        let mut kinematic = scene.clone();
+        kinematic.bodies[0].kinematic = true;
+        refused(&BodyStates::from_scene(&kinematic), roll, "kinematic");
+        let space = Scene::<3> {
+            settings: Settings {
+                gravity: Gravity::new(&[0.0, -10.0, 0.0]),
+                rest_speed: Some(1.0),
+                ..Settings::default()
+            },
+            bodies: vec![BodySpec::new(Vector([2.0, 1.2, 0.0]), Vector::ZERO, 0.2)],
+            walls: vec![Wall::Segment {
+                a: Vector([0.0, 1.0, 0.0]),
+                b: Vector([2.0, 1.0, 0.0]),
+            }],
+            ..Scene::default()
+        };
+        let lift = |v: Vector<2>| Vector([v[0], v[1], 0.0]);
+        let roll3 = Collision::<3> {
+            event: roll.event,
+            pos: roll.pos.map(lift),
+            vel: roll.vel.map(lift),
+            rests: [false; 2],
+            pivots: [true, false],
+        };
+        let err = BodyStates::from_scene(&space).check(&roll3).unwrap_err();
+        assert!(err.contains("3D run"), "{err}");
     }
 }

@@ -4,8 +4,8 @@
 //! | endpoint | layout |
 //! |---|---|
 //! | `/api/bodies` | the scene's `f64` radii, then its `f64` ids, each padded to the run's slot count `n` (meta's `bodies`) with radius 0 and id 0 for slots the scene does not have |
-//! | `/api/state` | `f64` header of [`STATE_HEADER`] values (its `n` is the snapshot's slot count, at most meta's `bodies`), then `f32` positions at the snapshot time (`n·D`), then `f32` velocities at the snapshot time (`n·D`), then, only when bodies were added or removed by then, the slot section: one `f64` [`SLOT_SECTION`], `f64` radii (`n`, 0 for a vacant slot), `f64` ids (`n`), `u8` flags (`n`: bit 0 kinematic, bit 1 vacant); then, only in a run with moving walls, zero bytes up to a multiple of 8 and the wall section: one `f64` [`WALL_SECTION`], then per moving wall `1 + 2·D` `f64`s: the time of its last edit (the scene's start time before any), its displacement from its scene geometry then, its velocity since; then, only in a run where bodies rest on walls (`settings.rest_speed`), zero bytes up to a multiple of 8 and the rest section: one `f64` [`REST_SECTION`], `f64` supports (`n`: the static wall each body rests on, −1 for none), then `f64` accelerations (`n·D`: each body's until its next event, its slide along its wall for a resting body, `g` for a falling one, 0 for a kinematic body or a vacant slot) |
-//! | `/api/events` | per event `4 + 4·D` `f64`s: `t`, kind (0 body, 1 wall, 2 thermostat reset, 3 edit), `a`, `b`, position and velocity of slot 0, then of slot 1; in a run where bodies rest on walls, one more `f64` per event: its rest flags (bit 0: body `a` rests on a wall after it, bit 1: body `b` does) |
+//! | `/api/state` | `f64` header of [`STATE_HEADER`] values (its `n` is the snapshot's slot count, at most meta's `bodies`), then `f32` positions at the snapshot time (`n·D`), then `f32` velocities at the snapshot time (`n·D`), then, only when bodies were added or removed by then, the slot section: one `f64` [`SLOT_SECTION`], `f64` radii (`n`, 0 for a vacant slot), `f64` ids (`n`), `u8` flags (`n`: bit 0 kinematic, bit 1 vacant); then, only in a run with moving walls, zero bytes up to a multiple of 8 and the wall section: one `f64` [`WALL_SECTION`], then per moving wall `1 + 2·D` `f64`s: the time of its last edit (the scene's start time before any), its displacement from its scene geometry then, its velocity since; then, only in a run where bodies rest on walls (`settings.rest_speed`), zero bytes up to a multiple of 8 and the rest section: one `f64` [`REST_SECTION`], `f64` supports (`n`: the static wall each body rests on, −1 for none), then `f64` accelerations (`n·D`: each body's until its next event, its slide along its wall for a resting body, `g` for a falling one, 0 for a kinematic body, a vacant slot or a turning body); then, only when some body turns about a segment's end point at the snapshot's time (2D), the pivot section (aligned as the rest section, which it follows): one `f64` [`PIVOT_SECTION`], one `f64` count `m`, then per turning body 8 `f64`s: its slot, the point it turns about (`x`, `y`), the time its turn started, and its position (`x`, `y`) and velocity (`x`, `y`) then |
+//! | `/api/events` | per event `4 + 4·D` `f64`s: `t`, kind (0 body, 1 wall, 2 thermostat reset, 3 edit), `a`, `b`, position and velocity of slot 0, then of slot 1; in a run where bodies rest on walls, one more `f64` per event: its rest flags (bit 0: body `a` rests on a wall after it, bit 1: body `b` does, bit 2: body `a` of a wall event turns about an end point of segment `b` after it) |
 //! | `/api/boxes` | per box `2 + 2·D` `f32`s: depth, leaf (0/1), min corner, max corner |
 //!
 //! A state answer without the slot section has the scene's radii, ids and kinematic flags
@@ -28,10 +28,22 @@
 //! its flag makes it fall under `g` again. The rest section gives every body's support and
 //! acceleration at the snapshot.
 //!
+//! A wall event whose rest flags have bit 2 ([`PIVOT_A`], runs with 2D segments bodies rest
+//! on, format version 13, see [`ccdsim::pivot`]) starts a turn of body `a` about the end
+//! point of segment `b` that it reached (of the segment's ends `a`, `b`, the end `b` when
+//! `(p − a)·(b − a) ≥ ½|b − a|²` for the event's position `p`, else `a`): with `up = −g/|g|`,
+//! `left` its quarter turn counter-clockwise, and the body at distance `r` from the point `e`,
+//! its centre is at `e + r·(cos θ·up + sin θ·left)` where `θ̈ = (|g|/r)·sin θ`, from the angle
+//! and rate of the event's position and velocity (`θ` from `up`, counter-clockwise; the
+//! velocity's part along `−sin θ·up + cos θ·left`, over `r`). The next event naming the body
+//! ends the turn (its state is then the event's). The pivot section gives the turns under way
+//! at the snapshot.
+//!
 //! Answers of runs without moving walls have neither meta's `moving_walls` nor the state's
 //! wall section: they are what they were before moving walls existed, byte for byte. Answers
 //! of runs where no body rests (no `settings.rest_speed`) have neither meta's `rest_speed`
-//! and `slides`, nor the state's rest section, nor the events' rest flags.
+//! and `slides`, nor the state's rest section, nor the events' rest flags; answers where no
+//! body turns have no pivot section and no bit 2 in the rest flags, as before turns existed.
 
 use crate::playback::{Playback, Snapshot};
 use ccdsim::finder::DebugBox;
@@ -55,6 +67,16 @@ pub const REST_SECTION: f64 = 3.0;
 pub const REST_A: u8 = 1;
 /// Bit of an event's rest flags: body `b` of a body event rests after it.
 pub const REST_B: u8 = 2;
+/// Bit of an event's rest flags: body `a` of a wall event turns about an end point of segment
+/// `b` after it (see the module docs).
+pub const PIVOT_A: u8 = 4;
+
+/// The `f64` that opens the pivot section of a `/api/state` answer (see the module docs).
+pub const PIVOT_SECTION: f64 = 4.0;
+
+/// `f64`s per turning body in the pivot section: slot, point (2), start time, start position
+/// (2), start velocity (2).
+pub const PIVOT_STRIDE: usize = 8;
 
 /// Bit of a slot's flags in the slot section: the body is kinematic.
 pub const SLOT_KINEMATIC: u8 = 1;
@@ -98,8 +120,9 @@ pub fn encode_bodies<const D: usize>(p: &Playback<D>) -> Vec<u8> {
 
 /// A snapshot: header, positions at its time, velocities at its time (under gravity the
 /// stored velocities hold only at each body's last event), the slot section when bodies
-/// were added or removed by then, the wall section in a run with moving walls, and the rest
-/// section in a run where bodies rest on walls.
+/// were added or removed by then, the wall section in a run with moving walls, the rest
+/// section in a run where bodies rest on walls, and the pivot section when bodies turn about
+/// points.
 #[must_use]
 pub fn encode_snapshot<const D: usize>(s: &Snapshot<D>) -> Vec<u8> {
     let n = s.states.len();
@@ -179,10 +202,28 @@ pub fn encode_snapshot<const D: usize>(s: &Snapshot<D>) -> Vec<u8> {
             }
         }
     }
+    let turning: Vec<_> = s.states.turning().collect();
+    if !turning.is_empty() {
+        out.resize(out.len().next_multiple_of(8), 0);
+        put_f64(&mut out, PIVOT_SECTION);
+        put_f64(&mut out, turning.len() as f64);
+        for (i, p) in turning {
+            let m = s.states.motion(i);
+            put_f64(&mut out, i as f64);
+            let e = p.point();
+            put_f64(&mut out, e[0]);
+            put_f64(&mut out, e[1]);
+            put_f64(&mut out, p.start_time());
+            for v in [m.pos, m.vel] {
+                put_f64(&mut out, v[0]);
+                put_f64(&mut out, v[1]);
+            }
+        }
+    }
     out
 }
 
-/// A window of events, each followed by its rest flags ([`REST_A`], [`REST_B`]) when
+/// A window of events, each followed by its rest flags ([`REST_A`], [`REST_B`], [`PIVOT_A`]) when
 /// `rests` (a run where bodies rest on walls, see [`Playback::has_rests`]).
 #[must_use]
 pub fn encode_events<const D: usize>(events: &[Collision<D>], rests: bool) -> Vec<u8> {
@@ -200,7 +241,9 @@ pub fn encode_events<const D: usize>(events: &[Collision<D>], rests: bool) -> Ve
             }
         }
         if rests {
-            let flags = (u8::from(c.rests[0]) * REST_A) | (u8::from(c.rests[1]) * REST_B);
+            let flags = (u8::from(c.rests[0]) * REST_A)
+                | (u8::from(c.rests[1]) * REST_B)
+                | (u8::from(c.pivots[0]) * PIVOT_A);
             put_f64(&mut out, f64::from(flags));
         }
     }

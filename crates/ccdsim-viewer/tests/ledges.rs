@@ -1,21 +1,23 @@
-//! Runs where bodies rest on 2D segments and fly off their ends (format version 12, see
-//! `ccdsim::ledge`): a ball that slides along a shelf drawn in two pieces and flies off its
-//! end, and `examples/shelves.json`. Playback at any time (forwards, backwards, scrambled,
-//! and between each slide-off and the event after it), after any number of events, the
+//! Runs where bodies rest on 2D segments and fly off their ends (see `ccdsim::ledge`) or roll
+//! over them (format version 13, see `ccdsim::pivot`): a ball that slides along a shelf drawn
+//! in two pieces and flies off its end, the same ball slower, rolling over the end, and
+//! `examples/shelves.json`. Playback at any time (forwards, backwards, scrambled, and between
+//! each slide-off or roll-over and the event after it), after any number of events, the
 //! rebuilt world and the served states follow the simulation bit for bit
 //! (`tests/common/ledges.rs` records the runs and the simulation's states), the extent holds
-//! every ball, and rendered frames draw the ball on the shelf and falling past its end.
+//! every ball, and rendered frames draw the ball on the shelf, turning about its end on its
+//! circle, and falling past it.
 
 mod common;
 
 use ccdsim::{Aabb, Vector};
 use ccdsim_viewer::render::colour::{self, Rgb};
 use ccdsim_viewer::render::Camera;
-use ccdsim_viewer::wire::{REST_A, REST_SECTION, STATE_HEADER};
+use ccdsim_viewer::wire::{PIVOT_A, PIVOT_SECTION, REST_A, REST_SECTION, STATE_HEADER};
 use ccdsim_viewer::{render_png, KeyframeOptions, Playback, RenderOptions, Snapshot};
 use common::ledges::{
-    record_ledge_run, shelf_scene, shelves_example, Ledge, LedgeRun, FLOOR, RADIUS, SHELF_END,
-    SHELF_LEFT, SHELF_RIGHT, SHELF_Y,
+    record_ledge_run, roll_scene, shelf_scene, shelves_example, Ledge, LedgeRun, FLOOR, RADIUS,
+    SHELF_CORNER, SHELF_END, SHELF_LEFT, SHELF_RIGHT, SHELF_Y,
 };
 use common::resting::Checkpoint;
 use common::{f32s, f64s, get};
@@ -57,8 +59,19 @@ fn assert_exact(snap: &Snapshot<2>, cp: &Checkpoint, what: &str) {
 /// The checkpoints that fall between a slide-off and the event after it, with the body that
 /// flew off.
 fn after_slide_offs(run: &LedgeRun) -> Vec<(&Checkpoint, usize)> {
-    run.slide_offs()
-        .into_iter()
+    between(run, run.slide_offs())
+}
+
+/// The checkpoints that fall between a roll-over and the event after it, with the body that
+/// turns.
+fn after_roll_overs(run: &LedgeRun) -> Vec<(&Checkpoint, usize)> {
+    between(run, run.roll_overs())
+}
+
+/// The checkpoints that fall between each of the events `ks` and the event after it, with
+/// that event's body.
+fn between(run: &LedgeRun, ks: Vec<usize>) -> Vec<(&Checkpoint, usize)> {
+    ks.into_iter()
         .flat_map(|k| {
             let (from, to) = (run.time_of(k), run.time_of(k + 1));
             let body = run.events[k].event.a as usize;
@@ -103,21 +116,28 @@ fn assert_plays(
         }
     }
     // Just after a slide-off the body falls under g, in the played states and in the world
-    // rebuilt for a finder's boxes alike.
-    for (cp, i) in after_slide_offs(run) {
+    // rebuilt for a finder's boxes alike; while a body turns it has no acceleration of its
+    // own, and the rebuilt world has it where its turn does.
+    let off = after_slide_offs(run).into_iter().map(|x| (x, false));
+    let over = after_roll_overs(run).into_iter().map(|x| (x, true));
+    for ((cp, i), turns) in off.chain(over) {
         let snap = p.snapshot_at(cp.time).unwrap();
         assert_eq!(snap.states.support(i), None, "t = {}", cp.time);
-        assert_eq!(snap.states.acceleration(i), run.scene.gravity());
+        assert_eq!(snap.states.turn(i).is_some(), turns, "t = {}", cp.time);
+        let acc = if turns { None } else { run.scene.gravity() };
+        assert_eq!(snap.states.acceleration(i), acc, "t = {}", cp.time);
         let world = p.world_at(&snap).unwrap();
         for (j, b) in cp.bodies.iter().enumerate() {
-            assert_eq!(world.support(j), b.support, "t = {}: body {j}", cp.time);
-            assert_eq!(world.gravity_of(j), b.acc, "t = {}: body {j}", cp.time);
-            assert_eq!(
-                world.position_at(j, cp.time),
-                b.pos,
-                "t = {}: body {j}",
-                cp.time
-            );
+            let at = format!("t = {}: body {j}", cp.time);
+            assert_eq!(world.support(j), b.support, "{at}");
+            if snap.states.turn(j).is_some() {
+                // Falling from where its turn has it (the world cannot be told of turns).
+                assert_eq!(world.gravity_of(j), run.scene.gravity(), "{at}");
+                assert_eq!(world.velocity_at(j, cp.time), b.vel, "{at}");
+            } else {
+                assert_eq!(world.gravity_of(j), b.acc, "{at}");
+            }
+            assert_eq!(world.position_at(j, cp.time), b.pos, "{at}");
         }
     }
     p
@@ -304,4 +324,244 @@ fn the_shelves_example_plays_as_the_simulation_had_it() {
             assert!(b.vel.norm() <= e.max_speed + 1e-12, "{b:?} {e:?}");
         }
     }
+}
+
+/// The ball rolling over the shelf's end: the events that land it, carry it on along the
+/// right piece, roll it over the end and let it go, with the recorded run.
+fn roll_run(name: &str) -> (common::scratch::ScratchFile, LedgeRun, [usize; 2]) {
+    let (path, run) = recorded(name, &roll_scene(), 3.0, 0.05);
+    assert_eq!(
+        run.ledges[..3],
+        [None, Some(Ledge::GoesOn), Some(Ledge::RollsOver)]
+    );
+    assert_eq!(run.roll_overs(), [2]);
+    let (over, off) = (run.events[2], run.events[3]);
+    assert!(
+        over.pivots[0] && over.event.b as usize == SHELF_RIGHT,
+        "{over:?}"
+    );
+    assert!((over.pos[0][0] - SHELF_END).abs() < 1e-12, "{over:?}");
+    assert_eq!(
+        over.vel[0],
+        Vector([1.0, 0.0]),
+        "it turns at the speed it slid at"
+    );
+    // It comes off: a wall event of the segment turned about, neither resting nor turning.
+    assert_eq!(
+        (off.event.b as usize, off.rests[0], off.pivots[0]),
+        (SHELF_RIGHT, false, false),
+        "{off:?}"
+    );
+    assert!(run.slide_offs().is_empty(), "{:?}", run.ledges);
+    (path, run, [2, 3])
+}
+
+#[test]
+fn a_ball_rolling_over_a_shelfs_end_plays_as_the_simulation_had_it() {
+    let (path, run, [over, off]) = roll_run("ledge-roll");
+    let (t0, t1) = (run.time_of(over), run.time_of(off));
+    // Mid-turn, the simulation has the ball on its circle about the shelf's end, with no
+    // acceleration of its own, and off the parabola its turn started from.
+    let turning = after_roll_overs(&run);
+    assert!(turning.len() >= 3, "{}", turning.len());
+    let start = run.after[over + 1][0].0;
+    for &(cp, i) in &turning {
+        let b = cp.bodies[i];
+        assert_eq!((b.support, b.acc), (None, None), "t = {}", cp.time);
+        assert!(
+            ((b.pos - SHELF_CORNER).norm() - RADIUS).abs() < 1e-12,
+            "{b:?}"
+        );
+        assert!((start.falling_at(cp.time, &G) - b.pos).norm() > 1e-6);
+        assert!(cp.time > t0 && cp.time < t1);
+    }
+    // Played back at any time, from any keyframe: the simulation's positions and
+    // velocities mid-turn to the bit (assert_exact), the turn about the shelf's end.
+    let mut p = assert_plays(&path, &run, &DENSE);
+    for &(cp, i) in &turning {
+        let snap = p.snapshot_at(cp.time).unwrap();
+        let turn = snap.states.turn(i).expect("it turns");
+        assert_eq!(turn.point(), SHELF_CORNER);
+        assert_eq!(turn.start_time(), t0);
+        // At more times in between, still the simulation's (the turn is the same Pivot).
+        for f in [0.25, 0.5, 0.75] {
+            let t = cp.time + f * (t1 - cp.time);
+            let mut sim = ccdsim::Simulation::new(&run.scene, "all-pairs").unwrap();
+            sim.run_until(t);
+            assert_eq!(snap.states.position_at(i, t), sim.position(i), "t = {t}");
+            assert_eq!(
+                snap.states.velocity_at(i, t),
+                sim.world().velocity_at(i, t),
+                "t = {t}"
+            );
+        }
+    }
+    // Before the roll-over and after it comes off, no turn.
+    assert!(p
+        .snapshot_after(over as u64)
+        .unwrap()
+        .states
+        .turn(0)
+        .is_none());
+    assert!(p
+        .snapshot_after(off as u64 + 1)
+        .unwrap()
+        .states
+        .turn(0)
+        .is_none());
+    // The extent holds the ball along its turn.
+    let e = *p.extent();
+    for cp in &run.checkpoints {
+        let ball = Aabb::of_ball(cp.bodies[0].pos, RADIUS);
+        for k in 0..2 {
+            assert!(ball.min[k] >= e.bounds.min[k] - 1e-12, "{e:?}");
+            assert!(ball.max[k] <= e.bounds.max[k] + 1e-12, "{e:?}");
+        }
+    }
+}
+
+#[test]
+fn a_ball_rolling_over_a_shelfs_end_is_served_with_its_turn() {
+    let (path, run, [over, off]) = roll_run("ledge-roll-server");
+    let s = common::start(&path, DENSE);
+    let n = 1;
+    let start = run.events[over];
+    for cp in &run.checkpoints {
+        let body = get(s.port, &format!("/api/state?t={}", cp.time)).body;
+        let arrays = f32s(&body[8 * STATE_HEADER..8 * STATE_HEADER + 2 * 4 * 2 * n]);
+        let b = cp.bodies[0];
+        let want = [b.pos[0], b.pos[1], b.vel[0], b.vel[1]].map(|x| x as f32);
+        assert_eq!(arrays, want, "t = {}", cp.time);
+        let rest = f64s(&body[8 * STATE_HEADER + 2 * 4 * 2 * n..]);
+        let turning = cp.time > run.time_of(over) && cp.time < run.time_of(off);
+        if turning {
+            // The rest section (no support, no acceleration of its own), then the turn: body
+            // 0 about the shelf's end since the roll-over, from the roll-over's state.
+            assert_eq!(
+                rest,
+                [
+                    REST_SECTION,
+                    -1.0,
+                    0.0,
+                    0.0,
+                    PIVOT_SECTION,
+                    1.0,
+                    0.0,
+                    SHELF_CORNER[0],
+                    SHELF_CORNER[1],
+                    start.event.time,
+                    start.pos[0][0],
+                    start.pos[0][1],
+                    start.vel[0][0],
+                    start.vel[0][1],
+                ],
+                "t = {}",
+                cp.time
+            );
+        } else {
+            // No turn: the answer is as before turns existed.
+            assert_eq!(rest.len(), 1 + n + 2 * n, "t = {}", cp.time);
+        }
+    }
+    // The roll-over's event carries bit 2 of its flags; no other does.
+    let events = f64s(
+        &get(
+            s.port,
+            &format!("/api/events?from=0&count={}", run.events.len()),
+        )
+        .body,
+    );
+    for (k, (e, c)) in events.chunks(13).zip(&run.events).enumerate() {
+        let want = u8::from(c.rests[0]) * REST_A + if k == over { PIVOT_A } else { 0 };
+        assert_eq!(e[12], f64::from(want), "event {k}: {c:?}");
+    }
+}
+
+#[test]
+fn a_ball_rolling_over_a_shelfs_end_is_rendered_on_its_circle() {
+    let (path, run, _) = roll_run("ledge-roll-render");
+    let dir = path.parent().unwrap();
+    let o = RenderOptions {
+        width: 1200,
+        ..RenderOptions::default()
+    };
+    let p = Playback::<2>::open(&path, &o.keyframes).unwrap();
+    let cam = Camera::fit(&p.extent().bounds, o.width, None, o.yaw_deg, o.pitch_deg);
+    let px = 1.0 / f64::from(cam.project(Vector([1.0, 0.0])).0 - cam.project(Vector([0.0, 0.0])).0);
+    let id = colour::id_colour(colour::id_bucket(0));
+    // The checkpoint mid-turn where the parabola from the turn's start is furthest from the
+    // circle.
+    let start = run.after[run.roll_overs()[0] + 1][0].0;
+    let parabola = |t: f64| start.falling_at(t, &G);
+    let (cp, _) = after_roll_overs(&run)
+        .into_iter()
+        .max_by(|x, y| {
+            let gap = |cp: &Checkpoint| (parabola(cp.time) - cp.bodies[0].pos).norm();
+            gap(x.0).total_cmp(&gap(y.0))
+        })
+        .unwrap();
+    let b = cp.bodies[0].pos;
+    let gap = (parabola(cp.time) - b).norm();
+    assert!(gap > 5.0 * px, "the parabola {gap} m away, {px} m a pixel");
+    let out = dir.join("turning.png");
+    render_png(&path, cp.time, &out, &o).unwrap();
+    let pm = tiny_skia::Pixmap::load_png(&out).unwrap();
+    assert_eq!(pixel(&pm, &cam, b), id, "at its centre on the circle");
+    // Its disc is centred on the circle, not on the parabola (nor on the straight line from
+    // the turn's start): painted 2 pixels inside its edge and not 2 pixels outside it (where
+    // the shelf's corner may be drawn) all around, and towards the parabola.
+    let line = start.at(cp.time);
+    assert!((line - b).norm() > 5.0 * px, "{line:?} {b:?}");
+    let towards = |q: Vector<2>| (q - b) * (1.0 / (q - b).norm());
+    let dirs = [[1.0, 0.0], [-1.0, 0.0], [0.0, 1.0], [0.0, -1.0]].map(Vector);
+    for d in dirs
+        .into_iter()
+        .chain([towards(parabola(cp.time)), towards(line)])
+    {
+        assert_eq!(pixel(&pm, &cam, b + d * (RADIUS - 2.0 * px)), id, "{d:?}");
+        assert_ne!(pixel(&pm, &cam, b + d * (RADIUS + 2.0 * px)), id, "{d:?}");
+    }
+}
+
+#[test]
+fn a_ball_turning_over_the_top_of_an_incline_is_inside_the_extent_at_its_highest() {
+    // Up a 20° incline and off its top end at 0.8 m/s: too slow to fly clear (v² < r g cos
+    // 20°), fast enough to turn over the top of the end point and come off on the far side.
+    // Its highest point, straight above the end, lies between its records: the extent must
+    // still reach it.
+    let a = 20f64.to_radians();
+    let (c, s) = (a.cos(), a.sin());
+    let top = Vector([2.0 * c, SHELF_Y + 2.0 * s]);
+    let start = Vector([
+        1.5 * c - s * (RADIUS + 1e-7),
+        SHELF_Y + 1.5 * s + c * (RADIUS + 1e-7),
+    ]);
+    let v0 = (0.8f64 * 0.8 + 2.0 * 10.0 * s * 0.5).sqrt();
+    let mut scene = roll_scene();
+    scene.bodies[0] = ccdsim::BodySpec::new(start, Vector([v0 * c, v0 * s]), RADIUS);
+    scene.walls = vec![
+        scene.walls[FLOOR],
+        ccdsim::Wall::Segment {
+            a: Vector([0.0, SHELF_Y]),
+            b: top,
+        },
+    ];
+    let (path, run) = recorded("ledge-over-the-top", &scene, 2.0, 0.05);
+    let over = run.roll_overs();
+    assert_eq!(over.len(), 1, "{:?}", run.events);
+    let roll = run.events[over[0]];
+    assert!(
+        roll.pos[0][1] + RADIUS < top[1] + 2.0 * RADIUS - 1e-3,
+        "{roll:?}"
+    );
+    // Over the top: on the far side of the end point when it comes off.
+    let off = run.events[over[0] + 1];
+    assert!(off.pos[0][0] > top[0] && !off.rests[0], "{off:?}");
+    let p = assert_plays(&path, &run, &DENSE);
+    let e = p.extent();
+    assert!(
+        (e.bounds.max[1] - (top[1] + 2.0 * RADIUS)).abs() < 1e-12,
+        "{e:?}, the top of the turn at {}",
+        top[1] + 2.0 * RADIUS
+    );
 }

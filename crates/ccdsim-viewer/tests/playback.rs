@@ -482,6 +482,7 @@ fn records_naming_slots_without_a_body_are_refused() {
         pos: [Vector([1.0, 0.0]), Vector([2.0, 0.0])],
         vel: [Vector::ZERO, Vector([1.0, 0.0])],
         rests: [false; 2],
+        pivots: [false; 2],
     };
     let add = Edit::<2>::Add {
         body: 2,

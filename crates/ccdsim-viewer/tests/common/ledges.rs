@@ -1,8 +1,11 @@
-//! Recorded runs where bodies rest on 2D segments, go on along a shelf drawn in pieces and fly
-//! off a segment's end (format version 12, see `ccdsim::ledge`), with the simulation's own
-//! states at frames and just after each slide-off, to check playback against.
+//! Recorded runs where bodies rest on 2D segments, go on along a shelf drawn in pieces, fly
+//! off a segment's end (see `ccdsim::ledge`) or, too slow for that, roll over it, turning
+//! about its end point (see `ccdsim::pivot`), with the simulation's own states at frames and
+//! between each slide-off or roll-over and the event after it, to check playback against.
+//! Scenes with segments bodies rest on are written in format version 13
+//! (`ccdsim::record::VERSION_PIVOTS`), whether or not a body turns in them.
 
-use super::resting::{checkpoint, Checkpoint};
+use super::resting::{checkpoint, recorded_motion, Checkpoint};
 use ccdsim::gravity::Gravity;
 use ccdsim::narrow::Motion;
 use ccdsim::record::{RunReader, RunWriter};
@@ -31,6 +34,21 @@ pub const SHELF_RIGHT: usize = 2;
 /// there until it rests on it.
 #[must_use]
 pub fn shelf_scene() -> Scene<2> {
+    shelf_scene_at(2.0)
+}
+
+/// [`shelf_scene`] with the ball moving right at 1 m/s: too slow to fly off the shelf's end
+/// (`1² < r g = 2`), it rolls over it, turning about the end point `(2, 1)` until the point
+/// stops pushing it (`cos θ = 5/6` from the top), and falls from there onto the floor.
+#[must_use]
+pub fn roll_scene() -> Scene<2> {
+    shelf_scene_at(1.0)
+}
+
+/// The end point of the shelf, which [`roll_scene`]'s ball turns about.
+pub const SHELF_CORNER: Vector<2> = Vector([SHELF_END, SHELF_Y]);
+
+fn shelf_scene_at(speed: f64) -> Scene<2> {
     let segment = |a: [f64; 2], b: [f64; 2]| Wall::Segment {
         a: Vector(a),
         b: Vector(b),
@@ -44,7 +62,7 @@ pub fn shelf_scene() -> Scene<2> {
         },
         bodies: vec![BodySpec::new(
             Vector([0.5, SHELF_Y + RADIUS + 1e-6]),
-            Vector([2.0, 0.0]),
+            Vector([speed, 0.0]),
             RADIUS,
         )],
         walls: vec![
@@ -70,8 +88,12 @@ pub fn shelves_example() -> Scene<2> {
 /// What one event did to its body `a`, as the simulation's supports before and after it say.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Ledge {
-    /// A wall record of a body with the segment it slid on, not resting: it flies off.
+    /// A wall record of a body with the segment it slid on, not resting nor turning: it flies
+    /// off.
     SlideOff,
+    /// A wall record flagged "turns" (`pivots[0]`): the body rolls over the end of the
+    /// segment it slid on, turning about its end point.
+    RollsOver,
     /// A wall record flagged "rests" of a body that slid on another segment: it goes on.
     GoesOn,
 }
@@ -88,8 +110,8 @@ pub struct LedgeRun {
     pub after: Vec<Vec<(Motion<2>, Option<usize>)>>,
     /// The end of the run, seconds.
     pub end: f64,
-    /// The simulation at every frame and at times between each slide-off and the event after
-    /// it, in time order.
+    /// The simulation at every frame and at times between each slide-off or roll-over and the
+    /// event after it, in time order.
     pub checkpoints: Vec<Checkpoint>,
 }
 
@@ -97,6 +119,11 @@ impl LedgeRun {
     /// The events that are slide-offs, by index.
     pub fn slide_offs(&self) -> Vec<usize> {
         self.indices(Ledge::SlideOff)
+    }
+
+    /// The events after which a body turns about a segment's end point, by index.
+    pub fn roll_overs(&self) -> Vec<usize> {
+        self.indices(Ledge::RollsOver)
     }
 
     /// The events where a body goes on along the next segment, by index.
@@ -118,13 +145,15 @@ impl LedgeRun {
 
 fn bodies(sim: &Simulation<2>) -> Vec<(Motion<2>, Option<usize>)> {
     let w = sim.world();
-    (0..w.len()).map(|i| (w.motion(i), w.support(i))).collect()
+    (0..w.len())
+        .map(|i| (recorded_motion(w, i), w.support(i)))
+        .collect()
 }
 
 /// Runs `scene` until `until` with the all-pairs finder and records it to `path` (its format
-/// version checked to be 12), taking checkpoints every `frame` seconds and at three times
-/// between each slide-off and the next event (a hundredth, half and 99 hundredths of the
-/// way). The run must not halt.
+/// version checked to be 13: the scene has segments bodies rest on), taking checkpoints every
+/// `frame` seconds and at three times between each slide-off or roll-over and the next event
+/// (a hundredth, half and 99 hundredths of the way). The run must not halt.
 pub fn record_ledge_run(scene: &Scene<2>, until: f64, frame: f64, path: &Path) -> LedgeRun {
     // First the events, classified from the supports before and after each: a second run
     // stops at checkpoints placed from their times.
@@ -135,6 +164,10 @@ pub fn record_ledge_run(scene: &Scene<2>, until: f64, frame: f64, path: &Path) -
         let (was, now) = (after.last().unwrap()[a].1, sim.world().support(a));
         let on_segment = |w: usize| matches!(scene.walls[w], Wall::Segment { .. });
         ledges.push(match (c.event.kind, was) {
+            (EventKind::Wall, _) if c.pivots[0] => {
+                assert!(sim.world().pivot(a).is_some(), "{c:?}");
+                Some(Ledge::RollsOver)
+            }
             (EventKind::Wall, Some(w)) if w == c.event.b as usize && !c.rests[0] => {
                 assert_eq!(now, None, "{c:?}");
                 Some(Ledge::SlideOff)
@@ -155,7 +188,8 @@ pub fn record_ledge_run(scene: &Scene<2>, until: f64, frame: f64, path: &Path) -
         .map(|f| f as f64 * frame)
         .take_while(|&t| t <= until)
         .collect();
-    for k in (0..events.len()).filter(|&k| ledges[k] == Some(Ledge::SlideOff)) {
+    let off_or_over = |k: &usize| matches!(ledges[*k], Some(Ledge::SlideOff | Ledge::RollsOver));
+    for k in (0..events.len()).filter(off_or_over) {
         let (from, to) = (time_of(k), time_of(k + 1));
         times.extend(
             [0.01, 0.5, 0.99]
@@ -191,7 +225,7 @@ pub fn record_ledge_run(scene: &Scene<2>, until: f64, frame: f64, path: &Path) -
     );
     let file = std::fs::File::open(path).unwrap();
     let reader = RunReader::<_, 2>::new(file, path.display().to_string()).unwrap();
-    assert_eq!(reader.version(), ccdsim::record::VERSION_SEGMENT_RESTING);
+    assert_eq!(reader.version(), ccdsim::record::VERSION_PIVOTS);
     LedgeRun {
         scene: scene.clone(),
         events,

@@ -46,6 +46,19 @@ pub struct BodyAt {
     pub acc: Option<Vector<2>>,
 }
 
+/// Body `i`'s stored state as the run file records it: [`ccdsim::World::motion`], except for a
+/// body turning about a segment's end point (format 13), which the world keeps parked at rest
+/// where its turn started: its velocity is then the one its turn started with
+/// ([`ccdsim::World::recorded_state`]), as a playback's states hold it.
+pub fn recorded_motion(w: &ccdsim::World<2>, i: usize) -> Motion<2> {
+    let (pos, vel) = w.recorded_state(i);
+    Motion {
+        pos,
+        vel,
+        time: w.motion(i).time,
+    }
+}
+
 /// The simulation's state after the first `applied` records, at `time` (between events).
 #[derive(Clone, Debug)]
 pub struct Checkpoint {
@@ -124,7 +137,7 @@ pub fn checkpoint(sim: &Simulation<2>, applied: u64) -> Checkpoint {
         time: t,
         bodies: (0..w.len())
             .map(|i| BodyAt {
-                motion: w.motion(i),
+                motion: recorded_motion(w, i),
                 support: w.support(i),
                 pos: w.position_at(i, t),
                 vel: w.velocity_at(i, t),
