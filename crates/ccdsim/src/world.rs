@@ -1166,8 +1166,9 @@ impl<const D: usize> World<D> {
     }
 
     /// Total kinetic energy of the stored velocities, joules (under gravity each at its
-    /// body's reference time; see [`World::kinetic_energy_at`]). Kinematic bodies, of
-    /// infinite mass, are left out.
+    /// body's reference time, and zero for a body turning about a segment's end, which is
+    /// stored parked; see [`World::kinetic_energy_at`]). Kinematic bodies, of infinite mass,
+    /// are left out.
     #[must_use]
     pub fn kinetic_energy(&self) -> f64 {
         self.bodies
@@ -1203,8 +1204,9 @@ impl<const D: usize> World<D> {
             .sum()
     }
 
-    /// Total momentum of the dynamic bodies, kg·m/s (kinematic ones, of infinite mass, are
-    /// left out).
+    /// Total momentum of the dynamic bodies' stored velocities, kg·m/s (kinematic ones, of
+    /// infinite mass, are left out; a body turning about a segment's end is stored parked,
+    /// at rest).
     #[must_use]
     pub fn momentum(&self) -> Vector<D> {
         self.bodies
