@@ -491,3 +491,52 @@ fn a_ball_pushed_into_a_wedge_under_an_incline_stops_the_run() {
         events.len()
     );
 }
+
+#[test]
+fn the_rolling_example_rolls_over_a_shelf_end_and_an_obtuse_corner() {
+    // `examples/rolling.json`: a ball slowed by one falling onto the shelf rolls over the
+    // shelf's end and comes off; another rolls over an obtuse corner and lands on the slope
+    // beyond it. Every finder writes the same run file, which verifies.
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/rolling.json");
+    let scene = Scene::from_json(&std::fs::read_to_string(path).unwrap()).unwrap();
+    let (events, sim) = every_finder(&scene, 10.0);
+    assert_eq!(sim.halt(), None);
+    assert_eq!(events.len(), 51);
+    let turns: Vec<(u32, u32)> = events
+        .iter()
+        .filter(|c| c.pivots[0])
+        .map(|c| (c.event.a, c.event.b))
+        .collect();
+    assert_eq!(turns, [(1, 4), (0, 3)], "{turns:?}");
+    // Each turn's next record: body 1 lands on the slope (segment 5) and rests; body 0
+    // comes off the shelf's end (segment 3, no rest) and falls to the floor.
+    let after = |body: u32, from: usize| {
+        events[from + 1..]
+            .iter()
+            .find(|c| c.event.a == body || (c.event.kind == EventKind::Body && c.event.b == body))
+            .copied()
+            .unwrap()
+    };
+    let start = |body| {
+        events
+            .iter()
+            .position(|c| c.pivots[0] && c.event.a == body)
+            .unwrap()
+    };
+    let land = after(1, start(1));
+    assert_eq!(
+        (land.event.kind, land.event.b, land.rests[0]),
+        (EventKind::Wall, 5, true)
+    );
+    let off = after(0, start(0));
+    assert_eq!(
+        (off.event.kind, off.event.b, off.rests[0]),
+        (EventKind::Wall, 3, false)
+    );
+    assert_eq!(
+        after(0, events.iter().position(|c| *c == off).unwrap())
+            .event
+            .b,
+        0
+    );
+}
