@@ -3,7 +3,7 @@
 
 use ccdsim::moving_wall::{start_motions, translated, WallMotion};
 use ccdsim::narrow::Motion;
-use ccdsim::pivot::Pivot;
+use ccdsim::pivot::{from_2d, Pivot};
 use ccdsim::{Collision, EventKind, Scene, Vector, Wall};
 use std::sync::Arc;
 
@@ -340,23 +340,15 @@ impl<const D: usize> BodyStates<D> {
                 "turns body {a} about an end of wall {b}, which is no static segment"
             ));
         };
-        let end = ccdsim::ledge::end_reached(p, q, c.pos[0]);
         let r = self.radius(a);
-        let dist = (c.pos[0] - end).norm();
-        if (dist - r).abs() > 1e-9 * r {
-            return Err(format!(
-                "turns body {a} about an end point of segment {b} it does not touch (its centre \
-                 {dist} m from it, its radius {r} m)"
-            ));
-        }
-        Ok(Pivot::new(
-            to_2d(end),
-            r,
-            to_2d(g),
-            to_2d(c.pos[0]),
-            to_2d(c.vel[0]),
-            c.event.time,
-        ))
+        ccdsim::ledge::recorded_turn((p, q), r, g, (c.pos[0], c.vel[0]), c.event.time).map_err(
+            |dist| {
+                format!(
+                    "turns body {a} about an end point of segment {b} it does not touch (its \
+                     centre {dist} m from it, its radius {r} m)"
+                )
+            },
+        )
     }
 
     /// Checks the record's resting flags (see [`BodyStates::check`]).
@@ -628,19 +620,6 @@ impl<const D: usize> BodyStates<D> {
                 0
             }
     }
-}
-
-/// The first two components of `v` (2D runs, where bodies turn about points).
-fn to_2d<const D: usize>(v: Vector<D>) -> Vector<2> {
-    Vector([v[0], v[1]])
-}
-
-/// A 2D vector as a `Vector<D>` (`D = 2` wherever bodies turn about points).
-fn from_2d<const D: usize>(v: Vector<2>) -> Vector<D> {
-    let mut out = Vector::ZERO;
-    out[0] = v[0];
-    out[1] = v[1];
-    out
 }
 
 #[cfg(test)]

@@ -77,6 +77,34 @@ pub fn end_reached<const D: usize>(a: Vector<D>, b: Vector<D>, p: Vector<D>) -> 
     }
 }
 
+/// The turn a run file records (format 13, see [`crate::pivot`]): a ball of radius `r` (m)
+/// with centre `pos` and velocity `vel` at time `t`, under gravity `g`, rolls over the end
+/// point of segment `[a, b]` it has reached ([`end_reached`]). `Err` with the centre's
+/// distance from that point (m) when it is not `r` from it (to `1e-9·r`), so does not touch
+/// it; `Ok(None)` where [`crate::pivot::Pivot::new`] makes no turn. 2D.
+pub fn recorded_turn<const D: usize>(
+    (a, b): (Vector<D>, Vector<D>),
+    r: f64,
+    g: Vector<D>,
+    (pos, vel): (Vector<D>, Vector<D>),
+    t: f64,
+) -> Result<Option<crate::pivot::Pivot>, f64> {
+    use crate::pivot::{to_2d, Pivot};
+    let end = end_reached(a, b, pos);
+    let dist = (pos - end).norm();
+    if (dist - r).abs() > 1e-9 * r {
+        return Err(dist);
+    }
+    Ok(Pivot::new(
+        to_2d(end),
+        r,
+        to_2d(g),
+        to_2d(pos),
+        to_2d(vel),
+        t,
+    ))
+}
+
 /// The coefficients `(q₀, q₁, q₂)` of `q(t) = q₀ + q₁ t + q₂ t²` (see the module docs) for a
 /// body with motion `m` let go at end point `end` under gravity `g`: `|x − end|² − r²` is
 /// `t² q(t)` for a body touching `end` and moving across the line to it.

@@ -430,6 +430,38 @@ fn solve_increasing(
     x
 }
 
+/// The first two components of `v`, metres or m/s: a `Vector<D>` of a run where bodies turn
+/// about points, which is 2D.
+#[must_use]
+pub fn to_2d<const D: usize>(v: Vector<D>) -> Vector<2> {
+    Vector([v[0], v[1]])
+}
+
+/// A wall of a run where bodies turn about points as a 2D one (see [`to_2d`]).
+#[must_use]
+pub fn wall_2d<const D: usize>(w: &crate::wall::Wall<D>) -> crate::wall::Wall<2> {
+    use crate::wall::Wall;
+    match *w {
+        Wall::Segment { a, b } => Wall::Segment {
+            a: to_2d(a),
+            b: to_2d(b),
+        },
+        Wall::Plane { point, normal } => Wall::Plane {
+            point: to_2d(point),
+            normal: to_2d(normal),
+        },
+    }
+}
+
+/// A 2D vector as a `Vector<D>` (`D = 2` wherever bodies turn about points).
+#[must_use]
+pub fn from_2d<const D: usize>(v: Vector<2>) -> Vector<D> {
+    let mut out = Vector::ZERO;
+    out[0] = v[0];
+    out[1] = v[1];
+    out
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -262,7 +262,7 @@ pub fn resolve_slide_end<const D: usize>(
     };
     let pivot = (D == 2 && !crate::ledge::flies_clear(&m, end, &g))
         .then(|| {
-            use crate::world::to_2d;
+            use crate::pivot::to_2d;
             crate::pivot::Pivot::new(to_2d(end), world.radius(i), to_2d(g), to_2d(p), to_2d(v), t)
         })
         .flatten();

@@ -50,32 +50,7 @@ struct Pivoting<const D: usize> {
     velocity: Vector<D>,
 }
 
-/// `v` as a 2D vector (`D = 2` wherever bodies pivot).
-pub(crate) fn to_2d<const D: usize>(v: Vector<D>) -> Vector<2> {
-    Vector([v[0], v[1]])
-}
-
-/// A 2D vector as a `Vector<D>` (`D = 2` wherever bodies pivot).
-pub(crate) fn from_2d<const D: usize>(v: Vector<2>) -> Vector<D> {
-    let mut out = Vector::ZERO;
-    out[0] = v[0];
-    out[1] = v[1];
-    out
-}
-
-/// A wall of `D` dimensions as a 2D one (`D = 2` wherever bodies pivot).
-pub(crate) fn wall_2d<const D: usize>(w: &Wall<D>) -> Wall<2> {
-    match *w {
-        Wall::Segment { a, b } => Wall::Segment {
-            a: to_2d(a),
-            b: to_2d(b),
-        },
-        Wall::Plane { point, normal } => Wall::Plane {
-            point: to_2d(point),
-            normal: to_2d(normal),
-        },
-    }
-}
+pub(crate) use crate::pivot::{from_2d, to_2d, wall_2d};
 
 /// The hot part of one body's state: its stored motion, radius, mass and change count.
 ///

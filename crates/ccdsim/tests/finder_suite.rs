@@ -409,22 +409,12 @@ fn moving_wall_oracle<const D: usize>(world: &ccdsim::World<D>) -> Option<Event>
 /// incremental, pivot events): each search starts at the later of the two motions'
 /// reference times and ends where a turn ends by itself.
 fn pivot_oracle<const D: usize>(world: &ccdsim::World<D>) -> Option<Event> {
+    use ccdsim::pivot::{to_2d as two, wall_2d};
     use ccdsim::pivot_contact::{first_contact_points, toi_pivot_wall, Parabola};
     use ccdsim::pivot_end::{pivot_end, PivotEnd};
     if D != 2 || world.pivoting().next().is_none() {
         return None;
     }
-    let two = |v: Vector<D>| Vector([v[0], v[1]]);
-    let wall_2d = |w: &Wall<D>| match *w {
-        Wall::Segment { a, b } => Wall::Segment {
-            a: two(a),
-            b: two(b),
-        },
-        Wall::Plane { point, normal } => Wall::Plane {
-            point: two(point),
-            normal: two(normal),
-        },
-    };
     let walls: Vec<Wall<2>> = world.walls().iter().map(wall_2d).collect();
     let end_of = |i: usize| {
         let (p, w) = world.pivot(i).expect("turning");

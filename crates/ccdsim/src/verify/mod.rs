@@ -909,16 +909,14 @@ impl<const D: usize> Verifier<D> {
                 format!("body {i} turns about wall {segment}, no segment"),
             ));
         };
-        let end = crate::ledge::end_reached(a, b, c.pos[s]);
         let r = self.radius[i];
-        if ((c.pos[s] - end).norm() - r).abs() > 1e-9 * r {
-            return Err(self.fail(
+        match crate::ledge::recorded_turn((a, b), r, g, (c.pos[s], c.vel[s]), t) {
+            Ok(pivot) => Ok(pivot.map(|p| (p, segment))),
+            Err(_) => Err(self.fail(
                 t,
                 format!("body {i} turns about an end point of segment {segment} it does not touch"),
-            ));
+            )),
         }
-        let pivot = Pivot::new(to_2d(end), r, to_2d(g), to_2d(c.pos[s]), to_2d(c.vel[s]), t);
-        Ok(pivot.map(|p| (p, segment)))
     }
 
     /// A wall record of body `i` while it turns about a segment's end point: the turn ends
