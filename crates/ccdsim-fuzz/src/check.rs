@@ -28,6 +28,8 @@ pub enum Failure {
     Mismatch(String),
     /// The oracle's run file fails `verify` (or cannot be read back).
     Verify(String),
+    /// Something panicked (the simulation, a finder, the recorder or `verify`).
+    Panic(String),
 }
 
 impl std::fmt::Display for Failure {
@@ -35,6 +37,7 @@ impl std::fmt::Display for Failure {
         match self {
             Failure::Mismatch(m) => write!(f, "finder mismatch: {m}"),
             Failure::Verify(m) => write!(f, "verify: {m}"),
+            Failure::Panic(m) => write!(f, "panic: {m}"),
         }
     }
 }
@@ -213,11 +216,20 @@ pub fn check_scene<const D: usize>(case: &Case, scene: &Scene<D>) -> Result<Chec
 }
 
 /// Checks a case: `Ok(None)` when its scene is refused by the validator (nothing to compare),
-/// `Ok(Some(_))` when every finder agreed with the oracle and the oracle's run verified.
+/// `Ok(Some(_))` when every finder agreed with the oracle and the oracle's run verified. A
+/// panic anywhere is a failure too, with its message.
 pub fn check_case(case: &Case) -> Result<Option<Checked>, Failure> {
-    match case.any_scene() {
+    let checked = std::panic::catch_unwind(|| match case.any_scene() {
         Err(_) => Ok(None),
         Ok(AnyScene::D2(s)) => check_scene(case, &s).map(Some),
         Ok(AnyScene::D3(s)) => check_scene(case, &s).map(Some),
-    }
+    });
+    checked.unwrap_or_else(|payload| {
+        let message = payload
+            .downcast_ref::<&str>()
+            .map(|s| (*s).to_string())
+            .or_else(|| payload.downcast_ref::<String>().cloned())
+            .unwrap_or_else(|| "a panic without a message".into());
+        Err(Failure::Panic(message))
+    })
 }

@@ -16,6 +16,8 @@ pub(crate) struct ImageCounts<const D: usize> {
     low: Vec<[i32; D]>,
     /// Whole periods beyond `low`, by slot, for the rare counts that left `i32`.
     carry: HashMap<usize, [i64; D]>,
+    /// The world is periodic. Kept apart from `low`: a periodic world may have no body yet.
+    counting: bool,
 }
 
 impl<const D: usize> ImageCounts<D> {
@@ -28,12 +30,13 @@ impl<const D: usize> ImageCounts<D> {
                 Vec::new()
             },
             carry: HashMap::new(),
+            counting: periodic,
         }
     }
 
     /// True when the world is periodic (the counters exist).
     pub(crate) fn is_counting(&self) -> bool {
-        !self.low.is_empty()
+        self.counting
     }
 
     /// Slot `i`'s count, whole periods per axis.
@@ -86,6 +89,17 @@ impl<const D: usize> ImageCounts<D> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_periodic_world_without_bodies_counts_the_ones_added() {
+        // A periodic scene may start empty; its first added body once found no counter.
+        let mut c = ImageCounts::<2>::new(0, true);
+        assert!(c.is_counting());
+        c.resize(1);
+        c.set(0, [0, 0]);
+        c.shift(0, 1, 1);
+        assert_eq!(c.get(0), [0, 1]);
+    }
 
     #[test]
     fn counts_are_exact_past_the_range_of_i32() {

@@ -807,9 +807,14 @@ impl<const D: usize> Grid<D> {
     /// lower face where its coordinate falls through it and the upper face where it rises
     /// through it, at the root of the face's quadratic, taken only when it lies at or after
     /// `after` (the time from which the body is known to lie in its cell: it may have left
-    /// through that face and come back before). A face the parabola only grazes (equal or
-    /// disordered roots after rounding) is not crossed: both cells sharing it compute the same
-    /// two roots from the same bound, so a body never bounces between them at one time.
+    /// through that face and come back before). A face the parabola only grazes from inside
+    /// the cell (equal or disordered roots after rounding) is not crossed. A parabola that
+    /// opens away from the cell (a lower face the body falls towards) is left whatever the
+    /// roots say: at its later root, or at `after` when that root lies before it or there is
+    /// none (a body filed on the face at rest: `x = bound`, `v = 0` makes a double root, which
+    /// once counted as a graze and let the body fall through the grid unseen). Both cells
+    /// sharing a face compute the same two roots from the same bound, and the cell below sees
+    /// that parabola open towards it, so a body never bounces between them at one time.
     /// Axes without gravity cross as in [`Grid::next_crossing`]. Ties go to the lower axis.
     #[inline(never)]
     pub fn next_crossing_falling(
@@ -841,12 +846,31 @@ impl<const D: usize> Grid<D> {
             }
             for (bound, up) in [(lower, false), (upper, true)] {
                 let Some(bound) = bound else { continue };
-                let Some((falls, rises)) = crate::gravity::face_roots(x - bound, v, a) else {
-                    continue;
-                };
-                let t = m.time + if up { rises } else { falls };
-                if t >= after && t.is_finite() {
-                    offer(t, up);
+                // Seen from inside the cell, the body's height over this face is a parabola
+                // that either opens away from the cell (the lower face with `a < 0`, the upper
+                // with `a > 0`): the body is inside only between the two roots and leaves for
+                // good at the later one; or opens towards it: the body leaves at the earlier
+                // root and comes back at the later one.
+                let leaves_for_good = if up { a > 0.0 } else { a < 0.0 };
+                match crate::gravity::face_roots(x - bound, v, a) {
+                    Some((falls, rises)) => {
+                        let t = m.time + if up { rises } else { falls };
+                        if !t.is_finite() {
+                            continue;
+                        }
+                        if t >= after {
+                            offer(t, up);
+                        } else if leaves_for_good {
+                            // Filed here, yet past its way out by rounding: it leaves now.
+                            offer(after, up);
+                        }
+                    }
+                    // No crossing root on a parabola that opens away from the cell: the body
+                    // is outside but for one instant, the one it is filed here at (a body at
+                    // rest on the face, `x = bound`, `v = 0`). It leaves now; had it waited for
+                    // a root, it would have fallen through the floor unseen.
+                    None if leaves_for_good => offer(after, up),
+                    None => {}
                 }
             }
         }
@@ -1184,6 +1208,97 @@ mod tests {
             check_next_crossing::<2>(periodic, &fractions, &vel, time)?;
             check_next_crossing::<3>(periodic, &fractions, &vel, time)?;
         }
+    }
+
+    /// A body filed in its cell at `m.time` under gravity `g` never lies outside that cell
+    /// (beyond rounding) before the crossing `next_crossing_falling` names, and is on the
+    /// named face then. Positions are drawn on the grid's faces and on round numbers, with
+    /// zero and axis-aligned velocities, where a body on a face at rest once never crossed.
+    fn check_falling_crossing<const D: usize>(
+        ticks: &[u8],
+        vel: &[f64],
+        g: &[f64],
+    ) -> Result<(), TestCaseError> {
+        let side = 12.0;
+        let grid = Grid::<D>::new(40, 1.0, Vector::ZERO, Vector([side; D]), None);
+        let mut pos = Vector::<D>::ZERO;
+        let mut v = Vector::<D>::ZERO;
+        let mut acc = Vector::<D>::ZERO;
+        for d in 0..D {
+            // Quarter-cell ticks: every fourth one lies exactly on a face.
+            pos[d] = f64::from(ticks[d]) * grid.width[d] / 4.0;
+            v[d] = vel[d];
+            acc[d] = g[d];
+        }
+        let m = Motion {
+            pos,
+            vel: v,
+            time: 1.0,
+        };
+        let k = grid.coords_of_point(&pos);
+        let k32 = k.map(|c| c as u32);
+        let (lo, hi) = grid.cell_box(&k);
+        let crossing = grid.next_crossing_falling(&k32, &m, &acc, m.time);
+        let at = |t: f64| {
+            let dt = t - m.time;
+            Vector::<D>(std::array::from_fn(|d| {
+                m.pos[d] + m.vel[d] * dt + 0.5 * acc[d] * dt * dt
+            }))
+        };
+        let end = crossing.map_or(m.time + 20.0, |(t, _)| t);
+        prop_assert!(end >= m.time, "crossing at {end} before the body's time");
+        let tol = 1e-9;
+        for step in 0..=1000 {
+            let t = m.time + (end - m.time) * f64::from(step) / 1000.0;
+            let p = at(t);
+            for d in 0..D {
+                prop_assert!(
+                    p[d] >= lo[d] - tol && p[d] <= hi[d] + tol,
+                    "at t = {t} the body is at {:?}, outside its cell {:?}..{:?}; crossing {:?}",
+                    p.0,
+                    lo.0,
+                    hi.0,
+                    crossing
+                );
+            }
+        }
+        if let Some((t, code)) = crossing {
+            let (axis, up) = ((code >> 1) as usize, code & 1 == 1);
+            let face = if up { hi[axis] } else { lo[axis] };
+            prop_assert!(
+                (at(t)[axis] - face).abs() <= 1e-9 * (1.0 + face.abs()),
+                "the crossing at {t} is not on its face"
+            );
+        }
+        Ok(())
+    }
+
+    proptest! {
+        #[test]
+        fn falling_bodies_cross_before_leaving_their_cell(
+            ticks in prop::collection::vec(0u8..48, 3),
+            vel in prop::collection::vec(prop_oneof![Just(0.0), Just(1.0), Just(-2.0), -3.0..3.0f64], 3),
+            g in prop::collection::vec(prop_oneof![2 => Just(0.0), 2 => Just(-9.81), 1 => Just(4.0), 1 => -10.0..10.0f64], 3),
+        ) {
+            check_falling_crossing::<2>(&ticks, &vel, &g)?;
+            check_falling_crossing::<3>(&ticks, &vel, &g)?;
+        }
+    }
+
+    #[test]
+    fn a_body_at_rest_on_a_face_falls_out_of_its_cell_at_once() {
+        let grid = Grid::<2>::new(100, 1.0, Vector::ZERO, Vector([12.0; 2]), None);
+        // A face at y = 9 (12 cells of 1 m): the body is filed in the cell above it.
+        let m = Motion {
+            pos: Vector([5.0, 9.0]),
+            vel: Vector([1.0, 0.0]),
+            time: 0.0,
+        };
+        let k = grid.coords_of_point(&m.pos).map(|c| c as u32);
+        assert_eq!(grid.cell_box(&k.map(|c| c as usize)).0[1], 9.0);
+        let crossing = grid.next_crossing_falling(&k, &m, &Vector([0.0, -9.81]), 0.0);
+        // Down through the lower y face (code 2·1 + 0), now.
+        assert_eq!(crossing, Some((0.0, 2)));
     }
 
     #[test]

@@ -109,6 +109,26 @@
 //! (that is, `|x| + |v|·|t|` below about 10⁹ σ_max), which is far beyond where the simulation's
 //! own overlap tolerance of 10⁻⁹ would already fail.
 //!
+//! # Gravity: crossings on parabolas, and bodies on a face
+//!
+//! Under gravity a body's coordinate along an axis is a parabola, and a crossing is a root of
+//! `x(t) − bound` ([`Grid::next_crossing_falling`](grid::Grid::next_crossing_falling)). The
+//! argument above needs every body to lie in its cell until its crossing. Seen from inside a
+//! cell, the parabola over a face either opens towards the cell (the body leaves at the
+//! earlier root and may come back at the later one) or away from it (the body is inside only
+//! between the roots and leaves for good at the later one). A body filed on a face at rest
+//! (`x = bound`, `v = 0`, as integer coordinates in a hand-written scene put it) gives a
+//! double root, which rounding can also turn into no root or disordered roots. Such a graze
+//! is no crossing when the parabola opens towards the cell; but when it opens away (a body
+//! resting on the lower face of its cell, gravity pulling it down) the body is outside
+//! from that instant on. Counting that as a graze, as the finder once did, left the body
+//! filed in a cell it had left: it fell through the cells below without crossing them, its
+//! neighbourhood scans never met the floor's cell, and collisions were missed. So a face
+//! whose parabola opens away from the cell is always crossed: at the later root, or at the
+//! finder's clock when that root lies before it (rounding) or there is none. The cell on the
+//! other side computes the same roots from the same bound and sees the parabola open towards
+//! it, so the body does not bounce back.
+//!
 //! # Growing radii
 //!
 //! In a growing world ([`crate::growth`]) contact distances grow with time. `init` then sizes
