@@ -154,7 +154,8 @@ pub fn genome(max_bodies: usize) -> impl Strategy<Value = Genome> {
         prop::collection::vec(body_gene(), 0..=max_bodies),
         prop::collection::vec((any::<[u16; 3]>(), any::<[u16; 3]>()), 0..4),
         prop::collection::vec((any::<[u16; 3]>(), 0u8..4), 0..3),
-        prop::collection::vec(0u8..4, 0..3),
+        // Moving walls exclude growth: most cases go without, so growth is drawn often.
+        prop_oneof![3 => Just(Vec::new()), 1 => prop::collection::vec(0u8..4, 1..3)],
         0u8..4,
         1u8..8,
         prop::collection::vec(edit_gene(), 0..8),
