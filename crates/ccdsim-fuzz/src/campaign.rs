@@ -5,7 +5,7 @@
 //! writing that case out.
 
 use crate::case::Case;
-use crate::check::check_case;
+use crate::check::check_case_with;
 use crate::features::{features, FEATURES};
 use crate::genome;
 use proptest::test_runner::{Config, RngAlgorithm, TestCaseError, TestError, TestRng, TestRunner};
@@ -30,6 +30,8 @@ pub struct Settings {
     pub max_cases: Option<u64>,
     /// Bodies per scene, at most.
     pub max_bodies: usize,
+    /// Replay each oracle run through `verify` too (else finders alone are compared).
+    pub verify: bool,
     /// Threads, each with its own seeds.
     pub threads: usize,
     /// A case running longer than this is written out as a hang and the process exits (3).
@@ -242,7 +244,7 @@ fn run_thread(
             }
             let result = {
                 let _watched = Watched::new(running, thread, &case);
-                check_case(&case)
+                check_case_with(&case, s.verify)
             };
             if !shrinking.get() {
                 let mut r = report.borrow_mut();

@@ -19,4 +19,4 @@ pub mod features;
 pub mod genome;
 
 pub use case::{Case, EditOp, Schedule};
-pub use check::{check_case, Checked, Failure};
+pub use check::{check_case, check_case_with, Checked, Failure};

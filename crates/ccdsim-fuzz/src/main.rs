@@ -44,6 +44,9 @@ struct Cli {
     /// Where failing cases are written.
     #[arg(long, default_value = concat!(env!("CARGO_MANIFEST_DIR"), "/regressions"))]
     out: PathBuf,
+    /// Compare the finders only: do not replay the oracle's runs through `verify`.
+    #[arg(long)]
+    no_verify: bool,
     /// Print the report as JSON.
     #[arg(long)]
     json: bool,
@@ -74,6 +77,7 @@ fn main() -> Result<()> {
         duration: Duration::from_secs_f64((minutes * 60.0).min(1e9)),
         max_cases: cli.cases,
         max_bodies: cli.max_bodies,
+        verify: !cli.no_verify,
         threads: cli
             .threads
             .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get())),

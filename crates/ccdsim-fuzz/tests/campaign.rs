@@ -22,6 +22,7 @@ fn a_bounded_campaign_finds_no_failure() {
         duration: Duration::from_secs_f64(env_or("CCDSIM_FUZZ_SECONDS", 60.0)),
         max_cases: None,
         max_bodies: 24,
+        verify: true,
         threads: 2,
         hang_limit: Duration::from_secs(300),
         memory_limit: 6 << 30,
