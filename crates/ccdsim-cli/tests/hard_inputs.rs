@@ -147,3 +147,29 @@ fn bytes_after_the_end_record_are_refused() {
         );
     }
 }
+
+/// A missing file is named once with its cause said once, not "…(os error 2): …(os error 2)".
+#[test]
+fn a_missing_file_says_its_cause_once() {
+    let dir = common::scratch_dir("hard_inputs", "missing_file");
+    for (cmd, file) in [
+        ("verify", "missing.ccd"),
+        ("export", "missing.ccd"),
+        ("run", "missing.json"),
+        ("view", "missing.ccd"),
+        ("render", "missing.ccd"),
+    ] {
+        let path = dir.join(file);
+        let mut c = ccdsim();
+        c.arg(cmd).arg(&path);
+        if cmd == "render" {
+            c.args(["--at", "0", "--out"]).arg(dir.join("f.png"));
+        }
+        let out = c.output().unwrap();
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{cmd}: {err}");
+        assert_eq!(err.trim_end().lines().count(), 1, "{cmd}: {err}");
+        assert!(err.contains(file), "{cmd}: the file is named: {err}");
+        assert_eq!(err.matches("os error 2").count(), 1, "{cmd}: {err}");
+    }
+}
