@@ -1,5 +1,8 @@
 //! The `ccdsim` command: run, generate, verify and export exact collision simulations.
 
+#[macro_use]
+mod out;
+
 mod commands;
 mod huge_pages;
 mod progress;

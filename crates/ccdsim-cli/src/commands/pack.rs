@@ -151,10 +151,10 @@ fn pack<const D: usize>(args: &Args) -> Result<ExitCode> {
         xyz: xyz_path.display().to_string(),
     };
     if args.json {
-        println!("{}", serde_json::to_string(&summary)?);
+        outln!("{}", serde_json::to_string(&summary)?)?;
     } else {
         let s = &summary;
-        println!(
+        outln!(
             "{}D, {} bodies, {}: packing fraction {:.6}, reduced pressure {:.3e} ({})",
             s.dim,
             s.bodies,
@@ -166,8 +166,8 @@ fn pack<const D: usize>(args: &Args) -> Result<ExitCode> {
             s.packing_fraction,
             s.reduced_pressure,
             s.stop
-        );
-        println!(
+        )?;
+        outln!(
             "{} events in {:.3} s of wall time; {} contacts ({} with walls) within {:.1e} of a \
              contact distance; {} rattlers; mean contact number {:.4} without them",
             s.events,
@@ -177,8 +177,8 @@ fn pack<const D: usize>(args: &Args) -> Result<ExitCode> {
             s.contact_tolerance,
             s.rattlers,
             s.mean_contacts
-        );
-        println!("wrote {} and {}", s.scene, s.xyz);
+        )?;
+        outln!("wrote {} and {}", s.scene, s.xyz)?;
     }
     Ok(ExitCode::SUCCESS)
 }

@@ -159,9 +159,9 @@ pub fn run(args: Args) -> Result<ExitCode> {
         AnyScene::D3(s) => simulate(s, &args)?,
     };
     if args.json {
-        println!("{}", serde_json::to_string(&summary)?);
+        outln!("{}", serde_json::to_string(&summary)?)?;
     } else {
-        print_summary(&summary, args.scene.is_none());
+        print_summary(&summary, args.scene.is_none())?;
     }
     Ok(ExitCode::SUCCESS)
 }
@@ -400,59 +400,63 @@ impl<const D: usize> Sink<D> {
     }
 }
 
-fn print_summary(s: &Summary, builtin: bool) {
+fn print_summary(s: &Summary, builtin: bool) -> std::io::Result<()> {
     if builtin {
-        println!("Built-in example: a billiard break (16 balls, 4 cushions).");
+        outln!("Built-in example: a billiard break (16 balls, 4 cushions).")?;
     }
-    println!("{}D, {} bodies, finder {}", s.dim, s.bodies, s.finder);
+    outln!("{}D, {} bodies, finder {}", s.dim, s.bodies, s.finder)?;
     let resets = if s.resets > 0 {
         format!(", {} thermostat resets", s.resets)
     } else {
         String::new()
     };
-    println!(
+    outln!(
         "simulated {:.6} s in {:.3} s of wall time: {} events ({} body-body, {} body-wall{resets}), {:.0} events/s",
         s.sim_time, s.wall_seconds, s.events, s.body_collisions, s.wall_collisions, s.events_per_second
-    );
-    println!(
+    )?;
+    outln!(
         "kinetic energy {:.9e} -> {:.9e} J (relative drift {:.2e}); largest overlap {:.2e} of a contact distance",
         s.kinetic_energy_start, s.kinetic_energy_end, s.kinetic_energy_drift, s.max_overlap
-    );
+    )?;
     if s.wall_work != 0.0 {
-        println!(
+        outln!(
             "moving walls did {:.9e} J of work on the bodies (the drift above includes it)",
             s.wall_work
-        );
+        )?;
     }
     if s.potential_energy_start != 0.0 || s.potential_energy_end != 0.0 {
-        println!(
+        outln!(
             "under gravity: kinetic + potential energy {:.9e} -> {:.9e} J (relative drift {:.2e})",
             s.kinetic_energy_start + s.potential_energy_start,
             s.kinetic_energy_end + s.potential_energy_end,
             s.energy_drift
-        );
+        )?;
     }
-    print!(
+    out!(
         "temperature kT {:.6e}; {:.6e} collisions per body per unit time",
-        s.temperature, s.collision_rate
-    );
+        s.temperature,
+        s.collision_rate
+    )?;
     match (s.pressure, s.compressibility) {
-        (Some(p), Some(z)) => println!("; pressure {p:.6e}, compressibility factor Z {z:.6}"),
-        _ => println!(),
+        (Some(p), Some(z)) => outln!("; pressure {p:.6e}, compressibility factor Z {z:.6}")?,
+        _ => outln!()?,
     }
     if let Some(r) = &s.record {
-        println!("run file written to {r}");
+        outln!("run file written to {r}")?;
     }
     if let Some(t) = &s.trajectory {
-        println!("{} frames written to {t}", s.frames);
+        outln!("{} frames written to {t}", s.frames)?;
     }
     for (k, c) in s.sensors.iter().enumerate() {
-        println!(
+        outln!(
             "sensor {k}: {} entered, {} left, {} inside at the end",
-            c.enters, c.leaves, c.inside
-        );
+            c.enters,
+            c.leaves,
+            c.inside
+        )?;
     }
     if let Some(l) = &s.sensor_log {
-        println!("sensor events written to {l}");
+        outln!("sensor events written to {l}")?;
     }
+    Ok(())
 }

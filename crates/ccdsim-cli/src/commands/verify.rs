@@ -42,7 +42,7 @@ fn check<R: Read, const D: usize>(
                 end = c.event.time;
                 if let Err(v) = verifier.check(&c) {
                     progress.finish();
-                    println!("FAIL {}: {v}", reader.path());
+                    outln!("FAIL {}: {v}", reader.path())?;
                     return Ok(ExitCode::from(1));
                 }
                 if reader.records_read() % 4096 == 0 {
@@ -97,7 +97,7 @@ fn check<R: Read, const D: usize>(
             if report.wall_work != 0.0 {
                 resets += &format!(", moving walls' work {:.6e} J", report.wall_work);
             }
-            println!(
+            outln!(
                 "OK {}: {} events ({} body-body, {} body-wall{resets}) up to t = {end}; largest overlap {:.2e}; {label} {:.2e}",
                 reader.path(),
                 report.events,
@@ -105,11 +105,11 @@ fn check<R: Read, const D: usize>(
                 report.wall_collisions,
                 report.max_overlap,
                 drift
-            );
+            )?;
             Ok(ExitCode::SUCCESS)
         }
         Err(v) => {
-            println!("FAIL {}: {v}", reader.path());
+            outln!("FAIL {}: {v}", reader.path())?;
             Ok(ExitCode::from(1))
         }
     }
