@@ -4,6 +4,7 @@ use super::finder_args::FinderArgs;
 use crate::progress::Progress;
 use anyhow::{Context, Result};
 use ccdsim::generate::{rack, RackConfig};
+use ccdsim::observables::EnergyBalance;
 use ccdsim::record::RunWriter;
 use ccdsim::trajectory::{Frame, SampleTimes, TrajectoryFormat, TrajectoryWriter};
 use ccdsim::{make_finder, AnyScene, Scene, Simulation};
@@ -98,8 +99,9 @@ struct Summary {
     potential_energy_start: f64,
     /// Potential energy at the end, joules.
     potential_energy_end: f64,
-    /// Relative drift of the total energy (kinetic + potential), against the larger of the
-    /// start and end kinetic energies: what elastic collisions conserve under gravity.
+    /// The relative energy drift ([`EnergyBalance::relative_drift`], what `verify` prints):
+    /// the change of kinetic + potential energy less the moving walls' work, against the
+    /// larger of the start and end kinetic energies.
     energy_drift: f64,
     /// Per sensor of the scene (empty without sensors): bodies that entered and left it, and
     /// those inside at the end.
@@ -317,12 +319,16 @@ fn simulate<const D: usize>(scene: &Scene<D>, args: &Args) -> Result<Summary> {
     let observables = sim.observables();
     let ke_end = sim.world().kinetic_energy_at(sim.time());
     let potential_end = sim.world().potential_energy_at(sim.time());
-    let scale = ke_end.max(stats.kinetic_energy_start);
-    let energy_drift = if scale > 0.0 {
-        ((ke_end + potential_end) - (stats.kinetic_energy_start + potential_start)) / scale
-    } else {
-        0.0
-    };
+    // The one relative drift (`ccdsim verify` prints the same): what the collisions changed
+    // of the total energy, the moving walls' work aside.
+    let energy_drift = EnergyBalance {
+        kinetic_start: stats.kinetic_energy_start,
+        kinetic_end: ke_end,
+        potential_start,
+        potential_end,
+        work: stats.wall_work,
+    }
+    .relative_drift();
     let drift = if stats.kinetic_energy_start > 0.0 {
         (ke_end - stats.kinetic_energy_start) / stats.kinetic_energy_start
     } else {
@@ -414,22 +420,32 @@ fn print_summary(s: &Summary, builtin: bool) -> std::io::Result<()> {
         "simulated {:.6} s in {:.3} s of wall time: {} events ({} body-body, {} body-wall{resets}), {:.0} events/s",
         s.sim_time, s.wall_seconds, s.events, s.body_collisions, s.wall_collisions, s.events_per_second
     )?;
+    // One relative drift, the library's (`EnergyBalance`, what `verify` prints): under gravity
+    // it is the total energy's, printed with it.
+    let gravity = s.potential_energy_start != 0.0 || s.potential_energy_end != 0.0;
+    let drift = format!("relative drift {:.2e}", s.energy_drift);
     outln!(
-        "kinetic energy {:.9e} -> {:.9e} J (relative drift {:.2e}); largest overlap {:.2e} of a contact distance",
-        s.kinetic_energy_start, s.kinetic_energy_end, s.kinetic_energy_drift, s.max_overlap
+        "kinetic energy {:.9e} -> {:.9e} J{}; largest overlap {:.2e} of a contact distance",
+        s.kinetic_energy_start,
+        s.kinetic_energy_end,
+        if gravity {
+            String::new()
+        } else {
+            format!(" ({drift})")
+        },
+        s.max_overlap
     )?;
     if s.wall_work != 0.0 {
         outln!(
-            "moving walls did {:.9e} J of work on the bodies (the drift above includes it)",
+            "moving walls did {:.9e} J of work on the bodies (the drift leaves it out)",
             s.wall_work
         )?;
     }
-    if s.potential_energy_start != 0.0 || s.potential_energy_end != 0.0 {
+    if gravity {
         outln!(
-            "under gravity: kinetic + potential energy {:.9e} -> {:.9e} J (relative drift {:.2e})",
+            "under gravity: kinetic + potential energy {:.9e} -> {:.9e} J ({drift})",
             s.kinetic_energy_start + s.potential_energy_start,
             s.kinetic_energy_end + s.potential_energy_end,
-            s.energy_drift
         )?;
     }
     out!(

@@ -2,6 +2,7 @@
 
 use crate::progress::Progress;
 use anyhow::Result;
+use ccdsim::observables::EnergyBalance;
 use ccdsim::record::{open_run, AnyRunReader, RunReader, RunRecord};
 use ccdsim::verify::Verifier;
 use std::io::Read;
@@ -58,31 +59,17 @@ fn check<R: Read, const D: usize>(
             if let Some(warning) = reader.tail().warning() {
                 eprintln!("warning: {warning}");
             }
-            // Under gravity kinetic energy changes as bodies fall: the total is what is kept.
-            let gravity = reader.scene().settings.gravity.is_some();
-            let (label, start, end_energy, scale) = if gravity {
-                let scale = report.kinetic_energy_start.max(report.kinetic_energy_end);
-                (
-                    "kinetic + potential energy drift",
-                    report.energy_start(),
-                    report.energy_end(),
-                    scale,
-                )
-            } else {
-                (
-                    "kinetic energy drift",
-                    report.kinetic_energy_start,
-                    report.kinetic_energy_end,
-                    report.kinetic_energy_start,
-                )
-            };
-            // A steered run's edits add energy of their own, and moving walls do work: the
-            // drift is the other collisions'.
-            let drift = if scale > 0.0 {
-                (end_energy - start - report.edit_energy - report.wall_work) / scale
-            } else {
-                0.0
-            };
+            // The one relative drift, the library's (`EnergyBalance`, what `run` prints): a
+            // steered run's edits add energy of their own, and moving walls do work; the drift
+            // is the other collisions'.
+            let drift = EnergyBalance {
+                kinetic_start: report.kinetic_energy_start,
+                kinetic_end: report.kinetic_energy_end,
+                potential_start: report.potential_energy_start,
+                potential_end: report.potential_energy_end,
+                work: report.edit_energy + report.wall_work,
+            }
+            .relative_drift();
             let mut resets = if report.resets > 0 {
                 format!(", {} thermostat resets", report.resets)
             } else {
@@ -98,7 +85,7 @@ fn check<R: Read, const D: usize>(
                 resets += &format!(", moving walls' work {:.6e} J", report.wall_work);
             }
             outln!(
-                "OK {}: {} events ({} body-body, {} body-wall{resets}) up to t = {end}; largest overlap {:.2e}; {label} {:.2e}",
+                "OK {}: {} events ({} body-body, {} body-wall{resets}) up to t = {end}; largest overlap {:.2e}; relative drift {:.2e}",
                 reader.path(),
                 report.events,
                 report.body_collisions,
