@@ -5,6 +5,7 @@ mod out;
 
 mod commands;
 mod huge_pages;
+mod number;
 mod progress;
 
 use clap::{Parser, Subcommand};

@@ -1,6 +1,7 @@
 //! `ccdsim pack`: compress a dilute random gas into a jammed packing (Lubachevsky–Stillinger)
 //! and write it as a scene and an extended XYZ frame.
 
+use crate::number::{num, sig};
 use crate::progress::Progress;
 use anyhow::{bail, Context, Result};
 use ccdsim::packing::{compress, dilute_start, CompressConfig, CompressStop, Packed, SizeMix};
@@ -155,7 +156,7 @@ fn pack<const D: usize>(args: &Args) -> Result<ExitCode> {
     } else {
         let s = &summary;
         outln!(
-            "{}D, {} bodies, {}: packing fraction {:.6}, reduced pressure {:.3e} ({})",
+            "{}D, {} bodies, {}: packing fraction {}, reduced pressure {} ({})",
             s.dim,
             s.bodies,
             if args.periodic {
@@ -163,20 +164,20 @@ fn pack<const D: usize>(args: &Args) -> Result<ExitCode> {
             } else {
                 "walls"
             },
-            s.packing_fraction,
-            s.reduced_pressure,
+            num(s.packing_fraction),
+            sig(s.reduced_pressure, 4),
             s.stop
         )?;
         outln!(
-            "{} events in {:.3} s of wall time; {} contacts ({} with walls) within {:.1e} of a \
-             contact distance; {} rattlers; mean contact number {:.4} without them",
+            "{} events in {} s of wall time; {} contacts ({} with walls) within {} of a \
+             contact distance; {} rattlers; mean contact number {} without them",
             s.events,
-            s.wall_seconds,
+            sig(s.wall_seconds, 3),
             s.contacts,
             s.wall_contacts,
-            s.contact_tolerance,
+            sig(s.contact_tolerance, 2),
             s.rattlers,
-            s.mean_contacts
+            sig(s.mean_contacts, 5)
         )?;
         outln!("wrote {} and {}", s.scene, s.xyz)?;
     }

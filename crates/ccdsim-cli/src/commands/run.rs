@@ -1,6 +1,7 @@
 //! `ccdsim run`: simulate a scene, optionally recording a run file, and print a summary.
 
 use super::finder_args::FinderArgs;
+use crate::number::{num, sig};
 use crate::progress::Progress;
 use anyhow::{Context, Result};
 use ccdsim::generate::{rack, RackConfig};
@@ -417,44 +418,44 @@ fn print_summary(s: &Summary, builtin: bool) -> std::io::Result<()> {
         String::new()
     };
     outln!(
-        "simulated {:.6} s in {:.3} s of wall time: {} events ({} body-body, {} body-wall{resets}), {:.0} events/s",
-        s.sim_time, s.wall_seconds, s.events, s.body_collisions, s.wall_collisions, s.events_per_second
+        "simulated {} s in {} s of wall time: {} events ({} body-body, {} body-wall{resets}), {:.0} events/s",
+        sig(s.sim_time, 10), sig(s.wall_seconds, 3), s.events, s.body_collisions, s.wall_collisions, s.events_per_second
     )?;
     // One relative drift, the library's (`EnergyBalance`, what `verify` prints): under gravity
     // it is the total energy's, printed with it.
     let gravity = s.potential_energy_start != 0.0 || s.potential_energy_end != 0.0;
-    let drift = format!("relative drift {:.2e}", s.energy_drift);
+    let drift = format!("relative drift {}", sig(s.energy_drift, 3));
     outln!(
-        "kinetic energy {:.9e} -> {:.9e} J{}; largest overlap {:.2e} of a contact distance",
-        s.kinetic_energy_start,
-        s.kinetic_energy_end,
+        "kinetic energy {} -> {} J{}; largest overlap {} of a contact distance",
+        sig(s.kinetic_energy_start, 10),
+        sig(s.kinetic_energy_end, 10),
         if gravity {
             String::new()
         } else {
             format!(" ({drift})")
         },
-        s.max_overlap
+        sig(s.max_overlap, 3)
     )?;
     if s.wall_work != 0.0 {
         outln!(
-            "moving walls did {:.9e} J of work on the bodies (the drift leaves it out)",
-            s.wall_work
+            "moving walls did {} J of work on the bodies (the drift leaves it out)",
+            sig(s.wall_work, 10)
         )?;
     }
     if gravity {
         outln!(
-            "under gravity: kinetic + potential energy {:.9e} -> {:.9e} J ({drift})",
-            s.kinetic_energy_start + s.potential_energy_start,
-            s.kinetic_energy_end + s.potential_energy_end,
+            "under gravity: kinetic + potential energy {} -> {} J ({drift})",
+            sig(s.kinetic_energy_start + s.potential_energy_start, 10),
+            sig(s.kinetic_energy_end + s.potential_energy_end, 10),
         )?;
     }
     out!(
-        "temperature kT {:.6e}; {:.6e} collisions per body per unit time",
-        s.temperature,
-        s.collision_rate
+        "temperature kT {}; {} collisions per body per unit time",
+        num(s.temperature),
+        num(s.collision_rate)
     )?;
     match (s.pressure, s.compressibility) {
-        (Some(p), Some(z)) => outln!("; pressure {p:.6e}, compressibility factor Z {z:.6}")?,
+        (Some(p), Some(z)) => outln!("; pressure {}, compressibility factor Z {}", num(p), num(z))?,
         _ => outln!()?,
     }
     if let Some(r) = &s.record {

@@ -1,5 +1,6 @@
 //! `ccdsim verify`: replay a run file and check the numerical rules.
 
+use crate::number::{num, sig};
 use crate::progress::Progress;
 use anyhow::Result;
 use ccdsim::observables::EnergyBalance;
@@ -77,21 +78,23 @@ fn check<R: Read, const D: usize>(
             };
             if report.edits > 0 {
                 resets += &format!(
-                    ", {} edits adding {:.6e} J",
-                    report.edits, report.edit_energy
+                    ", {} edits adding {} J",
+                    report.edits,
+                    num(report.edit_energy)
                 );
             }
             if report.wall_work != 0.0 {
-                resets += &format!(", moving walls' work {:.6e} J", report.wall_work);
+                resets += &format!(", moving walls' work {} J", num(report.wall_work));
             }
             outln!(
-                "OK {}: {} events ({} body-body, {} body-wall{resets}) up to t = {end}; largest overlap {:.2e}; relative drift {:.2e}",
+                "OK {}: {} events ({} body-body, {} body-wall{resets}) up to t = {}; largest overlap {}; relative drift {}",
                 reader.path(),
                 report.events,
                 report.body_collisions,
                 report.wall_collisions,
-                report.max_overlap,
-                drift
+                sig(end, 10),
+                sig(report.max_overlap, 3),
+                sig(drift, 3)
             )?;
             Ok(ExitCode::SUCCESS)
         }

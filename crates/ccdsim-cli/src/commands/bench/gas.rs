@@ -4,6 +4,7 @@
 
 use super::write_file;
 use crate::commands::finder_args::FinderArgs;
+use crate::number::{num, sig};
 use crate::progress::Progress;
 use anyhow::{anyhow, Result};
 use ccdsim_bench::{gas_bench, GasBenchConfig, GasBenchReport};
@@ -128,26 +129,26 @@ fn print_table(o: &Output) -> std::io::Result<()> {
         "Carnahan-Starling"
     };
     outln!(
-        "gas: {}D, n = {}, packing {}, finder {}, periodic box, lattice start, kT = {:.6}",
+        "gas: {}D, n = {}, packing {}, finder {}, periodic box, lattice start, kT = {}",
         r.dim,
         r.n,
-        r.packing,
+        num(r.packing),
         r.finder,
-        r.temperature
+        num(r.temperature)
     )?;
     outln!(
-        "{} collisions after {} to equilibrate; {:.3} s wall, {} s CPU; {:.4} simulated s",
+        "{} collisions after {} to equilibrate; {} s wall, {} s CPU; {} simulated s",
         r.collisions,
         r.equilibrated,
-        r.seconds,
-        r.cpu_seconds.map_or("?".to_string(), |c| format!("{c:.3}")),
-        r.sim_time
+        sig(r.seconds, 4),
+        r.cpu_seconds.map_or("?".to_string(), |c| sig(c, 4)),
+        num(r.sim_time)
     )?;
     outln!(
-        "collisions/s        {:.4e} (wall), {} (CPU)",
-        r.collisions_per_second,
+        "collisions/s        {} (wall), {} (CPU)",
+        sig(r.collisions_per_second, 5),
         r.collisions_per_cpu_second
-            .map_or("?".to_string(), |c| format!("{c:.4e}"))
+            .map_or("?".to_string(), |c| sig(c, 5))
     )?;
     match (o.peak_rss_bytes, o.bytes_per_body) {
         (Some(p), Some(b)) => outln!(
