@@ -37,5 +37,7 @@ fn the_readme_shows_what_the_first_command_prints() {
         .map(without_timing)
         .collect();
     assert_eq!(shown, printed);
-    assert!(printed.iter().any(|l| l.contains("kinetic energy 8.5 -> 8.5 J")));
+    assert!(printed
+        .iter()
+        .any(|l| l.contains("kinetic energy 8.5 -> 8.5 J")));
 }

@@ -117,7 +117,7 @@ fn pack<const D: usize>(args: &Args) -> Result<ExitCode> {
     let started = Instant::now();
     // Progress: the decades of pressure climbed, out of those to the target.
     let decades = args.until_pressure.log10().max(1e-9);
-    let mut progress = Progress::new(1000, "compressing", args.quiet);
+    let mut progress = Progress::without_eta(1000, "compressing", args.quiet);
     let packed = compress(&scene, &args.finder, &config, |block| {
         let done = block.reduced_pressure.max(1.0).log10() / decades;
         progress.set((done.clamp(0.0, 1.0) * 1000.0) as u64);

@@ -257,7 +257,7 @@ fn simulate<const D: usize>(scene: &Scene<D>, args: &Args) -> Result<Summary> {
         None => {
             let until = args.until.unwrap_or(10.0);
             let span = (until - t0).max(0.0);
-            let mut progress = Progress::new(1000, "simulated time", args.quiet);
+            let mut progress = Progress::without_eta(1000, "simulated time", args.quiet);
             // `step_event_until` never goes past `until`, not even for the box exits of a
             // periodic world.
             loop {
