@@ -74,6 +74,18 @@ pub fn gas<const D: usize>(cfg: &GasConfig) -> Result<Scene<D>, GenerateError> {
     if !(cfg.radius_min > 0.0 && cfg.radius_min <= cfg.radius_max && cfg.radius_max.is_finite()) {
         return bad("radius", "need 0 < radius_min ≤ radius_max");
     }
+    if cfg.lattice.is_none() {
+        check_random_packing::<D>(cfg)?;
+    } else if cfg.packing > densest_lattice_packing::<D>() {
+        return Err(GenerateError::Param {
+            param: "packing",
+            why: format!(
+                "{} is denser than any lattice of discs (spheres) can be: at most {} in {D}D",
+                cfg.packing,
+                densest_lattice_packing::<D>()
+            ),
+        });
+    }
     if !(cfg.speed_min >= 0.0 && cfg.speed_min <= cfg.speed_max && cfg.speed_max.is_finite()) {
         return bad("speed", "need 0 ≤ speed_min ≤ speed_max");
     }
@@ -126,6 +138,51 @@ pub fn gas<const D: usize>(cfg: &GasConfig) -> Result<Scene<D>, GenerateError> {
         walls: box_walls(size),
         ..Scene::default()
     })
+}
+
+/// The densest packing of equal discs (spheres) on a lattice: hexagonal in 2D, `π/(2√3) ≈
+/// 0.9069`; face-centred cubic in 3D, `π/(3√2) ≈ 0.7405`.
+#[must_use]
+pub fn densest_lattice_packing<const D: usize>() -> f64 {
+    if D == 2 {
+        std::f64::consts::PI / (2.0 * 3f64.sqrt())
+    } else {
+        std::f64::consts::PI / (3.0 * 2f64.sqrt())
+    }
+}
+
+/// The densest packing that random placement of equal discs (spheres) reaches: random
+/// sequential addition, which [`gas`] does (each body at a uniformly random free position, never
+/// moved again), jams at the saturation coverage `0.5472` in 2D (Hinrichsen, Feder & Jøssang
+/// 1986) and `0.3841` in 3D (Talbot, Schaaf & Tarjus 1991); past it no free position is left
+/// for the next body, and the approach to it is slow (the coverage missing falls as
+/// `attempts^(−1/D)`). Walls lower it further (bodies keep a radius from them).
+#[must_use]
+pub fn random_packing_limit<const D: usize>() -> f64 {
+    if D == 2 {
+        0.5472
+    } else {
+        0.3841
+    }
+}
+
+/// Refuses, at once, a packing that random placement of equal bodies cannot reach (instead of
+/// spending its whole budget of attempts first: minutes for 10⁵ bodies). Mixed radii are left to
+/// the attempt budget: placed largest first, they jam later.
+fn check_random_packing<const D: usize>(cfg: &GasConfig) -> Result<(), GenerateError> {
+    let limit = random_packing_limit::<D>();
+    if cfg.radius_min == cfg.radius_max && cfg.packing > limit {
+        return Err(GenerateError::Param {
+            param: "packing",
+            why: format!(
+                "{} is beyond what random placement reaches ({limit} in {D}D, where it jams, and \
+                 less in practice): start on a lattice (`--lattice`, up to {:.4})",
+                cfg.packing,
+                densest_lattice_packing::<D>()
+            ),
+        });
+    }
+    Ok(())
 }
 
 /// Positions on a lattice filling a box of the given volume: in a periodic box the lattice
@@ -363,14 +420,61 @@ mod tests {
             ..GasConfig::default()
         })
         .is_err());
+        // Below the saturation coverage but beyond what the attempt budget reaches in a small
+        // walled box: random placement tries and gives up.
         assert!(matches!(
             gas::<2>(&GasConfig {
-                packing: 0.85,
+                packing: 0.54,
                 n: 400,
                 ..GasConfig::default()
             }),
             Err(GenerateError::Jammed { .. })
         ));
+    }
+
+    #[test]
+    fn packings_beyond_reach_are_refused_at_once() {
+        let start = std::time::Instant::now();
+        for packing in [0.55, 0.85, 0.95] {
+            let e = gas::<2>(&GasConfig {
+                packing,
+                n: 100_000,
+                ..GasConfig::default()
+            })
+            .unwrap_err();
+            let GenerateError::Param { param, why } = &e else {
+                panic!("{e}")
+            };
+            assert_eq!(*param, "packing");
+            assert!(why.contains("--lattice") && why.contains("0.5472"), "{why}");
+        }
+        let e = gas::<3>(&GasConfig {
+            packing: 0.4,
+            n: 100_000,
+            ..GasConfig::default()
+        })
+        .unwrap_err();
+        assert!(e.to_string().contains("0.3841"), "{e}");
+        // Lattices reach further, up to the densest packing and no further.
+        for (packing, ok) in [(0.9, true), (0.91, false), (0.95, false)] {
+            let r = gas::<2>(&GasConfig {
+                packing,
+                n: 100,
+                periodic: true,
+                lattice: Some(Lattice::Densest),
+                ..GasConfig::default()
+            });
+            assert_eq!(r.is_ok(), ok, "{packing}: {r:?}");
+        }
+        let e = gas::<3>(&GasConfig {
+            packing: 0.75,
+            lattice: Some(Lattice::Densest),
+            ..GasConfig::default()
+        })
+        .unwrap_err();
+        assert!(e.to_string().contains("0.7404"), "{e}");
+        // Refusals come before any body is placed: no budget of 10⁸ attempts spent first.
+        assert!(start.elapsed() < std::time::Duration::from_secs(5));
     }
 }
 
