@@ -3,7 +3,12 @@
 
 use super::{box_walls, random_direction, GenerateError, Lattice};
 use crate::geom::{ball_volume, Vector};
-use crate::scene::{BodySpec, Scene};
+use crate::scene::{BodySpec, Scene, MAX_MAGNITUDE};
+
+/// The smallest radius [`gas`] takes, metres: its mass `r^D` stays far above underflow.
+const MIN_RADIUS: f64 = 1e-30;
+/// The largest radius [`gas`] takes, metres: its mass `r^D` and the box stay far inside `f64`.
+const MAX_RADIUS: f64 = 1e30;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rand_distr::StandardNormal;
@@ -95,11 +100,33 @@ pub fn gas<const D: usize>(cfg: &GasConfig) -> Result<Scene<D>, GenerateError> {
     {
         return bad("temperature", "must be finite and ≥ 0");
     }
+    // Within what f64 can simulate (see `scene::MAX_MAGNITUDE`): masses are volumes `r^D`,
+    // so radii stay within 1e±30; speeds and temperatures within the largest magnitude.
+    if !(MIN_RADIUS..=MAX_RADIUS).contains(&cfg.radius_min)
+        || !(MIN_RADIUS..=MAX_RADIUS).contains(&cfg.radius_max)
+    {
+        return bad("radius", "radii must lie in [1e-30, 1e30] m");
+    }
+    if cfg.speed_max > MAX_MAGNITUDE {
+        return bad("speed", "speeds must stay within 1e100 m/s");
+    }
+    if cfg.temperature.is_some_and(|t| t > MAX_MAGNITUDE) {
+        return bad("temperature", "must stay within 1e100");
+    }
     let mut rng = ChaCha8Rng::seed_from_u64(cfg.seed);
     let radii: Vec<f64> = (0..cfg.n)
         .map(|_| rng.random_range(cfg.radius_min..=cfg.radius_max))
         .collect();
     let volume: f64 = radii.iter().map(|&r| ball_volume::<D>(r)).sum::<f64>() / cfg.packing;
+    // The box's side against the bodies: beyond 1e15 diameters, a grid of cells a diameter
+    // wide has more cells per axis than an i64 counts (and no gas is that dilute).
+    let side = volume.powf(1.0 / D as f64);
+    if !(side <= MAX_MAGNITUDE && side <= 1e15 * 2.0 * cfg.radius_max) {
+        return bad(
+            "packing",
+            "too dilute: the box would be more than 1e15 diameters wide",
+        );
+    }
     let (size, pos) = match cfg.lattice {
         Some(lattice) => lattice_positions::<D>(cfg, lattice, volume)?,
         None => random_positions::<D>(cfg, &radii, volume, &mut rng)?,
@@ -430,6 +457,64 @@ mod tests {
             }),
             Err(GenerateError::Jammed { .. })
         ));
+    }
+
+    #[test]
+    fn options_beyond_f64_are_refused() {
+        for (cfg, param) in [
+            (
+                GasConfig {
+                    radius_min: 1e-40,
+                    ..GasConfig::default()
+                },
+                "radius",
+            ),
+            (
+                GasConfig {
+                    radius_min: 1e40,
+                    radius_max: 1e40,
+                    ..GasConfig::default()
+                },
+                "radius",
+            ),
+            (
+                GasConfig {
+                    speed_max: 1e200,
+                    ..GasConfig::default()
+                },
+                "speed",
+            ),
+            (
+                GasConfig {
+                    temperature: Some(1e300),
+                    ..GasConfig::default()
+                },
+                "temperature",
+            ),
+            (
+                GasConfig {
+                    n: 10,
+                    packing: 1e-250,
+                    ..GasConfig::default()
+                },
+                "packing",
+            ),
+        ] {
+            match gas::<2>(&cfg) {
+                Err(GenerateError::Param { param: p, .. }) => assert_eq!(p, param),
+                other => panic!("{param}: {other:?}"),
+            }
+        }
+        // The largest allowed options make a scene that validates.
+        let s: Scene<3> = gas(&GasConfig {
+            n: 50,
+            radius_min: 1e30,
+            radius_max: 1e30,
+            speed_max: 1e100,
+            ..GasConfig::default()
+        })
+        .unwrap();
+        s.validate().unwrap();
     }
 
     #[test]
