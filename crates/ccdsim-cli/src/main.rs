@@ -1,7 +1,11 @@
 //! The `ccdsim` command: run, generate, verify and export exact collision simulations.
 
+#[macro_use]
+mod out;
+
 mod commands;
 mod huge_pages;
+mod number;
 mod progress;
 
 use clap::{Parser, Subcommand};
@@ -56,10 +60,28 @@ fn main() -> ExitCode {
         Err(e) if is_broken_pipe(&e) => ExitCode::SUCCESS,
         Err(e) => {
             // One line: the culprit is named by the library's error messages.
-            eprintln!("error: {e:#}");
+            eprintln!("error: {}", one_line(&e));
             ExitCode::from(2)
         }
     }
+}
+
+/// The error and its causes on one line, `context: cause: cause's cause`, each said once:
+/// some error types write their source's message into their own (the run-file reader's
+/// `"{path}: {source}"`) and also return it as `source()`, which `{:#}` would print twice.
+fn one_line(e: &anyhow::Error) -> String {
+    let mut line = String::new();
+    for cause in e.chain() {
+        let text = cause.to_string();
+        if text.is_empty() || line.contains(&text) {
+            continue;
+        }
+        if !line.is_empty() {
+            line.push_str(": ");
+        }
+        line.push_str(&text);
+    }
+    line
 }
 
 /// A reader that stopped reading (`ccdsim export run.ccd | head`) is not an error.

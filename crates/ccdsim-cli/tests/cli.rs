@@ -558,3 +558,61 @@ fn growing_runs_with_moving_walls_kinematic_bodies_and_own_restitution_verify() 
         "{text}"
     );
 }
+
+/// Numbers f64 cannot simulate are refused at the door, the field named: a segment end at
+/// −1e308 once ran to "t = NaN", gravity of −9.81e200 was taken.
+#[test]
+fn magnitudes_beyond_f64_name_the_field() {
+    let body = |extra: &str| format!(r#"{{"pos": [1, 1], "vel": [1, 0], "radius": 0.5{extra}}}"#);
+    let good = body("");
+    for (name, scene, culprit) in [
+        (
+            "far_wall",
+            format!(
+                r#"{{"dim": 2, "bodies": [{good}], "walls": [{{"a": [-1e308, 0], "b": [4, 0]}}]}}"#
+            ),
+            "walls[0].a",
+        ),
+        (
+            "huge_gravity",
+            format!(
+                r#"{{"dim": 2, "settings": {{"gravity": [0, -9.81e200]}}, "bodies": [{good}], "walls": {TABLE}}}"#
+            ),
+            "settings.gravity",
+        ),
+        (
+            "huge_speed",
+            format!(
+                r#"{{"dim": 2, "bodies": [{good}, {{"pos": [3, 1], "vel": [1e200, 0], "radius": 0.5}}]}}"#
+            ),
+            "bodies[1].vel",
+        ),
+        (
+            "far_body",
+            r#"{"dim": 2, "bodies": [{"pos": [1e120, 1], "vel": [0, 0], "radius": 1e110}]}"#
+                .to_string(),
+            "bodies[0].pos",
+        ),
+        (
+            "tiny_radius",
+            r#"{"dim": 2, "bodies": [{"pos": [0, 0], "vel": [1, 0], "radius": 1e-200}]}"#
+                .to_string(),
+            "bodies[0].radius",
+        ),
+        (
+            "huge_mass",
+            format!(
+                r#"{{"dim": 2, "bodies": [{}]}}"#,
+                body(r#", "mass": 1e200"#)
+            ),
+            "bodies[0].mass",
+        ),
+        (
+            "huge_box",
+            format!(r#"{{"dim": 2, "periodic": [1e200, 10], "bodies": [{good}]}}"#),
+            "periodic",
+        ),
+    ] {
+        refuse(name, &scene, culprit);
+    }
+}

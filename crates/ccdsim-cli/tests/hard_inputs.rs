@@ -147,3 +147,93 @@ fn bytes_after_the_end_record_are_refused() {
         );
     }
 }
+
+/// A missing file is named once with its cause said once, not "…(os error 2): …(os error 2)".
+#[test]
+fn a_missing_file_says_its_cause_once() {
+    let dir = common::scratch_dir("hard_inputs", "missing_file");
+    for (cmd, file) in [
+        ("verify", "missing.ccd"),
+        ("export", "missing.ccd"),
+        ("run", "missing.json"),
+        ("view", "missing.ccd"),
+        ("render", "missing.ccd"),
+    ] {
+        let path = dir.join(file);
+        let mut c = ccdsim();
+        c.arg(cmd).arg(&path);
+        if cmd == "render" {
+            c.args(["--at", "0", "--out"]).arg(dir.join("f.png"));
+        }
+        let out = c.output().unwrap();
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{cmd}: {err}");
+        assert_eq!(err.trim_end().lines().count(), 1, "{cmd}: {err}");
+        assert!(err.contains(file), "{cmd}: the file is named: {err}");
+        assert_eq!(err.matches("os error 2").count(), 1, "{cmd}: {err}");
+    }
+}
+
+/// A packing denser than random placement reaches is refused at once (it used to try 10⁸
+/// placements first, minutes of silence), with the way out named; lattices go further.
+#[test]
+fn gen_refuses_unreachable_packings_at_once() {
+    let dir = common::scratch_dir("hard_inputs", "unreachable_packing");
+    let out_file = dir.join("gas.json");
+    for (dim, packing, hint) in [
+        ("2", "0.95", "--lattice"),
+        ("2", "0.6", "--lattice"),
+        ("3", "0.5", "--lattice"),
+    ] {
+        let start = std::time::Instant::now();
+        let out = ccdsim()
+            .args([
+                "gen",
+                "gas",
+                "--n",
+                "100000",
+                "--dim",
+                dim,
+                "--packing",
+                packing,
+            ])
+            .arg("--out")
+            .arg(&out_file)
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{err}");
+        assert!(err.contains("packing") && err.contains(hint), "{err}");
+        assert_eq!(err.trim_end().lines().count(), 1, "{err}");
+        assert!(out.stdout.is_empty() && !out_file.exists());
+        assert!(
+            start.elapsed() < std::time::Duration::from_secs(10),
+            "{dim}D {packing}"
+        );
+    }
+    // Beyond the densest lattice packing too.
+    let out = ccdsim()
+        .args([
+            "gen",
+            "gas",
+            "--n",
+            "1000",
+            "--packing",
+            "0.95",
+            "--lattice",
+        ])
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(err.contains("0.9068"), "{err}");
+    run_ok(ccdsim().args([
+        "gen",
+        "gas",
+        "--n",
+        "1000",
+        "--packing",
+        "0.85",
+        "--lattice",
+    ]));
+}

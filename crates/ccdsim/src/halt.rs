@@ -17,6 +17,10 @@
 //!   would come again at the same time for ever. When a wall collision left the body's state
 //!   as it was and the finder names that very event again, the run stops.
 //!
+//! * **Inelastic collapse.** Without the TC model, bodies with restitution below 1 can collide
+//!   ever faster, infinitely many times in a finite time; the run stops when a body's
+//!   collisions come a million times faster than the mean ([`Halt::InelasticCollapse`]).
+//!
 //! Each check depends only on the world's stored states and the events, never on the finder,
 //! so every finder halts at the same event with the same reason.
 
@@ -113,6 +117,26 @@ pub enum Halt {
         a: usize,
         /// The other body.
         b: usize,
+    },
+    /// An inelastic collapse: body `body` had `collisions` body–body collisions within `span`
+    /// seconds, up to `time`, against a mean free time of `mean_free_time` seconds (see
+    /// `sim/collapse.rs`): bodies with restitution below 1 lose their relative speed and their
+    /// collisions pile up without end. The run stops after that collision; the TC model
+    /// (`settings.tc`) prevents it.
+    #[error(
+        "at t = {time:e} s body {body} had {collisions} collisions within {span:.2e} s, against a mean free time of {mean_free_time:.2e} s: an inelastic collapse (restitution below 1 lets colliding bodies lose their relative speed until collisions pile up without end), so the run stops; set settings.tc (the TC model: collisions less than tc apart are elastic), e.g. a small fraction of the mean free time"
+    )]
+    InelasticCollapse {
+        /// The time of the collision that closed the window, seconds.
+        time: f64,
+        /// The body.
+        body: usize,
+        /// Its collisions in the window.
+        collisions: u32,
+        /// The window's length, seconds.
+        span: f64,
+        /// The run's mean free time so far, seconds.
+        mean_free_time: f64,
     },
     /// Body `body`, sliding on segment `wall`, reaches its end at `time` too slowly to fly
     /// clear of the edge. No longer raised: such a body rolls over the edge, turning about

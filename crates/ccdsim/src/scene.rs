@@ -92,6 +92,9 @@ impl<const D: usize> BodySpec<D> {
         if self.radius <= 0.0 {
             return Err(SceneError::NonPositive(f("radius")));
         }
+        check_magnitudes(|| f("pos"), &self.pos.0)?;
+        check_magnitudes(|| f("vel"), &self.vel.0)?;
+        check_size(|| f("radius"), self.radius)?;
         if let Some(e) = self.restitution {
             if !e.is_finite() {
                 return Err(SceneError::NonFinite(f("restitution")));
@@ -122,6 +125,7 @@ impl<const D: usize> BodySpec<D> {
         if m <= 0.0 {
             return Err(SceneError::NonPositive(f("mass")));
         }
+        check_size(|| f("mass"), m)?;
         Ok(())
     }
 
@@ -433,6 +437,7 @@ impl<const D: usize> Scene<D> {
                 if value <= 0.0 {
                     return Err(SceneError::NonPositive(field.into()));
                 }
+                check_magnitudes(|| field.into(), &[value])?;
             }
         }
         if let Some(g) = &self.settings.growth {
@@ -442,6 +447,7 @@ impl<const D: usize> Scene<D> {
             if g.rate <= 0.0 {
                 return Err(SceneError::NonPositive("settings.growth.rate".into()));
             }
+            check_magnitudes(|| "settings.growth.rate".into(), &[g.rate])?;
         }
         self.validate_gravity()?;
         if let Some(tc) = self.settings.tc {
@@ -456,6 +462,7 @@ impl<const D: usize> Scene<D> {
         if !self.start_time.is_finite() {
             return Err(SceneError::NonFinite("start_time".into()));
         }
+        check_magnitudes(|| "start_time".into(), &[self.start_time])?;
         for (w, wall) in self.walls.iter().enumerate() {
             validate_wall(w, wall)?;
         }
@@ -541,6 +548,7 @@ impl<const D: usize> Scene<D> {
         if !v.is_finite() {
             return Err(SceneError::NonFinite(field()));
         }
+        check_magnitudes(field, &v.0)?;
         let unsupported = |why: &str| {
             Err(SceneError::Unsupported {
                 field: field(),
@@ -568,6 +576,7 @@ impl<const D: usize> Scene<D> {
         if speed <= 0.0 {
             return Err(SceneError::NonPositive(field()));
         }
+        check_magnitudes(field, &[speed])?;
         if self.settings.gravity.is_none() {
             return Err(SceneError::Unsupported {
                 field: field(),
@@ -609,11 +618,16 @@ impl<const D: usize> Scene<D> {
                     path: field.clone(),
                     message: format!("degenerate wall ({why})"),
                 },
+                SceneError::Field { message, .. } => SceneError::Field {
+                    path: field.clone(),
+                    message,
+                },
                 other => other,
             })?;
             if !m.velocity.is_finite() {
                 return Err(SceneError::NonFinite(format!("{field}.velocity")));
             }
+            check_magnitudes(|| format!("{field}.velocity"), &m.velocity.0)?;
             for (i, b) in self.bodies.iter().enumerate() {
                 if wall_clearance(&m.wall, b.pos) < b.radius {
                     return Err(SceneError::CrossesWall {
@@ -642,6 +656,8 @@ impl<const D: usize> Scene<D> {
             if s.radius <= 0.0 {
                 return Err(SceneError::NonPositive(f("radius")));
             }
+            check_magnitudes(|| f("center"), &s.center.0)?;
+            check_magnitudes(|| f("radius"), &[s.radius])?;
             let Some(size) = self.periodic else { continue };
             if (0..D).any(|d| !(0.0..size[d]).contains(&s.center[d])) {
                 return Err(SceneError::Periodic {
@@ -721,6 +737,7 @@ impl<const D: usize> Scene<D> {
                 "sides must be finite and positive".into(),
             );
         }
+        check_magnitudes(|| "periodic".into(), &size.0)?;
         if !self.walls.is_empty() {
             return bad("walls".into(), "a periodic scene has no walls".into());
         }
@@ -888,12 +905,58 @@ fn strip_position(msg: &str) -> String {
     }
 }
 
+/// The largest magnitude of a scene's numbers: every coordinate (bodies, wall points, sensor
+/// centres), velocity component, radius, mass, periodic side, gravity component and rate is at
+/// most `1e100` in absolute value, and `start_time` too. Why so far below `f64::MAX` (1.8e308):
+/// the simulation multiplies several of them, and the products must stay finite. A squared
+/// distance of two points is `D·(2e100)² ≈ 1e201`; a kinetic energy `m·v²`, `1e300`; the
+/// potential energy `m·g·x`, `1e300`; the gravity quartic's coefficients (`g²`, `g·Δv`,
+/// `Δp·g`), `1e200`. With `1e150` squares would stay finite but not these products; with
+/// `1e308` nothing does (a segment end at `−1e308` gave an infinite length and the run the
+/// time NaN). No physical scene in any unit comes near.
+pub const MAX_MAGNITUDE: f64 = 1e100;
+
+/// The smallest radius and mass: `1e-100`, so that their squares and products stay normal
+/// floats (contact distances squared, `1e-200`) instead of underflowing to zero.
+pub const MIN_SIZE: f64 = 1e-100;
+
+/// Refuses any of `values` beyond [`MAX_MAGNITUDE`], naming `field`.
+fn check_magnitudes(field: impl FnOnce() -> String, values: &[f64]) -> Result<(), SceneError> {
+    match values.iter().find(|x| x.abs() > MAX_MAGNITUDE) {
+        Some(x) => Err(SceneError::Field {
+            path: field(),
+            message: format!(
+                "{x:e} is beyond ±{MAX_MAGNITUDE:e}, the largest magnitude f64 can simulate \
+                 (squares and products of a scene's numbers must stay finite)"
+            ),
+        }),
+        None => Ok(()),
+    }
+}
+
+/// Refuses a radius or mass `x` outside `[MIN_SIZE, MAX_MAGNITUDE]`, naming `field`.
+fn check_size(field: impl Fn() -> String, x: f64) -> Result<(), SceneError> {
+    check_magnitudes(&field, &[x])?;
+    if x < MIN_SIZE {
+        return Err(SceneError::Field {
+            path: field(),
+            message: format!(
+                "{x:e} is below {MIN_SIZE:e}, the smallest f64 can simulate (its square must \
+                 not underflow)"
+            ),
+        });
+    }
+    Ok(())
+}
+
 fn validate_wall<const D: usize>(w: usize, wall: &Wall<D>) -> Result<(), SceneError> {
     match wall {
         Wall::Segment { a, b } => {
             if !a.is_finite() || !b.is_finite() {
                 return Err(SceneError::NonFinite(format!("walls[{w}]")));
             }
+            check_magnitudes(|| format!("walls[{w}].a"), &a.0)?;
+            check_magnitudes(|| format!("walls[{w}].b"), &b.0)?;
             if (*b - *a).norm_sq() == 0.0 {
                 return Err(SceneError::DegenerateWall {
                     wall: w,
@@ -905,6 +968,8 @@ fn validate_wall<const D: usize>(w: usize, wall: &Wall<D>) -> Result<(), SceneEr
             if !point.is_finite() || !normal.is_finite() {
                 return Err(SceneError::NonFinite(format!("walls[{w}]")));
             }
+            check_magnitudes(|| format!("walls[{w}].point"), &point.0)?;
+            check_magnitudes(|| format!("walls[{w}].normal"), &normal.0)?;
             if normal.norm_sq() == 0.0 {
                 return Err(SceneError::DegenerateWall {
                     wall: w,

@@ -19,10 +19,13 @@ use image_counts::ImageCounts;
 use pivot_events::PivotEvents;
 
 mod body_slots;
+mod collapse;
 mod image_counts;
 pub(crate) mod pivot_events;
 mod wall_chain;
 pub(crate) use body_slots::reserve_count;
+use collapse::CollapseWatch;
+pub use collapse::{COLLAPSE_COLLISIONS, COLLAPSE_SPAN};
 use wall_chain::WallChain;
 pub use wall_chain::WEDGED_AFTER;
 mod resets;
@@ -158,6 +161,9 @@ pub struct Simulation<const D: usize> {
     moving: Option<MovingWallTracker>,
     /// The events of bodies turning about segment ends, which finders do not see.
     pivots: PivotEvents,
+    /// Where an inelastic collapse can happen, each body's recent collisions (see
+    /// `sim/collapse.rs`).
+    collapse: Option<CollapseWatch>,
 }
 
 impl<const D: usize> Simulation<D> {
@@ -188,7 +194,9 @@ impl<const D: usize> Simulation<D> {
             .thermostat()
             .map(|th| ResetClock::new(th, world.len(), world.now()));
         let moving = (world.moving_wall_count() > 0).then(|| MovingWallTracker::new(&world));
+        let collapse = CollapseWatch::new(&world);
         Ok(Simulation {
+            collapse,
             moving,
             thermostat,
             images,
@@ -417,7 +425,8 @@ impl<const D: usize> Simulation<D> {
                 Halt::Resolution { time, .. }
                 | Halt::Resting { time, .. }
                 | Halt::RestingOnBody { time, .. }
-                | Halt::OverEdge { time, .. },
+                | Halt::OverEdge { time, .. }
+                | Halt::InelasticCollapse { time, .. },
             ) => time > t,
             Some(Halt::BeyondRange { .. }) => true,
             None => found.is_none(),
@@ -670,7 +679,36 @@ impl<const D: usize> Simulation<D> {
         }
         self.stats.events += 1;
         self.stats.max_overlap = self.stats.max_overlap.max(overlap);
+        if e.kind == EventKind::Body && self.collapse.is_some() {
+            self.watch_collapse(&e);
+        }
         out
+    }
+
+    /// Body event `e` was resolved where an inelastic collapse can happen: its bodies' windows
+    /// take it in, and a window closed within a vanishing span halts the run after it
+    /// ([`Halt::InelasticCollapse`]).
+    #[cold]
+    #[inline(never)]
+    fn watch_collapse(&mut self, e: &Event) {
+        let (elapsed, n, collisions) = (
+            e.time - self.start_time,
+            self.free_bodies as f64,
+            self.stats.body_collisions as f64,
+        );
+        let mean_free_time = || elapsed * n / (2.0 * collisions);
+        let Some(watch) = &mut self.collapse else {
+            return;
+        };
+        // Both bodies' windows take the collision in; the lower index speaks first.
+        let first = watch.note(e.a as usize, e.time, mean_free_time);
+        let second = watch.note(e.b as usize, e.time, mean_free_time);
+        let halt = first.or(second);
+        if halt.is_some() {
+            self.halt = halt;
+            // No event after this one until an edit changes the world.
+            self.pending = Some(None);
+        }
     }
 
     /// Resolves wall event `e`, body `e.a` arriving at the end of the segment `e.b` it slides
@@ -924,7 +962,8 @@ impl<const D: usize> Simulation<D> {
                 Halt::Resolution { time, .. }
                 | Halt::Resting { time, .. }
                 | Halt::RestingOnBody { time, .. }
-                | Halt::OverEdge { time, .. },
+                | Halt::OverEdge { time, .. }
+                | Halt::InelasticCollapse { time, .. },
             ) if time <= t
         );
         if t > self.world.now() && !blocked {

@@ -135,3 +135,57 @@ fn verify_takes_each_collision_restitution_as_the_simulation_chose_it() {
         assert!(err.to_string().contains("kinetic energy"), "{err}");
     }
 }
+
+/// A restitution-0 gas without gravity and without `settings.tc` collapses: collisions pile
+/// up at one instant (it once wrote 3.1 GB in 90 s). The run halts, naming the cure, at the
+/// same event for every finder; with the TC model the same gas runs on.
+#[test]
+fn an_inelastic_collapse_halts_the_same_for_every_finder_and_tc_cures_it() {
+    use ccdsim::generate::{gas, GasConfig};
+    use ccdsim::Halt;
+    let mut scene: Scene<2> = gas(&GasConfig {
+        n: 300,
+        packing: 0.3,
+        seed: 1,
+        ..GasConfig::default()
+    })
+    .unwrap();
+    scene.settings.restitution = 0.0;
+    let mut runs = Vec::new();
+    for finder in ["all-pairs", "bvh", "sedgewick", "cells"] {
+        let mut sim = Simulation::new(&scene, finder).unwrap();
+        let mut log = Vec::new();
+        sim.run_until_with(100.0, |c| {
+            log.push((c.event.time.to_bits(), c.event.a, c.event.b))
+        });
+        let halt = sim.halt();
+        let Some(Halt::InelasticCollapse {
+            time, collisions, ..
+        }) = halt
+        else {
+            panic!("[{finder}] {halt:?}")
+        };
+        assert!(halt.unwrap().to_string().contains("settings.tc"));
+        // The clock stays where the run stopped, and no event comes after it.
+        assert_eq!(sim.time(), time, "[{finder}]");
+        assert!(sim.step_event().is_none());
+        assert!(
+            collisions >= 1000 && log.len() < 100_000,
+            "[{finder}] {}",
+            log.len()
+        );
+        runs.push((log, halt));
+    }
+    assert!(runs.windows(2).all(|w| w[0] == w[1]));
+    // The TC model: collisions closer than tc apart are elastic, and the gas runs on.
+    let collapsed_at = runs[0].1.map(|h| match h {
+        Halt::InelasticCollapse { time, .. } => time,
+        _ => unreachable!(),
+    });
+    scene.settings.tc = Some(1e-3);
+    let mut sim = Simulation::new(&scene, "cells").unwrap();
+    let until = 2.0 * collapsed_at.unwrap();
+    sim.run_until(until);
+    assert!(sim.halt().is_none(), "{:?}", sim.halt());
+    assert_eq!(sim.time(), until);
+}

@@ -212,7 +212,7 @@ pub fn run(args: Args) -> Result<ExitCode> {
     match args.out {
         Some(path) => std::fs::write(&path, json + "\n")
             .with_context(|| format!("writing {}", path.display()))?,
-        None => println!("{json}"),
+        None => outln!("{json}")?,
     }
     Ok(ExitCode::SUCCESS)
 }

@@ -1,6 +1,7 @@
 //! `ccdsim pack`: compress a dilute random gas into a jammed packing (Lubachevsky–Stillinger)
 //! and write it as a scene and an extended XYZ frame.
 
+use crate::number::{num, sig};
 use crate::progress::Progress;
 use anyhow::{bail, Context, Result};
 use ccdsim::packing::{compress, dilute_start, CompressConfig, CompressStop, Packed, SizeMix};
@@ -116,7 +117,7 @@ fn pack<const D: usize>(args: &Args) -> Result<ExitCode> {
     let started = Instant::now();
     // Progress: the decades of pressure climbed, out of those to the target.
     let decades = args.until_pressure.log10().max(1e-9);
-    let mut progress = Progress::new(1000, "compressing", args.quiet);
+    let mut progress = Progress::without_eta(1000, "compressing", args.quiet);
     let packed = compress(&scene, &args.finder, &config, |block| {
         let done = block.reduced_pressure.max(1.0).log10() / decades;
         progress.set((done.clamp(0.0, 1.0) * 1000.0) as u64);
@@ -151,11 +152,11 @@ fn pack<const D: usize>(args: &Args) -> Result<ExitCode> {
         xyz: xyz_path.display().to_string(),
     };
     if args.json {
-        println!("{}", serde_json::to_string(&summary)?);
+        outln!("{}", serde_json::to_string(&summary)?)?;
     } else {
         let s = &summary;
-        println!(
-            "{}D, {} bodies, {}: packing fraction {:.6}, reduced pressure {:.3e} ({})",
+        outln!(
+            "{}D, {} bodies, {}: packing fraction {}, reduced pressure {} ({})",
             s.dim,
             s.bodies,
             if args.periodic {
@@ -163,22 +164,22 @@ fn pack<const D: usize>(args: &Args) -> Result<ExitCode> {
             } else {
                 "walls"
             },
-            s.packing_fraction,
-            s.reduced_pressure,
+            num(s.packing_fraction),
+            sig(s.reduced_pressure, 4),
             s.stop
-        );
-        println!(
-            "{} events in {:.3} s of wall time; {} contacts ({} with walls) within {:.1e} of a \
-             contact distance; {} rattlers; mean contact number {:.4} without them",
+        )?;
+        outln!(
+            "{} events in {} s of wall time; {} contacts ({} with walls) within {} of a \
+             contact distance; {} rattlers; mean contact number {} without them",
             s.events,
-            s.wall_seconds,
+            sig(s.wall_seconds, 3),
             s.contacts,
             s.wall_contacts,
-            s.contact_tolerance,
+            sig(s.contact_tolerance, 2),
             s.rattlers,
-            s.mean_contacts
-        );
-        println!("wrote {} and {}", s.scene, s.xyz);
+            sig(s.mean_contacts, 5)
+        )?;
+        outln!("wrote {} and {}", s.scene, s.xyz)?;
     }
     Ok(ExitCode::SUCCESS)
 }

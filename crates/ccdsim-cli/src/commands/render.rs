@@ -77,14 +77,14 @@ pub fn run(args: Args) -> Result<ExitCode> {
     };
     if let (Some(at), Some(out)) = (args.at, &args.out) {
         let r = render_png(&args.run, at, out, &render)?;
-        println!(
+        outln!(
             "wrote {} ({}×{} px, t = {} s, {} events before)",
             out.display(),
             r.width,
             r.height,
             r.from,
             r.events
-        );
+        )?;
     } else if let Some(gif) = &args.gif {
         let o = GifOptions {
             fps: args.fps,
@@ -94,7 +94,7 @@ pub fn run(args: Args) -> Result<ExitCode> {
             render,
         };
         let r = render_gif(&args.run, gif, &o)?;
-        println!(
+        outln!(
             "wrote {} ({} frames, {}×{} px, t = {} … {} s, {} events)",
             gif.display(),
             r.frames,
@@ -103,7 +103,7 @@ pub fn run(args: Args) -> Result<ExitCode> {
             r.from,
             r.to,
             r.events
-        );
+        )?;
     }
     Ok(ExitCode::SUCCESS)
 }

@@ -1,9 +1,11 @@
 //! `ccdsim run`: simulate a scene, optionally recording a run file, and print a summary.
 
 use super::finder_args::FinderArgs;
+use crate::number::{num, sig};
 use crate::progress::Progress;
 use anyhow::{Context, Result};
 use ccdsim::generate::{rack, RackConfig};
+use ccdsim::observables::EnergyBalance;
 use ccdsim::record::RunWriter;
 use ccdsim::trajectory::{Frame, SampleTimes, TrajectoryFormat, TrajectoryWriter};
 use ccdsim::{make_finder, AnyScene, Scene, Simulation};
@@ -98,8 +100,9 @@ struct Summary {
     potential_energy_start: f64,
     /// Potential energy at the end, joules.
     potential_energy_end: f64,
-    /// Relative drift of the total energy (kinetic + potential), against the larger of the
-    /// start and end kinetic energies: what elastic collisions conserve under gravity.
+    /// The relative energy drift ([`EnergyBalance::relative_drift`], what `verify` prints):
+    /// the change of kinetic + potential energy less the moving walls' work, against the
+    /// larger of the start and end kinetic energies.
     energy_drift: f64,
     /// Per sensor of the scene (empty without sensors): bodies that entered and left it, and
     /// those inside at the end.
@@ -159,9 +162,9 @@ pub fn run(args: Args) -> Result<ExitCode> {
         AnyScene::D3(s) => simulate(s, &args)?,
     };
     if args.json {
-        println!("{}", serde_json::to_string(&summary)?);
+        outln!("{}", serde_json::to_string(&summary)?)?;
     } else {
-        print_summary(&summary, args.scene.is_none());
+        print_summary(&summary, args.scene.is_none())?;
     }
     Ok(ExitCode::SUCCESS)
 }
@@ -254,7 +257,7 @@ fn simulate<const D: usize>(scene: &Scene<D>, args: &Args) -> Result<Summary> {
         None => {
             let until = args.until.unwrap_or(10.0);
             let span = (until - t0).max(0.0);
-            let mut progress = Progress::new(1000, "simulated time", args.quiet);
+            let mut progress = Progress::without_eta(1000, "simulated time", args.quiet);
             // `step_event_until` never goes past `until`, not even for the box exits of a
             // periodic world.
             loop {
@@ -317,12 +320,16 @@ fn simulate<const D: usize>(scene: &Scene<D>, args: &Args) -> Result<Summary> {
     let observables = sim.observables();
     let ke_end = sim.world().kinetic_energy_at(sim.time());
     let potential_end = sim.world().potential_energy_at(sim.time());
-    let scale = ke_end.max(stats.kinetic_energy_start);
-    let energy_drift = if scale > 0.0 {
-        ((ke_end + potential_end) - (stats.kinetic_energy_start + potential_start)) / scale
-    } else {
-        0.0
-    };
+    // The one relative drift (`ccdsim verify` prints the same): what the collisions changed
+    // of the total energy, the moving walls' work aside.
+    let energy_drift = EnergyBalance {
+        kinetic_start: stats.kinetic_energy_start,
+        kinetic_end: ke_end,
+        potential_start,
+        potential_end,
+        work: stats.wall_work,
+    }
+    .relative_drift();
     let drift = if stats.kinetic_energy_start > 0.0 {
         (ke_end - stats.kinetic_energy_start) / stats.kinetic_energy_start
     } else {
@@ -400,59 +407,73 @@ impl<const D: usize> Sink<D> {
     }
 }
 
-fn print_summary(s: &Summary, builtin: bool) {
+fn print_summary(s: &Summary, builtin: bool) -> std::io::Result<()> {
     if builtin {
-        println!("Built-in example: a billiard break (16 balls, 4 cushions).");
+        outln!("Built-in example: a billiard break (16 balls, 4 cushions).")?;
     }
-    println!("{}D, {} bodies, finder {}", s.dim, s.bodies, s.finder);
+    outln!("{}D, {} bodies, finder {}", s.dim, s.bodies, s.finder)?;
     let resets = if s.resets > 0 {
         format!(", {} thermostat resets", s.resets)
     } else {
         String::new()
     };
-    println!(
-        "simulated {:.6} s in {:.3} s of wall time: {} events ({} body-body, {} body-wall{resets}), {:.0} events/s",
-        s.sim_time, s.wall_seconds, s.events, s.body_collisions, s.wall_collisions, s.events_per_second
-    );
-    println!(
-        "kinetic energy {:.9e} -> {:.9e} J (relative drift {:.2e}); largest overlap {:.2e} of a contact distance",
-        s.kinetic_energy_start, s.kinetic_energy_end, s.kinetic_energy_drift, s.max_overlap
-    );
+    outln!(
+        "simulated {} s in {} s of wall time: {} events ({} body-body, {} body-wall{resets}), {:.0} events/s",
+        sig(s.sim_time, 10), sig(s.wall_seconds, 3), s.events, s.body_collisions, s.wall_collisions, s.events_per_second
+    )?;
+    // One relative drift, the library's (`EnergyBalance`, what `verify` prints): under gravity
+    // it is the total energy's, printed with it.
+    let gravity = s.potential_energy_start != 0.0 || s.potential_energy_end != 0.0;
+    let drift = format!("relative drift {}", sig(s.energy_drift, 3));
+    outln!(
+        "kinetic energy {} -> {} J{}; largest overlap {} of a contact distance",
+        sig(s.kinetic_energy_start, 10),
+        sig(s.kinetic_energy_end, 10),
+        if gravity {
+            String::new()
+        } else {
+            format!(" ({drift})")
+        },
+        sig(s.max_overlap, 3)
+    )?;
     if s.wall_work != 0.0 {
-        println!(
-            "moving walls did {:.9e} J of work on the bodies (the drift above includes it)",
-            s.wall_work
-        );
+        outln!(
+            "moving walls did {} J of work on the bodies (the drift leaves it out)",
+            sig(s.wall_work, 10)
+        )?;
     }
-    if s.potential_energy_start != 0.0 || s.potential_energy_end != 0.0 {
-        println!(
-            "under gravity: kinetic + potential energy {:.9e} -> {:.9e} J (relative drift {:.2e})",
-            s.kinetic_energy_start + s.potential_energy_start,
-            s.kinetic_energy_end + s.potential_energy_end,
-            s.energy_drift
-        );
+    if gravity {
+        outln!(
+            "under gravity: kinetic + potential energy {} -> {} J ({drift})",
+            sig(s.kinetic_energy_start + s.potential_energy_start, 10),
+            sig(s.kinetic_energy_end + s.potential_energy_end, 10),
+        )?;
     }
-    print!(
-        "temperature kT {:.6e}; {:.6e} collisions per body per unit time",
-        s.temperature, s.collision_rate
-    );
+    out!(
+        "temperature kT {}; {} collisions per body per unit time",
+        num(s.temperature),
+        num(s.collision_rate)
+    )?;
     match (s.pressure, s.compressibility) {
-        (Some(p), Some(z)) => println!("; pressure {p:.6e}, compressibility factor Z {z:.6}"),
-        _ => println!(),
+        (Some(p), Some(z)) => outln!("; pressure {}, compressibility factor Z {}", num(p), num(z))?,
+        _ => outln!()?,
     }
     if let Some(r) = &s.record {
-        println!("run file written to {r}");
+        outln!("run file written to {r}")?;
     }
     if let Some(t) = &s.trajectory {
-        println!("{} frames written to {t}", s.frames);
+        outln!("{} frames written to {t}", s.frames)?;
     }
     for (k, c) in s.sensors.iter().enumerate() {
-        println!(
+        outln!(
             "sensor {k}: {} entered, {} left, {} inside at the end",
-            c.enters, c.leaves, c.inside
-        );
+            c.enters,
+            c.leaves,
+            c.inside
+        )?;
     }
     if let Some(l) = &s.sensor_log {
-        println!("sensor events written to {l}");
+        outln!("sensor events written to {l}")?;
     }
+    Ok(())
 }

@@ -1,7 +1,9 @@
 //! `ccdsim verify`: replay a run file and check the numerical rules.
 
+use crate::number::{num, sig};
 use crate::progress::Progress;
 use anyhow::Result;
+use ccdsim::observables::EnergyBalance;
 use ccdsim::record::{open_run, AnyRunReader, RunReader, RunRecord};
 use ccdsim::verify::Verifier;
 use std::io::Read;
@@ -42,7 +44,7 @@ fn check<R: Read, const D: usize>(
                 end = c.event.time;
                 if let Err(v) = verifier.check(&c) {
                     progress.finish();
-                    println!("FAIL {}: {v}", reader.path());
+                    outln!("FAIL {}: {v}", reader.path())?;
                     return Ok(ExitCode::from(1));
                 }
                 if reader.records_read() % 4096 == 0 {
@@ -58,31 +60,17 @@ fn check<R: Read, const D: usize>(
             if let Some(warning) = reader.tail().warning() {
                 eprintln!("warning: {warning}");
             }
-            // Under gravity kinetic energy changes as bodies fall: the total is what is kept.
-            let gravity = reader.scene().settings.gravity.is_some();
-            let (label, start, end_energy, scale) = if gravity {
-                let scale = report.kinetic_energy_start.max(report.kinetic_energy_end);
-                (
-                    "kinetic + potential energy drift",
-                    report.energy_start(),
-                    report.energy_end(),
-                    scale,
-                )
-            } else {
-                (
-                    "kinetic energy drift",
-                    report.kinetic_energy_start,
-                    report.kinetic_energy_end,
-                    report.kinetic_energy_start,
-                )
-            };
-            // A steered run's edits add energy of their own, and moving walls do work: the
-            // drift is the other collisions'.
-            let drift = if scale > 0.0 {
-                (end_energy - start - report.edit_energy - report.wall_work) / scale
-            } else {
-                0.0
-            };
+            // The one relative drift, the library's (`EnergyBalance`, what `run` prints): a
+            // steered run's edits add energy of their own, and moving walls do work; the drift
+            // is the other collisions'.
+            let drift = EnergyBalance {
+                kinetic_start: report.kinetic_energy_start,
+                kinetic_end: report.kinetic_energy_end,
+                potential_start: report.potential_energy_start,
+                potential_end: report.potential_energy_end,
+                work: report.edit_energy + report.wall_work,
+            }
+            .relative_drift();
             let mut resets = if report.resets > 0 {
                 format!(", {} thermostat resets", report.resets)
             } else {
@@ -90,26 +78,28 @@ fn check<R: Read, const D: usize>(
             };
             if report.edits > 0 {
                 resets += &format!(
-                    ", {} edits adding {:.6e} J",
-                    report.edits, report.edit_energy
+                    ", {} edits adding {} J",
+                    report.edits,
+                    num(report.edit_energy)
                 );
             }
             if report.wall_work != 0.0 {
-                resets += &format!(", moving walls' work {:.6e} J", report.wall_work);
+                resets += &format!(", moving walls' work {} J", num(report.wall_work));
             }
-            println!(
-                "OK {}: {} events ({} body-body, {} body-wall{resets}) up to t = {end}; largest overlap {:.2e}; {label} {:.2e}",
+            outln!(
+                "OK {}: {} events ({} body-body, {} body-wall{resets}) up to t = {}; largest overlap {}; relative drift {}",
                 reader.path(),
                 report.events,
                 report.body_collisions,
                 report.wall_collisions,
-                report.max_overlap,
-                drift
-            );
+                sig(end, 10),
+                sig(report.max_overlap, 3),
+                sig(drift, 3)
+            )?;
             Ok(ExitCode::SUCCESS)
         }
         Err(v) => {
-            println!("FAIL {}: {v}", reader.path());
+            outln!("FAIL {}: {v}", reader.path())?;
             Ok(ExitCode::from(1))
         }
     }

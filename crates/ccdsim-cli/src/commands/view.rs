@@ -32,6 +32,8 @@ pub fn run(args: Args) -> Result<ExitCode> {
         finder_options: args.finder_options.options()?,
         ..ServeOptions::default()
     };
+    // A file that cannot be opened gets its one-line error before any word of progress.
+    std::fs::File::open(&args.run).map_err(|e| anyhow::anyhow!("{}: {e}", args.run.display()))?;
     eprintln!("indexing {} …", args.run.display());
     let server = match args.port {
         Some(p) => serve(&args.run, p, &options)?,

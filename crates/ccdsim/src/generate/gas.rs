@@ -3,7 +3,12 @@
 
 use super::{box_walls, random_direction, GenerateError, Lattice};
 use crate::geom::{ball_volume, Vector};
-use crate::scene::{BodySpec, Scene};
+use crate::scene::{BodySpec, Scene, MAX_MAGNITUDE};
+
+/// The smallest radius [`gas`] takes, metres: its mass `r^D` stays far above underflow.
+const MIN_RADIUS: f64 = 1e-30;
+/// The largest radius [`gas`] takes, metres: its mass `r^D` and the box stay far inside `f64`.
+const MAX_RADIUS: f64 = 1e30;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rand_distr::StandardNormal;
@@ -74,6 +79,18 @@ pub fn gas<const D: usize>(cfg: &GasConfig) -> Result<Scene<D>, GenerateError> {
     if !(cfg.radius_min > 0.0 && cfg.radius_min <= cfg.radius_max && cfg.radius_max.is_finite()) {
         return bad("radius", "need 0 < radius_min ≤ radius_max");
     }
+    if cfg.lattice.is_none() {
+        check_random_packing::<D>(cfg)?;
+    } else if cfg.packing > densest_lattice_packing::<D>() {
+        return Err(GenerateError::Param {
+            param: "packing",
+            why: format!(
+                "{} is denser than any lattice of discs (spheres) can be: at most {} in {D}D",
+                cfg.packing,
+                densest_lattice_packing::<D>()
+            ),
+        });
+    }
     if !(cfg.speed_min >= 0.0 && cfg.speed_min <= cfg.speed_max && cfg.speed_max.is_finite()) {
         return bad("speed", "need 0 ≤ speed_min ≤ speed_max");
     }
@@ -83,11 +100,33 @@ pub fn gas<const D: usize>(cfg: &GasConfig) -> Result<Scene<D>, GenerateError> {
     {
         return bad("temperature", "must be finite and ≥ 0");
     }
+    // Within what f64 can simulate (see `scene::MAX_MAGNITUDE`): masses are volumes `r^D`,
+    // so radii stay within 1e±30; speeds and temperatures within the largest magnitude.
+    if !(MIN_RADIUS..=MAX_RADIUS).contains(&cfg.radius_min)
+        || !(MIN_RADIUS..=MAX_RADIUS).contains(&cfg.radius_max)
+    {
+        return bad("radius", "radii must lie in [1e-30, 1e30] m");
+    }
+    if cfg.speed_max > MAX_MAGNITUDE {
+        return bad("speed", "speeds must stay within 1e100 m/s");
+    }
+    if cfg.temperature.is_some_and(|t| t > MAX_MAGNITUDE) {
+        return bad("temperature", "must stay within 1e100");
+    }
     let mut rng = ChaCha8Rng::seed_from_u64(cfg.seed);
     let radii: Vec<f64> = (0..cfg.n)
         .map(|_| rng.random_range(cfg.radius_min..=cfg.radius_max))
         .collect();
     let volume: f64 = radii.iter().map(|&r| ball_volume::<D>(r)).sum::<f64>() / cfg.packing;
+    // The box's side against the bodies: beyond 1e15 diameters, a grid of cells a diameter
+    // wide has more cells per axis than an i64 counts (and no gas is that dilute).
+    let side = volume.powf(1.0 / D as f64);
+    if !(side <= MAX_MAGNITUDE && side <= 1e15 * 2.0 * cfg.radius_max) {
+        return bad(
+            "packing",
+            "too dilute: the box would be more than 1e15 diameters wide",
+        );
+    }
     let (size, pos) = match cfg.lattice {
         Some(lattice) => lattice_positions::<D>(cfg, lattice, volume)?,
         None => random_positions::<D>(cfg, &radii, volume, &mut rng)?,
@@ -126,6 +165,51 @@ pub fn gas<const D: usize>(cfg: &GasConfig) -> Result<Scene<D>, GenerateError> {
         walls: box_walls(size),
         ..Scene::default()
     })
+}
+
+/// The densest packing of equal discs (spheres) on a lattice: hexagonal in 2D, `π/(2√3) ≈
+/// 0.9069`; face-centred cubic in 3D, `π/(3√2) ≈ 0.7405`.
+#[must_use]
+pub fn densest_lattice_packing<const D: usize>() -> f64 {
+    if D == 2 {
+        std::f64::consts::PI / (2.0 * 3f64.sqrt())
+    } else {
+        std::f64::consts::PI / (3.0 * 2f64.sqrt())
+    }
+}
+
+/// The densest packing that random placement of equal discs (spheres) reaches: random
+/// sequential addition, which [`gas`] does (each body at a uniformly random free position, never
+/// moved again), jams at the saturation coverage `0.5472` in 2D (Hinrichsen, Feder & Jøssang
+/// 1986) and `0.3841` in 3D (Talbot, Schaaf & Tarjus 1991); past it no free position is left
+/// for the next body, and the approach to it is slow (the coverage missing falls as
+/// `attempts^(−1/D)`). Walls lower it further (bodies keep a radius from them).
+#[must_use]
+pub fn random_packing_limit<const D: usize>() -> f64 {
+    if D == 2 {
+        0.5472
+    } else {
+        0.3841
+    }
+}
+
+/// Refuses, at once, a packing that random placement of equal bodies cannot reach (instead of
+/// spending its whole budget of attempts first: minutes for 10⁵ bodies). Mixed radii are left to
+/// the attempt budget: placed largest first, they jam later.
+fn check_random_packing<const D: usize>(cfg: &GasConfig) -> Result<(), GenerateError> {
+    let limit = random_packing_limit::<D>();
+    if cfg.radius_min == cfg.radius_max && cfg.packing > limit {
+        return Err(GenerateError::Param {
+            param: "packing",
+            why: format!(
+                "{} is beyond what random placement reaches ({limit} in {D}D, where it jams, and \
+                 less in practice): start on a lattice (`--lattice`, up to {:.4})",
+                cfg.packing,
+                densest_lattice_packing::<D>()
+            ),
+        });
+    }
+    Ok(())
 }
 
 /// Positions on a lattice filling a box of the given volume: in a periodic box the lattice
@@ -363,14 +447,119 @@ mod tests {
             ..GasConfig::default()
         })
         .is_err());
+        // Below the saturation coverage but beyond what the attempt budget reaches in a small
+        // walled box: random placement tries and gives up.
         assert!(matches!(
             gas::<2>(&GasConfig {
-                packing: 0.85,
+                packing: 0.54,
                 n: 400,
                 ..GasConfig::default()
             }),
             Err(GenerateError::Jammed { .. })
         ));
+    }
+
+    #[test]
+    fn options_beyond_f64_are_refused() {
+        for (cfg, param) in [
+            (
+                GasConfig {
+                    radius_min: 1e-40,
+                    ..GasConfig::default()
+                },
+                "radius",
+            ),
+            (
+                GasConfig {
+                    radius_min: 1e40,
+                    radius_max: 1e40,
+                    ..GasConfig::default()
+                },
+                "radius",
+            ),
+            (
+                GasConfig {
+                    speed_max: 1e200,
+                    ..GasConfig::default()
+                },
+                "speed",
+            ),
+            (
+                GasConfig {
+                    temperature: Some(1e300),
+                    ..GasConfig::default()
+                },
+                "temperature",
+            ),
+            (
+                GasConfig {
+                    n: 10,
+                    packing: 1e-250,
+                    ..GasConfig::default()
+                },
+                "packing",
+            ),
+        ] {
+            match gas::<2>(&cfg) {
+                Err(GenerateError::Param { param: p, .. }) => assert_eq!(p, param),
+                other => panic!("{param}: {other:?}"),
+            }
+        }
+        // The largest allowed options make a scene that validates.
+        let s: Scene<3> = gas(&GasConfig {
+            n: 50,
+            radius_min: 1e30,
+            radius_max: 1e30,
+            speed_max: 1e100,
+            ..GasConfig::default()
+        })
+        .unwrap();
+        s.validate().unwrap();
+    }
+
+    #[test]
+    fn packings_beyond_reach_are_refused_at_once() {
+        let start = std::time::Instant::now();
+        for packing in [0.55, 0.85, 0.95] {
+            let e = gas::<2>(&GasConfig {
+                packing,
+                n: 100_000,
+                ..GasConfig::default()
+            })
+            .unwrap_err();
+            let GenerateError::Param { param, why } = &e else {
+                panic!("{e}")
+            };
+            assert_eq!(*param, "packing");
+            assert!(why.contains("--lattice") && why.contains("0.5472"), "{why}");
+        }
+        let e = gas::<3>(&GasConfig {
+            packing: 0.4,
+            n: 100_000,
+            ..GasConfig::default()
+        })
+        .unwrap_err();
+        assert!(e.to_string().contains("0.3841"), "{e}");
+        // Lattices reach further, up to the densest packing and no further.
+        for (packing, ok) in [(0.9, true), (0.91, false), (0.95, false)] {
+            let r = gas::<2>(&GasConfig {
+                packing,
+                n: 100,
+                periodic: true,
+                lattice: Some(Lattice::Densest),
+                ..GasConfig::default()
+            });
+            assert_eq!(r.is_ok(), ok, "{packing}: {r:?}");
+        }
+        let e = gas::<3>(&GasConfig {
+            packing: 0.75,
+            lattice: Some(Lattice::Densest),
+            ..GasConfig::default()
+        })
+        .unwrap_err();
+        assert!(e.to_string().contains("0.7404"), "{e}");
+        // Refusals come before any body is placed: no budget of 10⁸ attempts spent first.
+        assert!(start.elapsed() < std::time::Duration::from_secs(5));
     }
 }
 

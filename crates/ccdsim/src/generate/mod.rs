@@ -8,7 +8,7 @@ mod place;
 mod rack;
 mod thesis;
 
-pub use gas::{gas, GasConfig};
+pub use gas::{densest_lattice_packing, gas, random_packing_limit, GasConfig};
 pub use lattice::Lattice;
 pub use pegs::{pegs, PegsConfig};
 pub use rack::{rack, RackConfig};
@@ -30,7 +30,7 @@ pub enum GenerateError {
         why: String,
     },
     /// Random placement failed to fit every body.
-    #[error("could not place body {placed} of {n} after {attempts} attempts: the packing is too dense for random placement")]
+    #[error("could not place body {placed} of {n} after {attempts} attempts: the packing is too dense for random placement (start on a lattice: `--lattice`)")]
     Jammed {
         /// Bodies placed.
         placed: usize,

@@ -8,14 +8,19 @@
 //! * [`PressureTensor`]: the full pressure tensor from the collision virial and the
 //!   time-integrated kinetic tensor, fed with the collisions of a run.
 //!
+//! * [`EnergyBalance`]: the relative energy drift of a run, as `ccdsim run` and
+//!   `ccdsim verify` print it.
+//!
 //! Units are the scene's, with Boltzmann's constant 1.
 
 mod correlation;
+mod energy;
 pub(crate) mod pair_correlation;
 mod pressure_tensor;
 pub mod thermodynamic;
 
 pub use correlation::{mean_square_displacement, velocity_autocorrelation};
+pub use energy::EnergyBalance;
 pub use pair_correlation::PairCorrelation;
 pub use pressure_tensor::PressureTensor;
 pub use thermodynamic::{observables, temperature, world_volume, Observables};

@@ -46,18 +46,21 @@ pub fn run(args: Args) -> Result<ExitCode> {
     let mut progress = Progress::new(total, "discrete bench", args.runs.quiet);
     let report = run_discrete_bench(&cfg, |done, _| progress.set(done)).map_err(|e| anyhow!(e))?;
     progress.finish();
-    println!(
+    outln!(
         "Thesis §5.2 scene, {}D, n = {}, {} simulated s per run, mean of {} run(s)",
-        cfg.dim, cfg.n, cfg.duration, cfg.runs
-    );
-    print!("{}", report.table());
-    println!("total {:.1} s", report.total_seconds);
+        cfg.dim,
+        cfg.n,
+        cfg.duration,
+        cfg.runs
+    )?;
+    out!("{}", report.table())?;
+    outln!("total {:.1} s", report.total_seconds)?;
     write_file(&args.runs.out, "discrete.csv", &report.csv())?;
     write_file(
         &args.runs.out,
         "discrete.json",
         &(serde_json::to_string_pretty(&report)? + "\n"),
     )?;
-    println!("wrote {}/discrete.{{csv,json}}", args.runs.out.display());
+    outln!("wrote {}/discrete.{{csv,json}}", args.runs.out.display())?;
     Ok(ExitCode::SUCCESS)
 }

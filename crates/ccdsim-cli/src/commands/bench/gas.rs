@@ -4,6 +4,7 @@
 
 use super::write_file;
 use crate::commands::finder_args::FinderArgs;
+use crate::number::{num, sig};
 use crate::progress::Progress;
 use anyhow::{anyhow, Result};
 use ccdsim_bench::{gas_bench, GasBenchConfig, GasBenchReport};
@@ -112,70 +113,75 @@ pub fn run(args: Args) -> Result<ExitCode> {
     let json = serde_json::to_string_pretty(&out)? + "\n";
     write_file(&args.out, "gas.json", &json)?;
     if args.json {
-        println!("{}", serde_json::to_string(&out)?);
+        outln!("{}", serde_json::to_string(&out)?)?;
     } else {
-        print_table(&out);
-        println!("wrote {}/gas.json", args.out.display());
+        print_table(&out)?;
+        outln!("wrote {}/gas.json", args.out.display())?;
     }
     Ok(ExitCode::SUCCESS)
 }
 
-fn print_table(o: &Output) {
+fn print_table(o: &Output) -> std::io::Result<()> {
     let r = &o.report;
     let eos = if r.dim == 2 {
         "Henderson"
     } else {
         "Carnahan-Starling"
     };
-    println!(
-        "gas: {}D, n = {}, packing {}, finder {}, periodic box, lattice start, kT = {:.6}",
-        r.dim, r.n, r.packing, r.finder, r.temperature
-    );
-    println!(
-        "{} collisions after {} to equilibrate; {:.3} s wall, {} s CPU; {:.4} simulated s",
+    outln!(
+        "gas: {}D, n = {}, packing {}, finder {}, periodic box, lattice start, kT = {}",
+        r.dim,
+        r.n,
+        num(r.packing),
+        r.finder,
+        num(r.temperature)
+    )?;
+    outln!(
+        "{} collisions after {} to equilibrate; {} s wall, {} s CPU; {} simulated s",
         r.collisions,
         r.equilibrated,
-        r.seconds,
-        r.cpu_seconds.map_or("?".to_string(), |c| format!("{c:.3}")),
-        r.sim_time
-    );
-    println!(
-        "collisions/s        {:.4e} (wall), {} (CPU)",
-        r.collisions_per_second,
+        sig(r.seconds, 4),
+        r.cpu_seconds.map_or("?".to_string(), |c| sig(c, 4)),
+        num(r.sim_time)
+    )?;
+    outln!(
+        "collisions/s        {} (wall), {} (CPU)",
+        sig(r.collisions_per_second, 5),
         r.collisions_per_cpu_second
-            .map_or("?".to_string(), |c| format!("{c:.4e}"))
-    );
+            .map_or("?".to_string(), |c| sig(c, 5))
+    )?;
     match (o.peak_rss_bytes, o.bytes_per_body) {
-        (Some(p), Some(b)) => println!(
+        (Some(p), Some(b)) => outln!(
             "peak memory         {:.1} MiB = {:.1} bytes/body (finder {} bytes/body)",
             p as f64 / (1 << 20) as f64,
             b,
             r.finder_bytes
                 .map_or("?".to_string(), |f| format!("{:.1}", f as f64 / r.n as f64))
-        ),
-        _ => println!("peak memory         unknown on this system"),
+        )?,
+        _ => outln!("peak memory         unknown on this system")?,
     }
     let dev = |x: f64, e: f64| 100.0 * (x / e - 1.0);
-    println!(
+    outln!(
         "Z                   {:.5} ± {:.5}   {eos} {:.5} ({:+.2} %)",
         r.compressibility,
         r.compressibility_error,
         r.compressibility_eos,
         dev(r.compressibility, r.compressibility_eos)
-    );
-    println!(
+    )?;
+    outln!(
         "collision rate      {:.5} ± {:.5}   {eos} (Enskog) {:.5} ({:+.2} %)",
         r.collision_rate,
         r.collision_rate_error,
         r.collision_rate_eos,
         dev(r.collision_rate, r.collision_rate_eos)
-    );
+    )?;
     if !r.finder_counters.is_empty() && r.collisions > 0 {
         let per: Vec<String> = r
             .finder_counters
             .iter()
             .map(|(name, count)| format!("{name} {:.3}", *count as f64 / r.collisions as f64))
             .collect();
-        println!("finder work         per collision: {}", per.join(", "));
+        outln!("finder work         per collision: {}", per.join(", "))?;
     }
+    Ok(())
 }

@@ -44,19 +44,19 @@ pub fn run(args: Args) -> Result<ExitCode> {
     let mut progress = Progress::new(total, "thesis bench", args.runs.quiet);
     let report = run_thesis_bench(&cfg, |done, _| progress.set(done)).map_err(|e| anyhow!(e))?;
     progress.finish();
-    println!(
+    outln!(
         "Thesis §5.2 scene, {}D, {} simulated s per run, mean of {} run(s) per cell, budget {} s per finder",
         cfg.dim, cfg.duration, cfg.runs, cfg.budget_seconds
-    );
-    print!("{}", report.table());
-    println!("largest n completed:");
+    )?;
+    out!("{}", report.table())?;
+    outln!("largest n completed:")?;
     for (f, n) in report.largest_sizes() {
-        println!(
+        outln!(
             "  {f:>10}: {}",
             n.map_or("none".to_string(), |n| n.to_string())
-        );
+        )?;
     }
-    println!("total {:.1} s", report.total_seconds);
+    outln!("total {:.1} s", report.total_seconds)?;
 
     write_file(&args.runs.out, "thesis.csv", &report.csv())?;
     write_file(
@@ -105,9 +105,9 @@ pub fn run(args: Args) -> Result<ExitCode> {
     );
     plot_times(&args.runs.out.join("thesis.png"), &title, &series)?;
     plot_times(&args.runs.out.join("thesis.svg"), &title, &series)?;
-    println!(
+    outln!(
         "wrote {}/thesis.{{csv,json,png,svg}}",
         args.runs.out.display()
-    );
+    )?;
     Ok(ExitCode::SUCCESS)
 }
