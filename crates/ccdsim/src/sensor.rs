@@ -120,6 +120,8 @@ pub struct SensorTracker<const D: usize> {
     out: Vec<SensorEvent>,
     /// Enter and leave counts per sensor since the start.
     counts: Vec<[u64; 2]>,
+    /// The last flip [`SensorTracker::advance_to`] made: body, sensor, time (ordered bits).
+    grazed: Option<(usize, usize, u64)>,
 }
 
 /// `t`'s bits, ordered like the values for the finite non-negative and negative floats alike.
@@ -148,6 +150,7 @@ impl<const D: usize> SensorTracker<D> {
             queue: BinaryHeap::with_capacity(n),
             out: Vec::new(),
             counts: vec![[0; 2]; s],
+            grazed: None,
             sensors,
         };
         for i in 0..n {
@@ -320,9 +323,26 @@ impl<const D: usize> SensorTracker<D> {
         vel: Vector<D>,
         t0: f64,
     ) -> Option<(f64, usize)> {
+        self.next_crossing_but(world, i, pos, vel, t0, None)
+    }
+
+    /// [`SensorTracker::next_crossing`], passing over sensor `grazed` if its crossing comes
+    /// at `t0` itself: see [`SensorTracker::advance_to`].
+    fn next_crossing_but(
+        &self,
+        world: &World<D>,
+        i: usize,
+        pos: Vector<D>,
+        vel: Vector<D>,
+        t0: f64,
+        grazed: Option<usize>,
+    ) -> Option<(f64, usize)> {
         let mut best: Option<(f64, usize)> = None;
         for k in 0..self.sensors.len() {
-            if let Some(t) = self.crossing(world, i, k, pos, vel, t0) {
+            if let Some(t) = self
+                .crossing(world, i, k, pos, vel, t0)
+                .filter(|&t| !(grazed == Some(k) && t == t0))
+            {
                 if best.is_none_or(|(b, _)| t < b) {
                     best = Some((t, k));
                 }
@@ -404,9 +424,22 @@ impl<const D: usize> SensorTracker<D> {
                 self.body_changed(world, i);
                 continue;
             }
-            // The next event from here on, on the same motion.
+            // The next event from here on, on the same motion. A body whose last two events
+            // flipped sensor `k` at this very instant (entered and left, or left and entered)
+            // grazed its sphere: at the touch, rounding can have the entry test say "touching
+            // and approaching" and the exit test "touching and moving away" from the same
+            // state, for ever. One touch is two flips; the sensor's crossing at this instant
+            // is then passed over (and so its later crossings on this motion, until the
+            // body's motion changes: a second crossing of the same sphere on one parabola
+            // right after a graze goes unreported).
+            let grazed = (self.grazed == Some((i, k, p.time))).then_some(k);
+            self.grazed = if grazed.is_some() {
+                None
+            } else {
+                Some((i, k, p.time))
+            };
             let (pos, vel) = (world.position_at(i, time), world.velocity_at(i, time));
-            let next = self.next_crossing(world, i, pos, vel, time);
+            let next = self.next_crossing_but(world, i, pos, vel, time, grazed);
             self.queue_next(i, next);
         }
     }
