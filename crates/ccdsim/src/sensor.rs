@@ -418,12 +418,6 @@ impl<const D: usize> SensorTracker<D> {
                     SensorChange::Enter
                 },
             });
-            if time == Self::origin(world, i) {
-                // Still at the instant the body was last looked at anew: other sensors may
-                // disagree with the geometry there too.
-                self.body_changed(world, i);
-                continue;
-            }
             // The next event from here on, on the same motion. A body whose last two events
             // flipped sensor `k` at this very instant (entered and left, or left and entered)
             // grazed its sphere: at the touch, rounding can have the entry test say "touching
@@ -438,6 +432,12 @@ impl<const D: usize> SensorTracker<D> {
             } else {
                 Some((i, k, p.time))
             };
+            if time == Self::origin(world, i) && grazed.is_none() {
+                // Still at the instant the body was last looked at anew: other sensors may
+                // disagree with the geometry there too.
+                self.body_changed(world, i);
+                continue;
+            }
             let (pos, vel) = (world.position_at(i, time), world.velocity_at(i, time));
             let next = self.next_crossing_but(world, i, pos, vel, time, grazed);
             self.queue_next(i, next);
