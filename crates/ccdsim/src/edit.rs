@@ -22,12 +22,12 @@ use crate::event::{Event, EventKind};
 use crate::geom::Vector;
 use crate::sim::Collision;
 
-const MOTION: u32 = 0;
-const ADD: u32 = 1;
-const ADD_ID: u32 = 2;
-const REMOVE: u32 = 3;
-const FILTER: u32 = 4;
-const WALL_MOTION: u32 = 5;
+pub(crate) const MOTION: u32 = 0;
+pub(crate) const ADD: u32 = 1;
+pub(crate) const ADD_ID: u32 = 2;
+pub(crate) const REMOVE: u32 = 3;
+pub(crate) const FILTER: u32 = 4;
+pub(crate) const WALL_MOTION: u32 = 5;
 /// How many edit codes there are (`b` is below it).
 pub const EDIT_CODES: u32 = 6;
 /// How many edit codes a run file of version 9 may hold (no moving walls).

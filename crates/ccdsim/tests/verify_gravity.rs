@@ -315,17 +315,31 @@ fn a_time_changed_in_the_file_fails() {
     let (stream, end) = simulate(&scene, 600);
     let mut bytes = write_run(&scene, &stream, end);
     assert!(verify_bytes::<2>(&bytes, false).is_ok());
-    // Record 300's time, at offset 9 in the record, nudged by 1 ms; checksum recomputed so
-    // that the reader accepts the record and the verifier has to catch it.
+    // Record 300's time, at offset 9 in the record, moved later (halfway to record 301's,
+    // so that times still never go backwards); checksum recomputed so that the reader accepts
+    // the record and the verifier has to catch it.
     let len = ccdsim::record::record_len(2);
     let start = bytes.len() - len * (stream.len() + 1 - 300);
-    let rec = &mut bytes[start..start + len];
-    let t = f64::from_le_bytes(rec[9..17].try_into().unwrap()) + 1e-3;
-    rec[9..17].copy_from_slice(&t.to_le_bytes());
-    let sum = fnv1a(&rec[..len - 4]);
-    rec[len - 4..].copy_from_slice(&sum.to_le_bytes());
+    let later = 0.5 * (stream[300].event.time + stream[301].event.time);
+    assert!(later > stream[300].event.time);
+    let nudge = |bytes: &mut Vec<u8>, t: f64| {
+        let rec = &mut bytes[start..start + len];
+        rec[9..17].copy_from_slice(&t.to_le_bytes());
+        let sum = fnv1a(&rec[..len - 4]);
+        rec[len - 4..].copy_from_slice(&sum.to_le_bytes());
+    };
+    nudge(&mut bytes, later);
     let e = verify_bytes::<2>(&bytes, false).unwrap_err();
     assert!(e.contains("event 300"), "{e}");
+    // Moved past record 301's time, it makes that record go back in time: the reader
+    // refuses the file, naming the record.
+    nudge(&mut bytes, stream[301].event.time + 1e-3);
+    let mut r = RunReader::<_, 2>::new(Cursor::new(&bytes[..]), "memory".into()).unwrap();
+    let e = r.read_events().unwrap_err().to_string();
+    assert!(
+        e.contains("record 301") && e.contains("goes backwards"),
+        "{e}"
+    );
 }
 
 #[test]

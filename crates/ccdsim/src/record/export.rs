@@ -112,6 +112,7 @@ pub fn export_jsonl<R: Read, W: Write, const D: usize>(
     out: &mut W,
 ) -> Result<u64, ExportError> {
     let scene = reader.scene().clone();
+    let reader_path = reader.path().to_string();
     let header = Header {
         version: reader.version(),
         dim: D,
@@ -142,8 +143,22 @@ pub fn export_jsonl<R: Read, W: Write, const D: usize>(
     serde_json::to_writer(&mut *out, &header).map_err(std::io::Error::from)?;
     out.write_all(b"\n")?;
     // Each slot's id: the scene's, then those of the bodies added.
-    let mut ids: Vec<u64> = (0..scene.bodies.len()).map(|i| scene.id_of(i)).collect();
-    let id_of = |ids: &[u64], i: u32| ids.get(i as usize).copied().unwrap_or(u64::MAX);
+    let mut ids: Vec<Option<u64>> = (0..scene.bodies.len())
+        .map(|i| Some(scene.id_of(i)))
+        .collect();
+    // The reader checks every index against the slots the scene and the edits made; a slot
+    // without an id (one reserved, never filled) is an error, never a made-up id.
+    let id_of = |ids: &[Option<u64>], i: u32| {
+        ids.get(i as usize).copied().flatten().ok_or_else(|| {
+            std::io::Error::new(
+                std::io::ErrorKind::InvalidData,
+                format!(
+                    "{}: a record names body slot {i}, which holds no body",
+                    reader_path
+                ),
+            )
+        })
+    };
     let mut pending_add = None;
     let mut count = 0;
     while let Some(rec) = reader.next_record()? {
@@ -156,7 +171,7 @@ pub fn export_jsonl<R: Read, W: Write, const D: usize>(
         let mut line = EventOut {
             t: c.event.time,
             kind: "edit",
-            a: id_of(&ids, c.event.a),
+            a: 0,
             b: 0,
             pos: &c.pos[..k],
             vel: &c.vel[..k],
@@ -172,9 +187,15 @@ pub fn export_jsonl<R: Read, W: Write, const D: usize>(
         };
         let added;
         match c.event.kind {
-            EventKind::Body => (line.kind, line.b) = ("body", id_of(&ids, c.event.b)),
-            EventKind::Wall => (line.kind, line.b) = ("wall", u64::from(c.event.b)),
-            EventKind::Reset => line.kind = "reset",
+            EventKind::Body => {
+                (line.kind, line.a) = ("body", id_of(&ids, c.event.a)?);
+                line.b = id_of(&ids, c.event.b)?;
+            }
+            EventKind::Wall => {
+                (line.kind, line.a) = ("wall", id_of(&ids, c.event.a)?);
+                line.b = u64::from(c.event.b);
+            }
+            EventKind::Reset => (line.kind, line.a) = ("reset", id_of(&ids, c.event.a)?),
             EventKind::Edit => {
                 let first = pending_add.take();
                 let edit = match &first {
@@ -183,7 +204,7 @@ pub fn export_jsonl<R: Read, W: Write, const D: usize>(
                 }
                 .map_err(|why| std::io::Error::new(std::io::ErrorKind::InvalidData, why))?;
                 match edit {
-                    Edit::Motion { .. } => {}
+                    Edit::Motion { .. } => line.a = id_of(&ids, c.event.a)?,
                     Edit::Add {
                         body,
                         id,
@@ -194,9 +215,9 @@ pub fn export_jsonl<R: Read, W: Write, const D: usize>(
                         ..
                     } => {
                         if ids.len() <= body {
-                            ids.resize(body + 1, u64::MAX);
+                            ids.resize(body + 1, None);
                         }
-                        ids[body] = id;
+                        ids[body] = Some(id);
                         let first = first.expect("an add decodes from its first record");
                         added = [first.pos[0], first.vel[0]];
                         line.kind = "add";
@@ -209,9 +230,12 @@ pub fn export_jsonl<R: Read, W: Write, const D: usize>(
                         (line.group, line.mask) = (Some(filter.group), Some(filter.mask));
                         line.restitution = restitution;
                     }
-                    Edit::Remove { .. } => line.kind = "remove",
+                    Edit::Remove { .. } => {
+                        (line.kind, line.a) = ("remove", id_of(&ids, c.event.a)?);
+                        ids[c.event.a as usize] = None;
+                    }
                     Edit::Filter { filter, .. } => {
-                        line.kind = "filter";
+                        (line.kind, line.a) = ("filter", id_of(&ids, c.event.a)?);
                         (line.group, line.mask) = (Some(filter.group), Some(filter.mask));
                     }
                     Edit::WallMotion { wall, .. } => {

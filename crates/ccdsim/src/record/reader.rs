@@ -56,6 +56,27 @@ pub struct RunReader<R: Read, const D: usize> {
     buf: Vec<u8>,
     /// The file's format version.
     version: u32,
+    /// Records checked in order so far (the furthest read): what [`Sequence`] has seen.
+    checked: u64,
+    /// What the records read in order so far imply: the time reached, the body slots.
+    seq: Sequence,
+}
+
+/// What a run's records, read in order, have established: the checks that need the records
+/// before (times never go backwards; every body index names a slot the scene or an edit
+/// made). It holds one flag per slot, and slots only grow the way the simulation grows
+/// them, so what it allocates is bounded by the records read, never by a number a record
+/// claims.
+#[derive(Clone, Debug)]
+struct Sequence {
+    /// Time of the last record, seconds (the scene's start time before the first).
+    last_time: f64,
+    /// Whether each body slot is vacant (removed, or reserved and not yet filled).
+    vacant: Vec<bool>,
+    /// How many slots are vacant.
+    vacancies: usize,
+    /// An added body's first record waiting for its id record: its slot and time bits.
+    pending_add: Option<(u32, u64)>,
 }
 
 /// A run reader of either dimension.
@@ -200,7 +221,27 @@ impl<R: Read, const D: usize> RunReader<R, D> {
             path: path.clone(),
             why: e.to_string(),
         })?;
+        // A run of this scene is written in `version_for(scene)`, or as a steered run in
+        // version 9 (8 before it) when that is lower: a later version is not one this scene's
+        // runs are written in (a raised version number, or a file from a later build).
+        let newest = super::version_for(&scene).max(VERSION_SLOTS);
+        if version > newest {
+            return Err(RecordError::Header {
+                path,
+                why: format!(
+                    "format version {version} is later than any a run of its scene is written in ({newest}; corrupt version number, or a file of a later build)"
+                ),
+            });
+        }
+        let seq = Sequence {
+            last_time: scene.start_time,
+            vacant: vec![false; scene.bodies.len()],
+            vacancies: 0,
+            pending_add: None,
+        };
         Ok(RunReader {
+            checked: 0,
+            seq,
             input,
             path,
             scene,
@@ -267,48 +308,60 @@ impl<R: Read, const D: usize> RunReader<R, D> {
             self.tail = Tail::Truncated { bytes: got as u64 };
             return Ok(None);
         }
-        match decode::<D>(&self.buf, self.version).and_then(|rec| self.check_indices(rec)) {
-            Ok(rec) => {
-                self.index += 1;
-                if let RunRecord::End(_) = rec {
-                    self.tail = Tail::Complete;
-                    // Nothing may follow the end record: bytes there were written by
-                    // something else, or a run file was appended to another.
-                    let mut probe = [0u8; 1];
-                    let more = read_full(&mut self.input, &mut probe).map_err(|source| {
-                        RecordError::Io {
-                            path: self.path.clone(),
-                            source,
-                        }
-                    })?;
-                    if more > 0 {
-                        return Err(RecordError::TrailingData {
-                            path: self.path.clone(),
-                            offset: self.data_start + self.index * record_len(D) as u64,
-                        });
-                    }
-                }
-                Ok(Some(rec))
+        if !checksum_ok(&self.buf) {
+            // A torn last record is a truncated tail; damage followed by data is corruption.
+            let mut probe = [0u8; 1];
+            let more =
+                read_full(&mut self.input, &mut probe).map_err(|source| RecordError::Io {
+                    path: self.path.clone(),
+                    source,
+                })?;
+            if more == 0 {
+                self.tail = Tail::Truncated { bytes: got as u64 };
+                return Ok(None);
             }
-            Err(why) => {
-                // A torn last record is a truncated tail; damage followed by data is corruption.
-                let mut probe = [0u8; 1];
-                let more =
-                    read_full(&mut self.input, &mut probe).map_err(|source| RecordError::Io {
-                        path: self.path.clone(),
-                        source,
-                    })?;
-                if more == 0 {
-                    self.tail = Tail::Truncated { bytes: got as u64 };
-                    Ok(None)
-                } else {
-                    Err(RecordError::Corrupt {
-                        path: self.path.clone(),
-                        index: self.index,
-                        why,
-                    })
-                }
+            return Err(self.corrupt("checksum mismatch".into()));
+        }
+        // A record whose checksum holds was written whole: whatever is wrong with it is
+        // corruption, last record or not.
+        let rec = decode::<D>(&self.buf, self.version)
+            .and_then(|rec| check_numbers(&rec).map(|()| rec))
+            .and_then(|rec| self.check_indices(rec))
+            .map_err(|why| self.corrupt(why))?;
+        if self.index == self.checked {
+            // Read in order for the first time: the checks that need the records before.
+            let mut seq = self.seq.clone();
+            seq.accept(&rec, self.version)
+                .map_err(|why| self.corrupt(why))?;
+            self.seq = seq;
+            self.checked += 1;
+        }
+        self.index += 1;
+        if let RunRecord::End(_) = rec {
+            self.tail = Tail::Complete;
+            // Nothing may follow the end record: bytes there were written by something else,
+            // or a run file was appended to another.
+            let mut probe = [0u8; 1];
+            let more =
+                read_full(&mut self.input, &mut probe).map_err(|source| RecordError::Io {
+                    path: self.path.clone(),
+                    source,
+                })?;
+            if more > 0 {
+                return Err(RecordError::TrailingData {
+                    path: self.path.clone(),
+                    offset: self.data_start + self.index * record_len(D) as u64,
+                });
             }
+        }
+        Ok(Some(rec))
+    }
+
+    fn corrupt(&self, why: String) -> RecordError {
+        RecordError::Corrupt {
+            path: self.path.clone(),
+            index: self.index,
+            why,
         }
     }
 
@@ -321,8 +374,14 @@ impl<R: Read, const D: usize> RunReader<R, D> {
             );
             if self.version >= VERSION_SLOTS {
                 // Bodies added during the run fill slots past the scene's (see
-                // `crate::edit`); a record read on its own cannot know how many there are.
-                n = u32::MAX >> 1;
+                // `crate::edit`): as many as the records read in order have made (an added
+                // body's own records may name the next one, checked in `Sequence::accept`).
+                n = u32::try_from(self.seq.vacant.len()).unwrap_or(u32::MAX);
+                if c.event.kind == crate::event::EventKind::Edit
+                    && matches!(c.event.b, crate::edit::ADD | crate::edit::ADD_ID)
+                {
+                    n = n.saturating_add(1);
+                }
             }
             if c.rests != [false; 2] {
                 use crate::event::EventKind;
@@ -393,28 +452,155 @@ impl<R: Read, const D: usize> RunReader<R, D> {
 }
 
 impl<R: Read + Seek, const D: usize> RunReader<R, D> {
-    /// Moves to record `k` (0-based) so that the next read returns it.
+    /// Moves to record `k` (0-based) so that the next read returns it. Records past the
+    /// furthest read so far are read on the way, so that each is checked against those
+    /// before it (see [`RunReader::next_record`]).
     pub fn seek_record(&mut self, k: u64) -> Result<(), RecordError> {
-        let off = self.data_start + k * record_len(D) as u64;
+        let start = k.min(self.checked);
+        let off = self.data_start + start * record_len(D) as u64;
         self.input
             .seek(SeekFrom::Start(off))
             .map_err(|source| RecordError::Io {
                 path: self.path.clone(),
                 source,
             })?;
-        self.index = k;
+        self.index = start;
         self.tail = Tail::Unread;
+        while self.index < k {
+            if self.next_record()?.is_none() {
+                break;
+            }
+        }
+        Ok(())
+    }
+}
+
+/// True when a record's last four bytes are the FNV-1a checksum of the others.
+fn checksum_ok(buf: &[u8]) -> bool {
+    let n = buf.len();
+    let sum = u32::from_le_bytes(buf[n - 4..].try_into().expect("4 bytes"));
+    fnv1a(&buf[..n - 4]) == sum
+}
+
+/// Every number of a record that is a number must be finite: its time, and the positions
+/// and velocities of its body slots. The second slot of an added body's records holds its
+/// radius (finite, positive), mass (positive, infinite for a kinematic body) and the bits of
+/// its filter, restitution (NaN: the scene's) and id; that of a filter edit the filter's bits.
+fn check_numbers<const D: usize>(rec: &RunRecord<D>) -> Result<(), String> {
+    use crate::edit::{ADD, ADD_ID, FILTER};
+    use crate::event::EventKind;
+    let c = match rec {
+        RunRecord::End(t) if !t.is_finite() => return Err(format!("end time is {t}")),
+        RunRecord::End(_) => return Ok(()),
+        RunRecord::Event(c) => c,
+    };
+    if !c.event.time.is_finite() {
+        return Err(format!("time is {}", c.event.time));
+    }
+    let field = |name: &str, slot: usize, v: &Vector<D>| match v.0.iter().find(|x| !x.is_finite()) {
+        Some(x) => Err(format!("{name} of body slot {slot} is {x}")),
+        None => Ok(()),
+    };
+    field("position", 0, &c.pos[0])?;
+    field("velocity", 0, &c.vel[0])?;
+    let edit = (c.event.kind == EventKind::Edit).then_some(c.event.b);
+    match edit {
+        Some(ADD) => {
+            let (radius, mass) = (c.pos[1][0], c.pos[1][1]);
+            if !(radius.is_finite() && radius > 0.0) {
+                return Err(format!("an added body's radius is {radius}"));
+            }
+            if mass.is_nan() || mass <= 0.0 {
+                return Err(format!("an added body's mass is {mass}"));
+            }
+        }
+        Some(ADD_ID) => {}
+        Some(FILTER) => field("position", 1, &c.pos[1])?,
+        _ => {
+            field("position", 1, &c.pos[1])?;
+            field("velocity", 1, &c.vel[1])?;
+        }
+    }
+    Ok(())
+}
+
+impl Sequence {
+    /// Takes the next record of the run, read in order, or says why it cannot follow the
+    /// records before: a time before the last, an added body's records apart or in a slot
+    /// the simulation would not give it, a removal of a vacant slot.
+    fn accept<const D: usize>(&mut self, rec: &RunRecord<D>, version: u32) -> Result<(), String> {
+        use crate::edit::{ADD, ADD_ID, REMOVE};
+        use crate::event::EventKind;
+        let (t, c) = match rec {
+            RunRecord::End(t) => (*t, None),
+            RunRecord::Event(c) => (c.event.time, Some(c)),
+        };
+        if t < self.last_time {
+            return Err(format!(
+                "time {t} goes backwards (the record before is at {})",
+                self.last_time
+            ));
+        }
+        self.last_time = t;
+        let edit = c.filter(|c| c.event.kind == EventKind::Edit && version >= VERSION_SLOTS);
+        if let Some((slot, bits)) = self.pending_add {
+            let ok = edit.is_some_and(|c| {
+                c.event.b == ADD_ID && c.event.a == slot && c.event.time.to_bits() == bits
+            });
+            if !ok {
+                return Err(format!(
+                    "an added body's record (slot {slot}) is not followed by its id record"
+                ));
+            }
+            self.pending_add = None;
+            return Ok(());
+        }
+        let Some(c) = edit else {
+            return Ok(());
+        };
+        let slot = c.event.a as usize;
+        match c.event.b {
+            ADD => {
+                if slot < self.vacant.len() {
+                    if !self.vacant[slot] {
+                        return Err(format!("a body is added in slot {slot}, which holds one"));
+                    }
+                } else if slot == self.vacant.len() && self.vacancies == 0 {
+                    // The simulation appends `reserve_count` slots, vacant but the first.
+                    let n = self.vacant.len();
+                    let count = crate::sim::reserve_count(n);
+                    self.vacant.resize(n + count, true);
+                    self.vacancies += count;
+                } else {
+                    return Err(format!(
+                        "a body is added in slot {slot}, not a vacant one nor the next ({})",
+                        self.vacant.len()
+                    ));
+                }
+                self.vacant[slot] = false;
+                self.vacancies -= 1;
+                self.pending_add = Some((c.event.a, c.event.time.to_bits()));
+            }
+            ADD_ID => {
+                return Err(format!("an id record (slot {slot}) without its added body"));
+            }
+            REMOVE => {
+                if self.vacant.get(slot).copied().unwrap_or(true) {
+                    return Err(format!(
+                        "a body is removed from slot {slot}, which holds none"
+                    ));
+                }
+                self.vacant[slot] = true;
+                self.vacancies += 1;
+            }
+            _ => {}
+        }
         Ok(())
     }
 }
 
 /// One record of a file of format `version`: its flags must be ones that version has.
 fn decode<const D: usize>(buf: &[u8], version: u32) -> Result<RunRecord<D>, String> {
-    let n = buf.len();
-    let sum = u32::from_le_bytes(buf[n - 4..].try_into().expect("4 bytes"));
-    if fnv1a(&buf[..n - 4]) != sum {
-        return Err("checksum mismatch".into());
-    }
     let u32_at = |k: usize| u32::from_le_bytes(buf[k..k + 4].try_into().expect("4 bytes"));
     let f64_at = |k: usize| f64::from_le_bytes(buf[k..k + 8].try_into().expect("8 bytes"));
     let (a, b, t) = (u32_at(1), u32_at(5), f64_at(9));
@@ -443,8 +629,17 @@ fn decode<const D: usize>(buf: &[u8], version: u32) -> Result<RunRecord<D>, Stri
     match buf[0] & !flags {
         TAG_BODY if a < b => Ok(RunRecord::Event(c(Event::body(t, a as usize, b as usize)))),
         TAG_WALL => Ok(RunRecord::Event(c(Event::wall(t, a as usize, b as usize)))),
-        TAG_END => Ok(RunRecord::End(t)),
-        TAG_RESET => Ok(RunRecord::Event(c(Event::reset(t, a as usize)))),
+        // The fields a record kind does not use are written as zero.
+        TAG_END if a == 0 && b == 0 => Ok(RunRecord::End(t)),
+        TAG_RESET if b == 0 => Ok(RunRecord::Event(c(Event::reset(t, a as usize)))),
+        TAG_END | TAG_RESET => Err(format!(
+            "{} record with a = {a}, b = {b} (written as zero)",
+            if buf[0] & !flags == TAG_END {
+                "an end"
+            } else {
+                "a reset"
+            }
+        )),
         TAG_EDIT => Ok(RunRecord::Event(c(Event {
             b,
             ..Event::edit(t, a as usize)

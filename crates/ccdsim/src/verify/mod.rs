@@ -69,6 +69,13 @@ enum TurnOrFall {
     Fall(Parabola),
 }
 
+/// Most quarter periodic boxes a pair's relative motion between two events is followed
+/// across. Two bodies resolved at time `t` (speed times the spacing of floats at `t` within
+/// `5·10⁻¹⁰` of the radius, see the README's numerical rules) move apart by at most about
+/// `9·10⁶ r_max` by then, and a periodic box's sides exceed `4 r_max`: fewer than `4·10⁷`
+/// quarter boxes.
+const MAX_PIECES: u64 = 1 << 26;
+
 /// Allowed overlap relative to the contact distance.
 pub const OVERLAP_TOLERANCE: f64 = 1e-9;
 /// Allowed relative change of a pair's momentum or kinetic energy in one collision.
@@ -226,11 +233,11 @@ impl<const D: usize> Verifier<D> {
         let gravity = scene.gravity();
         let r_max = radius.iter().fold(0.0f64, |m, &r| m.max(r));
         let mean_speed =
-            motion.iter().map(|m| m.vel.norm()).sum::<f64>() / motion.len().max(1) as f64;
-        let slab = slab_length(r_max, mean_speed, gravity).unwrap_or(f64::INFINITY);
+            motion.iter().map(|m| speed(m.vel)).sum::<f64>() / motion.len().max(1) as f64;
+        let slab = slab_length(r_max, mean_speed, gravity).unwrap_or(f64::MAX);
         let pe = potential_energy(&motion, &mass, gravity, scene.start_time);
         let mut grid = Proximity::new(&radius, scene.periodic, scene.start_time);
-        grid.start_slab(scene.start_time, scene.start_time + slab);
+        grid.start_slab(scene.start_time, slab_end(scene.start_time, slab));
         let grown = growth.map_or(1.0, |g| g.scale(grid.end));
         for (i, m) in motion.iter().enumerate() {
             let acc = gravity.filter(|_| !scene.bodies[i].kinematic);
@@ -443,7 +450,9 @@ impl<const D: usize> Verifier<D> {
             let dt = (t - self.motion[i].time).abs();
             let fall = self.g(i).map_or(0.0, |g| 0.5 * g.norm() * dt * dt);
             let scale = 1.0 + expect.norm() + self.motion[i].vel.norm() * dt + fall;
-            if self.image(c.pos[s] - expect).norm() > 1e-9 * scale {
+            // A motion that cannot reach `t` (a position beyond the largest float) fails too.
+            let off = self.image(c.pos[s] - expect).norm();
+            if beyond(off, 1e-9 * scale) || !expect.is_finite() {
                 return Err(self.fail(
                     t,
                     format!(
@@ -497,7 +506,7 @@ impl<const D: usize> Verifier<D> {
         }
         let sigma = self.radius_at(i, t) + self.radius_at(j, t);
         let gap = (self.image(c.pos[1] - c.pos[0]).norm() - sigma) / sigma;
-        if gap > OVERLAP_TOLERANCE {
+        if beyond(gap, OVERLAP_TOLERANCE) {
             return Err(self.fail(
                 t,
                 format!(
@@ -556,7 +565,7 @@ impl<const D: usize> Verifier<D> {
         if c.rests != [false; 2] {
             return self.check_held_pair(c, i, j, (vi, vj), p1 - p0, scale);
         }
-        if (p1 - p0).norm() > CONSERVATION_TOLERANCE * scale {
+        if beyond((p1 - p0).norm(), CONSERVATION_TOLERANCE * scale) {
             return Err(self.fail(
                 t,
                 format!(
@@ -741,7 +750,7 @@ impl<const D: usize> Verifier<D> {
         let (wall, wall_velocity) = self.wall_at(w, t);
         let r = self.radius_at(i, t);
         let gap = (wall_clearance(&wall, c.pos[0]) - r) / r;
-        if gap > OVERLAP_TOLERANCE {
+        if beyond(gap, OVERLAP_TOLERANCE) {
             return Err(self.fail(
                 t,
                 format!(
@@ -1050,9 +1059,9 @@ impl<const D: usize> Verifier<D> {
     fn check_energy(&self, t: f64, e0: f64, e1: f64, e: f64, who: &str) -> Result<(), Violation> {
         let tol = CONSERVATION_TOLERANCE * e0 + f64::MIN_POSITIVE;
         let bad = if e == 1.0 {
-            (e1 - e0).abs() > tol
+            beyond((e1 - e0).abs(), tol)
         } else {
-            e1 - e0 > tol
+            beyond(e1 - e0, tol)
         };
         if bad {
             return Err(self.fail(
@@ -1106,7 +1115,7 @@ impl<const D: usize> Verifier<D> {
         let change = v1 - v0;
         let sideways = (change - n * change.dot(n)).norm();
         let scale = v0.norm() + v1.norm() + g + f64::MIN_POSITIVE;
-        if (u1 - want).abs() > 1e-9 * scale || sideways > 1e-9 * scale {
+        if beyond((u1 - want).abs(), 1e-9 * scale) || beyond(sideways, 1e-9 * scale) {
             return Err(self.fail(
                 t,
                 format!(
@@ -1157,10 +1166,18 @@ impl<const D: usize> Verifier<D> {
     }
 
     /// The largest overlap of bodies `i` and `j` (relative to their contact distance) over
-    /// `[t0, t1]`, and when; `None` when a cheap bound shows they stayed apart.
-    fn pair_overlap(&self, i: usize, j: usize, t0: f64, t1: f64) -> Option<(f64, f64)> {
+    /// `[t0, t1]`, and when; `Ok(None)` when a cheap bound shows they stayed apart; `Err` when
+    /// their relative motion in a periodic box is too long to follow (see
+    /// [`Verifier::approach`]).
+    fn pair_overlap(
+        &self,
+        i: usize,
+        j: usize,
+        t0: f64,
+        t1: f64,
+    ) -> Result<Option<(f64, f64)>, String> {
         if self.pivot(i).is_some() || self.pivot(j).is_some() {
-            return self.pivot_pair_overlap(i, j, t0, t1);
+            return Ok(self.pivot_pair_overlap(i, j, t0, t1));
         }
         let (mi, mj) = (self.motion[i], self.motion[j]);
         let sigma0 = self.radius_at(i, t0) + self.radius_at(j, t0);
@@ -1174,7 +1191,7 @@ impl<const D: usize> Verifier<D> {
         if self.image(pj - pi).norm() - travel > sigma1 * (1.0 + 1e-6) {
             // Cheap bound: they stay apart (the distance to any image changes no faster than
             // the relative motion).
-            return None;
+            return Ok(None);
         }
         if acc != Vector::ZERO {
             // A kinematic body and a falling one (open worlds only): the relative motion is a
@@ -1183,14 +1200,23 @@ impl<const D: usize> Verifier<D> {
             let grow = self.growth_speed(i) + self.growth_speed(j);
             let (d, s) = closest_to_point_falling(pj - pi, vj - vi, acc, span, grow);
             let sigma_at = self.radius_at(i, t0 + s) + self.radius_at(j, t0 + s);
-            return Some(((sigma0 - d) / sigma_at, t0 + s));
+            return Ok(Some(((sigma0 - d) / sigma_at, t0 + s)));
         }
         let grow = self.growth_speed(i) + self.growth_speed(j);
         // `d` is the distance less what the contact distance grew by since `t0`. Under
         // gravity the relative motion of two falling bodies is linear from the states at `t0`.
-        let (d, at) = self.approach(pi, vi, pj, vj, t1 - t0, grow);
+        let (d, at) = self
+            .approach(pi, vi, pj, vj, t1 - t0, grow)
+            .ok_or_else(|| {
+                format!(
+                "bodies {i} and {j} move apart by more than {MAX_PIECES} quarter periodic boxes \
+                 between t = {t0} and t = {t1}, more than two bodies whose positions are \
+                 resolved at that time can (see the resolution rule); verify does not follow \
+                 them"
+            )
+            })?;
         let sigma_at = self.radius_at(i, t0 + at) + self.radius_at(j, t0 + at);
-        Some(((sigma0 - d) / sigma_at, t0 + at))
+        Ok(Some(((sigma0 - d) / sigma_at, t0 + at)))
     }
 
     /// The largest overlap of body `i` with wall `w` (relative to its radius) from its
@@ -1218,10 +1244,13 @@ impl<const D: usize> Verifier<D> {
             }
             let mj = self.motion[j];
             let t0 = self.from(&mi).max(self.from(&mj));
-            let Some((overlap, at)) = self.pair_overlap(i, j, t0, t) else {
+            let found = self
+                .pair_overlap(i, j, t0, t)
+                .map_err(|why| self.fail(t, why))?;
+            let Some((overlap, at)) = found else {
                 continue;
             };
-            if overlap > OVERLAP_TOLERANCE {
+            if beyond(overlap, OVERLAP_TOLERANCE) {
                 return Err(self.fail(t, format!("bodies {i} and {j} overlap by {overlap:e} of their contact distance at t = {at} (a missed collision)")));
             }
             self.report.max_overlap = self.report.max_overlap.max(overlap);
@@ -1231,7 +1260,7 @@ impl<const D: usize> Verifier<D> {
                 break;
             }
             let (overlap, at) = self.wall_overlap(i, w, t);
-            if overlap > OVERLAP_TOLERANCE {
+            if beyond(overlap, OVERLAP_TOLERANCE) {
                 return Err(self.fail(t, format!("body {i} crosses wall {w} by {overlap:e} of its radius at t = {} (a missed collision)", at)));
             }
             self.report.max_overlap = self.report.max_overlap.max(overlap);
@@ -1312,7 +1341,7 @@ impl<const D: usize> Verifier<D> {
         }
         for w in 0..self.wall_count() {
             let (overlap, at) = self.wall_overlap(i, w, t);
-            if overlap > OVERLAP_TOLERANCE {
+            if beyond(overlap, OVERLAP_TOLERANCE) {
                 return Err(self.fail(
                     at,
                     format!("body {i} crosses wall {w} after the last event (a missed collision)"),
@@ -1334,10 +1363,13 @@ impl<const D: usize> Verifier<D> {
         if t1 < t0 || self.never_meet(i, j) {
             return Ok(());
         }
-        let Some((overlap, at)) = self.pair_overlap(i, j, t0, t1) else {
+        let found = self
+            .pair_overlap(i, j, t0, t1)
+            .map_err(|why| self.fail(t1, why))?;
+        let Some((overlap, at)) = found else {
             return Ok(());
         };
-        if overlap > OVERLAP_TOLERANCE {
+        if beyond(overlap, OVERLAP_TOLERANCE) {
             return Err(self.fail(
                 at,
                 format!(
@@ -1356,9 +1388,23 @@ impl<const D: usize> Verifier<D> {
         let Some(grid) = &self.grid else {
             return Ok(());
         };
-        for (i, j) in grid.pairs() {
+        let (pairs, wide) = (grid.pairs(), grid.wide());
+        for (i, j) in pairs {
             let t0 = self.from(&self.motion[i]).max(self.from(&self.motion[j]));
             self.check_pair_span(i, j, t0, t, when)?;
+        }
+        // A wide body against every other, each pair of wide bodies once (never listed:
+        // `n` pairs per wide body).
+        for &w in &wide {
+            for j in 0..self.motion.len() {
+                let both_wide = self.grid.as_ref().is_some_and(|g| g.is_wide(j));
+                if j == w || (both_wide && j < w) {
+                    continue;
+                }
+                let (i, j) = (w.min(j), w.max(j));
+                let t0 = self.from(&self.motion[i]).max(self.from(&self.motion[j]));
+                self.check_pair_span(i, j, t0, t, when)?;
+            }
         }
         Ok(())
     }
@@ -1375,14 +1421,14 @@ impl<const D: usize> Verifier<D> {
         }
         self.check_pairs_until(end, "")?;
         let mean_speed = (0..self.motion.len())
-            .map(|i| self.vel_of(i, end).norm())
+            .map(|i| speed(self.vel_of(i, end)))
             .sum::<f64>()
             / self.motion.len().max(1) as f64;
         let r_max = self.radius.iter().fold(0.0f64, |m, &r| m.max(r));
         if let Some(slab) = slab_length(r_max, mean_speed, self.gravity) {
             self.slab = slab;
         }
-        let next_end = (end + self.slab).max(t);
+        let next_end = slab_end(end, self.slab).max(t);
         let grown = self.growth.map_or(1.0, |g| g.scale(next_end));
         let acc: Vec<Option<Vector<D>>> = (0..self.motion.len()).map(|i| self.g(i)).collect();
         let grid = self.grid.as_mut().expect("grid mode");
@@ -1439,7 +1485,9 @@ impl<const D: usize> Verifier<D> {
 
     /// Smallest distance, less `grow` times the time offset (growing radii; 0 for fixed ones),
     /// between two points moving linearly over `[0, span]` (between nearest images in a
-    /// periodic scene), and the time offset where it occurs.
+    /// periodic scene), and the time offset where it occurs. `None` in a periodic scene when
+    /// the relative motion crosses more than [`MAX_PIECES`] quarter boxes: the work grows
+    /// with that count, which a long span (a corrupt time) could make any size.
     fn approach(
         &self,
         pa: Vector<D>,
@@ -1448,7 +1496,7 @@ impl<const D: usize> Verifier<D> {
         vb: Vector<D>,
         span: f64,
         grow: f64,
-    ) -> (f64, f64) {
+    ) -> Option<(f64, f64)> {
         let closest = |dp: Vector<D>, dv: Vector<D>, span: f64| {
             if grow > 0.0 {
                 closest_approach_growing(dp, dv, span, grow)
@@ -1457,14 +1505,18 @@ impl<const D: usize> Verifier<D> {
             }
         };
         let Some(size) = self.period else {
-            return closest(pb - pa, vb - va, span);
+            return Some(closest(pb - pa, vb - va, span));
         };
         // Pieces short enough that the relative motion crosses a quarter box at most; in each,
         // every image next to the nearest one at its start is tried.
         let dv = vb - va;
         let side = (0..D).map(|d| size[d]).fold(f64::INFINITY, f64::min);
         let span = span.max(0.0);
-        let pieces = ((dv.norm() * span) / (0.25 * side)).ceil().clamp(1.0, 1e9) as u64;
+        let pieces = ((dv.norm() * span) / (0.25 * side)).ceil().max(1.0);
+        if beyond(pieces, MAX_PIECES as f64) {
+            return None;
+        }
+        let pieces = pieces as u64;
         let mut best = (f64::INFINITY, 0.0);
         for k in 0..pieces {
             let s0 = span * k as f64 / pieces as f64;
@@ -1484,22 +1536,47 @@ impl<const D: usize> Verifier<D> {
                 }
             }
         }
-        best
+        Some(best)
     }
 }
 
 /// The length of a slab of the proximity grid, seconds: the time a body at the mean speed
 /// takes to cross `2 r_max`, about a cell, falling under `gravity` if the scene has it
-/// (`speed·τ + ½|g|·τ² = 2 r_max`); `None` when nothing moves or falls.
+/// (`speed·τ + ½|g|·τ² = 2 r_max`), at most `f64::MAX`; `None` when nothing moves or falls.
+/// Only where slabs end depends on it, never how much work a slab takes: a body whose box
+/// over a long slab covers many cells is filed as a wide one.
 fn slab_length<const D: usize>(r_max: f64, speed: f64, gravity: Option<Vector<D>>) -> Option<f64> {
     let reach = 2.0 * r_max;
     let g = gravity.map_or(0.0, |g| g.norm());
     if g > 0.0 {
         // The positive root of ½g·τ² + speed·τ − reach, in the cancellation-free form.
         let tau = 2.0 * reach / (speed + (speed * speed + 2.0 * g * reach).sqrt());
-        return (tau > 0.0 && tau.is_finite()).then_some(tau);
+        return (tau > 0.0 && !tau.is_nan()).then_some(tau.min(f64::MAX));
     }
-    (speed > 0.0).then(|| reach / speed)
+    (speed > 0.0).then(|| (reach / speed).min(f64::MAX))
+}
+
+/// `x > limit`, or `x` is NaN: a check whose value could not be computed (positions beyond
+/// the largest float, `∞ − ∞`) fails rather than passes.
+#[allow(clippy::neg_cmp_op_on_partial_ord)]
+pub(super) fn beyond(x: f64, limit: f64) -> bool {
+    !(x <= limit)
+}
+
+/// The end of a slab of length `slab` from `start`: finite, so that a body at rest stays
+/// where it is at the slab's end (`0 · ∞` would put it nowhere).
+fn slab_end(start: f64, slab: f64) -> f64 {
+    (start + slab).min(f64::MAX)
+}
+
+/// `|v|` without underflow: the norm of a velocity of 10⁻¹⁷⁰ m/s, whose square is below the
+/// smallest `f64`, is 10⁻¹⁷⁰, not 0.
+fn speed<const D: usize>(v: Vector<D>) -> f64 {
+    let m = v.0.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    if m == 0.0 || !m.is_finite() {
+        return m;
+    }
+    m * v.0.iter().map(|x| (x / m) * (x / m)).sum::<f64>().sqrt()
 }
 
 /// Potential energy at `t` of bodies moving as `motion` in the gravity field, joules:

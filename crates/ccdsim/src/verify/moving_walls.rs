@@ -8,7 +8,7 @@
 //! collision obeys the growth rule there; in the lab frame the wall does work, which the
 //! report sums in `wall_work`.
 
-use super::{Verifier, Violation, OVERLAP_TOLERANCE};
+use super::{beyond, Verifier, Violation, OVERLAP_TOLERANCE};
 use crate::moving_wall::{translated, WallMotion};
 use crate::narrow::Motion;
 use crate::sim::Collision;
@@ -69,7 +69,8 @@ impl<const D: usize> Verifier<D> {
         };
         let expect = wm.offset_at(t);
         let scale = 1.0 + expect.norm() + wm.velocity.norm() * (t - wm.time).abs();
-        if (c.pos[0] - expect).norm() > 1e-9 * scale {
+        let off = (c.pos[0] - expect).norm();
+        if beyond(off, 1e-9 * scale) || !expect.is_finite() {
             return Err(self.fail(
                 t,
                 format!(
@@ -87,7 +88,7 @@ impl<const D: usize> Verifier<D> {
                 continue;
             }
             let (overlap, at) = self.wall_overlap(i, w, t);
-            if overlap > OVERLAP_TOLERANCE {
+            if beyond(overlap, OVERLAP_TOLERANCE) {
                 return Err(self.fail(
                     t,
                     format!(

@@ -105,22 +105,36 @@ impl<const D: usize> Proximity<D> {
         self.is_wide.resize(n, false);
     }
 
-    /// The cell index range of a grown box, per axis.
-    fn range(&self, lo: Vector<D>, hi: Vector<D>) -> Filed<D> {
+    /// The cell index range of a grown box, per axis; `None` when the box is not finite or
+    /// covers more than [`WIDE_CELLS`] cells. Counted in floating point before any index is
+    /// formed, so that no size of box (a slab of 10¹⁷⁰ s, a corrupt time) can overflow an
+    /// index or a count.
+    fn range(&self, lo: Vector<D>, hi: Vector<D>) -> Option<Filed<D>> {
         let mut f = Filed {
             lo: [0; D],
             hi: [0; D],
         };
+        let mut count = 1.0f64;
         for d in 0..D {
-            f.lo[d] = (lo[d] / self.cell[d]).floor() as i64;
-            f.hi[d] = (hi[d] / self.cell[d]).floor() as i64;
+            let (a, b) = (
+                (lo[d] / self.cell[d]).floor(),
+                (hi[d] / self.cell[d]).floor(),
+            );
+            // Beyond 2⁵² cells from the origin indices are no longer exact: wide.
+            let limit = 4_503_599_627_370_496.0;
+            if !(a.abs() <= limit && b.abs() <= limit && a <= b) {
+                return None;
+            }
+            let (mut a, mut b) = (a as i64, b as i64);
             if let Some(k) = self.wrap {
-                if f.hi[d] - f.lo[d] + 1 >= k[d] {
-                    (f.lo[d], f.hi[d]) = (0, k[d] - 1);
+                if b - a + 1 >= k[d] {
+                    (a, b) = (0, k[d] - 1);
                 }
             }
+            count *= (b - a + 1) as f64;
+            (f.lo[d], f.hi[d]) = (a, b);
         }
-        f
+        (count <= WIDE_CELLS as f64).then_some(f)
     }
 
     /// Every cell key of a range (wrapped in periodic worlds).
@@ -200,13 +214,11 @@ impl<const D: usize> Proximity<D> {
             lo[d] -= grow;
             hi[d] += grow;
         }
-        let f = self.range(lo, hi);
-        let count = (0..D).fold(1i64, |c, d| c.saturating_mul(f.hi[d] - f.lo[d] + 1));
-        if !(0..=WIDE_CELLS).contains(&count) {
+        let Some(f) = self.range(lo, hi) else {
             self.wide.push(i as u32);
             self.is_wide[i] = true;
             return;
-        }
+        };
         for key in self.keys(&f) {
             self.cells.entry(key).or_default().push(i as u32);
         }
@@ -257,7 +269,9 @@ impl<const D: usize> Proximity<D> {
         out
     }
 
-    /// Every pair `(i, j)`, `i < j`, sharing a cell, once each, in order.
+    /// Every pair `(i, j)`, `i < j`, of bodies filed in cells (neither of them wide)
+    /// sharing a cell, once each, in order. Pairs with a wide body are not listed (there may
+    /// be `n` times as many): see [`Proximity::wide`].
     pub(super) fn pairs(&self) -> Vec<(usize, usize)> {
         let mut seen = HashSet::new();
         for list in self.cells.values() {
@@ -267,15 +281,21 @@ impl<const D: usize> Proximity<D> {
                 }
             }
         }
-        let n = self.filed.len() as u32;
-        for &w in &self.wide {
-            for j in (0..n).filter(|&j| j != w) {
-                seen.insert((w.min(j) as usize, w.max(j) as usize));
-            }
-        }
         let mut out: Vec<(usize, usize)> = seen.into_iter().collect();
         out.sort_unstable();
         out
+    }
+
+    /// The wide bodies, in index order: each is a neighbour of every body.
+    pub(super) fn wide(&self) -> Vec<usize> {
+        let mut out: Vec<usize> = self.wide.iter().map(|&w| w as usize).collect();
+        out.sort_unstable();
+        out
+    }
+
+    /// True when body `i` is wide.
+    pub(super) fn is_wide(&self, i: usize) -> bool {
+        self.is_wide[i]
     }
 
     /// Starts the slab `[start, end]`, emptying the grid (the caller files every body again).
