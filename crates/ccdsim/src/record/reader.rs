@@ -428,7 +428,10 @@ impl<R: Read, const D: usize> RunReader<R, D> {
                     }
                 }
             };
-            if c.event.a >= n || c.event.b >= limit_b {
+            // A wall-velocity edit names a moving wall in `a` (checked above), not a body.
+            let names_a_body = !(c.event.kind == crate::event::EventKind::Edit
+                && crate::edit::Edit::moves_a_wall(c));
+            if (names_a_body && c.event.a >= n) || c.event.b >= limit_b {
                 return Err(format!(
                     "index out of range: a = {}, b = {}",
                     c.event.a, c.event.b
