@@ -26,7 +26,7 @@ pub struct Settings {
     pub seed: u64,
     /// Stop drawing new cases after this long.
     pub duration: Duration,
-    /// Stop after this many cases (all threads together), if given.
+    /// Stop after this many cases (all threads together, split evenly), if given.
     pub max_cases: Option<u64>,
     /// Bodies per scene, at most.
     pub max_bodies: usize,
@@ -217,11 +217,11 @@ fn run_thread(
 ) -> Report {
     let report = RefCell::new(Report::default());
     let threads = s.threads.max(1) as u64;
-    let over = || {
-        start.elapsed() >= s.duration
-            || s.max_cases
-                .is_some_and(|m| progress.tried.load(Ordering::Relaxed) >= m)
-    };
+    // A count is split between the threads, each drawing its own cases: the same seed and
+    // count check the same cases however the threads are scheduled.
+    let share = s.max_cases.map(|m| m.div_ceil(threads));
+    let over =
+        || start.elapsed() >= s.duration || share.is_some_and(|m| report.borrow().tried >= m);
     let mut batch = 0u64;
     while !over() {
         let mut seed = [0u8; 32];
