@@ -227,8 +227,11 @@ impl<const D: usize> BvhFinder<D> {
                 .map(|i| l1(world.stored_velocity_at(i, now)))
                 .fold(0.0, f64::max),
         };
-        // Under gravity bodies at rest now still fall into each other.
-        if world.len() < 2 || (v_max == 0.0 && world.gravity().is_none()) {
+        // Under gravity bodies at rest now still fall into each other, and growing ones grow
+        // into each other.
+        if world.len() < 2
+            || (v_max == 0.0 && world.gravity().is_none() && world.growth().is_none())
+        {
             return wall;
         }
         self.build(world);
