@@ -16,6 +16,9 @@ use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 
+/// The case each thread is checking, and since when: what the watchdog looks at.
+type Running = Mutex<Vec<Option<(Instant, Case)>>>;
+
 /// Cases per proptest run: each run has its own seed, and a failure ends only its run.
 const BATCH: u32 = 64;
 
@@ -118,8 +121,7 @@ pub struct Progress {
 /// Runs a campaign.
 pub fn run(settings: &Settings, progress: &Arc<Progress>) -> Report {
     let start = Instant::now();
-    let running: Arc<Mutex<Vec<Option<(Instant, Case)>>>> =
-        Arc::new(Mutex::new(vec![None; settings.threads.max(1)]));
+    let running: Arc<Running> = Arc::new(Mutex::new(vec![None; settings.threads.max(1)]));
     let watchdog = {
         let (running, progress, settings) = (running.clone(), progress.clone(), settings.clone());
         std::thread::spawn(move || watch(&running, &progress, &settings))
@@ -143,7 +145,7 @@ pub fn run(settings: &Settings, progress: &Arc<Progress>) -> Report {
     report
 }
 
-fn watch(running: &Mutex<Vec<Option<(Instant, Case)>>>, progress: &Progress, s: &Settings) {
+fn watch(running: &Running, progress: &Progress, s: &Settings) {
     while !progress.stop.load(Ordering::Relaxed) {
         std::thread::sleep(Duration::from_millis(50));
         let slots = running.lock().unwrap_or_else(|e| e.into_inner()).clone();
@@ -190,12 +192,12 @@ fn resident_bytes() -> u64 {
 /// Marks a thread's case as running for the watchdog; unmarks it when dropped, also when the
 /// case panics (proptest catches the panic as a failure and goes on shrinking).
 struct Watched<'a> {
-    running: &'a Mutex<Vec<Option<(Instant, Case)>>>,
+    running: &'a Running,
     thread: usize,
 }
 
 impl<'a> Watched<'a> {
-    fn new(running: &'a Mutex<Vec<Option<(Instant, Case)>>>, thread: usize, case: &Case) -> Self {
+    fn new(running: &'a Running, thread: usize, case: &Case) -> Self {
         running.lock().unwrap_or_else(|e| e.into_inner())[thread] =
             Some((Instant::now(), case.clone()));
         Watched { running, thread }
@@ -213,7 +215,7 @@ fn run_thread(
     thread: usize,
     start: Instant,
     progress: &Progress,
-    running: &Mutex<Vec<Option<(Instant, Case)>>>,
+    running: &Running,
 ) -> Report {
     let report = RefCell::new(Report::default());
     let threads = s.threads.max(1) as u64;
