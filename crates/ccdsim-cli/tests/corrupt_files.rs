@@ -28,7 +28,7 @@ use std::sync::mpsc;
 use std::time::{Duration, Instant};
 
 /// Corrupted files `cargo test` tries.
-const DEFAULT_FILES: usize = 4000;
+const DEFAULT_FILES: usize = 2500;
 /// Seed of the corruptions.
 const FUZZ_SEED: u64 = 0x00c0_ffee_0bad_f11e;
 /// Longest any one file may take through every entry point, seconds.
@@ -503,7 +503,12 @@ fn corrupted_run_files_get_an_error_or_a_verdict_never_a_panic_or_a_lie() {
             }
             Ok(out) => {
                 if corruption.must_fail && out.verified {
-                    failures.push(format!("{what}: verified OK, a lie"));
+                    let keep = std::env::temp_dir().join(format!("ccdsim-fuzz-{seed}-{k}.ccd"));
+                    std::fs::write(&keep, &bytes).unwrap();
+                    failures.push(format!(
+                        "{what}: verified OK, a lie (kept as {})",
+                        keep.display()
+                    ));
                 }
                 if out.read_ok {
                     verdicts += 1;

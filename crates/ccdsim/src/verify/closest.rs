@@ -51,53 +51,60 @@ pub(super) fn closest_approach<const D: usize>(
 
 /// Growing radii: the smallest value over `[0, span]` of `|dp + dv·s| − grow·s`, the distance
 /// of two points less what their contact distance has grown by, and the offset `s` where it
-/// occurs. The function is convex (a norm of a linear function less a linear one), so a
-/// golden-section search finds it.
+/// occurs. The function is convex (a norm of a linear function less a linear one): its least
+/// value is at an end or where its derivative vanishes, in closed form.
 pub(super) fn closest_approach_growing<const D: usize>(
     dp: Vector<D>,
     dv: Vector<D>,
     span: f64,
     grow: f64,
 ) -> (f64, f64) {
-    golden_min(|s| (dp + dv * s).norm() - grow * s, 0.0, span.max(0.0))
+    let span = span.max(0.0);
+    let f = |s: f64| (dp + dv * s).norm() - grow * s;
+    [0.0, span, least_growing(dp, dv, grow, span)]
+        .into_iter()
+        .map(|s| (f(s), s))
+        .fold((f64::INFINITY, 0.0), smaller)
 }
 
-/// The smallest value of a convex `f` on `[lo, hi]` and where it occurs: a golden-section
-/// search, with both ends as candidates.
-fn golden_min(f: impl Fn(f64) -> f64, lo: f64, hi: f64) -> (f64, f64) {
-    let (a, b) = (lo, hi);
-    let (mut lo, mut hi) = (lo, hi);
-    const INV_PHI: f64 = 0.618_033_988_749_894_9;
-    let mut x1 = hi - INV_PHI * (hi - lo);
-    let mut x2 = lo + INV_PHI * (hi - lo);
-    let (mut f1, mut f2) = (f(x1), f(x2));
-    for _ in 0..80 {
-        if f1 <= f2 {
-            hi = x2;
-            x2 = x1;
-            f2 = f1;
-            x1 = hi - INV_PHI * (hi - lo);
-            f1 = f(x1);
-        } else {
-            lo = x1;
-            x1 = x2;
-            f1 = f2;
-            x2 = lo + INV_PHI * (hi - lo);
-            f2 = f(x2);
-        }
+/// Where `|w0 + w1·s| − k·s` (`k ≥ 0`: a distance less a growth), convex in `s`, is least on
+/// `[0, span]`, in closed form: where its derivative `(A s + B)/|w0 + w1 s| − k` vanishes
+/// (`A = |w1|²`, `B = w0·w1`), or an end. For `k = 0` it is the closest approach, found with
+/// `w1` scaled so that tiny speeds lose nothing.
+fn least_growing<const D: usize>(w0: Vector<D>, w1: Vector<D>, k: f64, span: f64) -> f64 {
+    if k == 0.0 {
+        return closest_approach(Vector::ZERO, Vector::ZERO, w0, w1, span).1;
     }
-    [(f(a), a), (f(b), b), (f1, x1), (f2, x2)]
-        .into_iter()
-        .fold(
-            (f64::INFINITY, a),
-            |best, c| if c.0 < best.0 { c } else { best },
-        )
+    let (a, b, c) = (w1.norm_sq(), w0.dot(w1), w0.norm_sq());
+    let q = a - k * k;
+    if q.is_nan() || q <= 0.0 {
+        // Growing at least as fast as it can move away: never increasing.
+        return span;
+    }
+    // `(A s + B)² = k² |w0 + w1 s|²` with `A s + B ≥ 0`: `A s² + 2 B s = (k² C − B²)/q`.
+    let disc = b * b + a * (k * k * c - b * b) / q;
+    let s = (-b + disc.max(0.0).sqrt()) / a;
+    if s.is_nan() {
+        0.0
+    } else {
+        s.clamp(0.0, span)
+    }
+}
+
+/// The smaller of two (value, time) candidates; a NaN value wins (it must fail a check, not
+/// hide behind a finite one).
+fn smaller(best: (f64, f64), c: (f64, f64)) -> (f64, f64) {
+    if c.0 < best.0 || c.0.is_nan() && !best.0.is_nan() {
+        c
+    } else {
+        best
+    }
 }
 
 /// Smallest clearance between a body moving linearly from its reference time to `t` and a
 /// wall, less `grow` times the time since the reference time (a growing radius; 0 for fixed
-/// ones), and the time where it occurs. The clearance is convex in time for a segment (the
-/// distance to a convex set) and linear for a plane, so a golden-section search finds it.
+/// ones), and the time where it occurs: at an end for a plane (linear in time), at one of
+/// [`segment_candidates`] for a segment.
 pub(super) fn closest_to_wall<const D: usize>(
     wall: &Wall<D>,
     m: &Motion<D>,
@@ -115,34 +122,27 @@ pub(super) fn closest_to_wall<const D: usize>(
                 (b, hi)
             }
         }
-        Wall::Segment { a, b } if grow == 0.0 => segment_candidates(a, b, m, lo, hi)
+        Wall::Segment { a, b } => segment_candidates(a, b, m, lo, hi, grow)
             .into_iter()
             .map(|s| (f(s), s))
-            .fold((f64::INFINITY, lo), |best, c| {
-                // A NaN clearance (a motion carried beyond the largest float) wins: it must
-                // fail the check, not hide behind a finite one.
-                if c.0 < best.0 || c.0.is_nan() && !best.0.is_nan() {
-                    c
-                } else {
-                    best
-                }
-            }),
-        Wall::Segment { .. } => golden_min(f, lo, hi),
+            .fold((f64::INFINITY, lo), smaller),
     }
 }
 
 /// The times in `[lo, hi]` among which the clearance of a point moving as `m` from the
-/// segment `a b` is smallest. The clearance is, piece by piece, the distance to `a`, to the
-/// segment's line, or to `b` (as the centre's foot lies before, on or beyond the segment), each
-/// convex: its smallest value is at a piece's end (the foot passing `a` or `b`, or `lo`, `hi`)
-/// or at that distance's own closest approach, all in closed form. Unlike a search whose
-/// bracket shrinks relative to `hi − lo`, this is as exact over 10³⁰⁸ s as over 1 s.
+/// segment `a b`, less `grow` times the time since `lo`, is smallest. The clearance is, piece
+/// by piece, the distance to `a`, to the segment's line, or to `b` (as the centre's foot lies
+/// before, on or beyond the segment), each less the growth convex: its smallest value is at a
+/// piece's end (the foot passing `a` or `b`, or `lo`, `hi`) or where that function is least
+/// ([`least_growing`]), all in closed form. Unlike a search whose bracket shrinks relative to
+/// `hi − lo`, this is as exact over 10³⁰⁸ s as over 1 s.
 fn segment_candidates<const D: usize>(
     a: Vector<D>,
     b: Vector<D>,
     m: &Motion<D>,
     lo: f64,
     hi: f64,
+    grow: f64,
 ) -> Vec<f64> {
     let span = hi - lo;
     let (p0, v, u) = (m.at(lo), m.vel, b - a);
@@ -158,13 +158,12 @@ fn segment_candidates<const D: usize>(
             }
         }
     }
-    let zero = Vector::ZERO;
     for end in [a, b] {
-        out.push(lo + closest_approach(zero, zero, p0 - end, v, span).1);
+        out.push(lo + least_growing(p0 - end, v, grow, span));
     }
     // The distance to the line: the part of the offset across the segment.
     let across = |w: Vector<D>| w - u * (w.dot(u) / uu);
-    out.push(lo + closest_approach(zero, zero, across(p0 - a), across(v), span).1);
+    out.push(lo + least_growing(across(p0 - a), across(v), grow, span));
     out
 }
 

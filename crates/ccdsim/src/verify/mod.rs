@@ -15,8 +15,8 @@
 //! checks every pair instead, for tests and small runs.
 //!
 //! With growing radii ([`crate::growth`]) contact distances are taken at each time, the miss
-//! check minimises the distance less the growth (a convex function of time) by golden-section
-//! search, and kinetic energy, which growth collisions add, is not checked: instead the
+//! check minimises the distance less the growth (a convex function of time) in closed form
+//! (an end of the stretch, or where its derivative vanishes), and kinetic energy, which growth collisions add, is not checked: instead the
 //! impulse must lie along the line of centres (the wall's normal) and give the normal
 //! relative velocity the growth rule asks for, `u' = (1 + e)·σ̇ − e·u` (at a moving wall,
 //! relative to the wall), with `e` the collision's restitution as the simulation chose it:
@@ -1200,7 +1200,7 @@ impl<const D: usize> Verifier<D> {
             let grow = self.growth_speed(i) + self.growth_speed(j);
             let (d, s) = closest_to_point_falling(pj - pi, vj - vi, acc, span, grow);
             let sigma_at = self.radius_at(i, t0 + s) + self.radius_at(j, t0 + s);
-            return Ok(Some(((sigma0 - d) / sigma_at, t0 + s)));
+            return Ok(Some((relative(sigma0 - d, sigma_at), t0 + s)));
         }
         let grow = self.growth_speed(i) + self.growth_speed(j);
         // `d` is the distance less what the contact distance grew by since `t0`. Under
@@ -1216,7 +1216,7 @@ impl<const D: usize> Verifier<D> {
             )
             })?;
         let sigma_at = self.radius_at(i, t0 + at) + self.radius_at(j, t0 + at);
-        Ok(Some(((sigma0 - d) / sigma_at, t0 + at)))
+        Ok(Some((relative(sigma0 - d, sigma_at), t0 + at)))
     }
 
     /// The largest overlap of body `i` with wall `w` (relative to its radius) from its
@@ -1231,7 +1231,7 @@ impl<const D: usize> Verifier<D> {
             None => closest_to_wall(&wall, &mi, t, self.growth_speed(i)),
         };
         let r0 = self.radius_at(i, mi.time);
-        (((r0 - d) / self.radius_at(i, at)), at)
+        (relative(r0 - d, self.radius_at(i, at)), at)
     }
 
     /// Body `i` is about to change course at `t`: no body or wall may have come too close
@@ -1561,6 +1561,17 @@ fn slab_length<const D: usize>(r_max: f64, speed: f64, gravity: Option<Vector<D>
 #[allow(clippy::neg_cmp_op_on_partial_ord)]
 pub(super) fn beyond(x: f64, limit: f64) -> bool {
     !(x <= limit)
+}
+
+/// An overlap `depth` relative to the contact distance `sigma`; NaN (a failed check) when
+/// `sigma` is not finite: radii grown beyond the largest float (a growing run carried to
+/// 10³⁰⁸ s) would make any overlap look like none.
+fn relative(depth: f64, sigma: f64) -> f64 {
+    if sigma.is_finite() {
+        depth / sigma
+    } else {
+        f64::NAN
+    }
 }
 
 /// The end of a slab of length `slab` from `start`: finite, so that a body at rest stays
