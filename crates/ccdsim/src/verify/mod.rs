@@ -561,7 +561,13 @@ impl<const D: usize> Verifier<D> {
         }
         let p0 = vi * mi + vj * mj;
         let p1 = c.vel[0] * mi + c.vel[1] * mj;
-        let scale = (vi * mi).norm() + (vj * mj).norm() + f64::MIN_POSITIVE;
+        // Relative to the momenta summed before and after: growing bodies that meet at rest
+        // push each other apart, and the sum after is rounded at their scale, not at zero.
+        let scale = (vi * mi).norm()
+            + (vj * mj).norm()
+            + (c.vel[0] * mi).norm()
+            + (c.vel[1] * mj).norm()
+            + f64::MIN_POSITIVE;
         if c.rests != [false; 2] {
             return self.check_held_pair(c, i, j, (vi, vj), p1 - p0, scale);
         }
@@ -768,7 +774,7 @@ impl<const D: usize> Verifier<D> {
         if !moving && self.supports.get(i).copied().flatten() == Some(w) {
             return self.check_slide_end(c, i, w);
         }
-        self.check_turn_end(c, i)?;
+        self.check_turn_end(c, i, w)?;
         // Chosen before the collision counts for the TC model, as the simulation does; going
         // on along the segment that continues the one it slides on (a shelf in pieces) is no
         // collision there.
@@ -928,15 +934,18 @@ impl<const D: usize> Verifier<D> {
         }
     }
 
-    /// A wall record of body `i` while it turns about a segment's end point: the turn ends
-    /// (the turn's position and velocity are checked as any motion's). Coming off (no rest
-    /// flag) must happen where the point stops pushing: `|g| cos θ = r θ̇²`.
-    fn check_turn_end(&self, c: &Collision<D>, i: usize) -> Result<(), Violation> {
+    /// A wall record of body `i` with wall `w` while it turns about a segment's end point:
+    /// the turn ends (the turn's position and velocity are checked as any motion's). Coming
+    /// off, a record naming the turn's own segment with no rest flag, must happen where the
+    /// point stops pushing: `|g| cos θ = r θ̇²`. A record naming another wall is a collision
+    /// with it (checked as any wall collision) or a landing on a segment that ends at the
+    /// point, along it.
+    fn check_turn_end(&self, c: &Collision<D>, i: usize, w: usize) -> Result<(), Violation> {
         let t = c.event.time;
-        let Some((p, _)) = self.pivot(i) else {
+        let Some(&(p, segment)) = self.pivot(i) else {
             return Ok(());
         };
-        if c.rests[0] {
+        if c.rests[0] || w != segment {
             // Swung back or landed: `check_rests` checks it rests with no normal speed.
             return Ok(());
         }

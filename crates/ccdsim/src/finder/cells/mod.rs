@@ -138,8 +138,10 @@
 //! Pairs are evaluated by the growing functions with the oracle's arguments, four at a time by
 //! the kernel's growing form (`narrow_lanes::toi_sides_growing`, each lane the scalar
 //! function's result bit for bit; overlapping pairs go to the scalar function).
-//! When the top of the queue lies beyond `t_h`, the oracle's event does too (if it lay at or
-//! before `t_h`, the top would be it), so nothing is returned: the finder rebuilds everything
+//! When the top of the queue lies beyond `t_h`, or the queue holds nothing at a finite time
+//! (bodies too far apart to be paired by a grid sized for `t_h` may still grow into each
+//! other later), the oracle's event does too (if it lay at or before `t_h`, the top would be
+//! it), so nothing is returned: the finder rebuilds everything
 //! from the stored states at the current time for a horizon at least at that key's time (a
 //! live term or a lower bound of one, so the oracle's event comes at or before it) and at
 //! least twice as far, and asks again. After many rebuilds in a row without an event (bodies
@@ -787,7 +789,18 @@ impl<const D: usize> Finder<D> for Cells<D> {
 
     fn next_event(&mut self, world: &World<D>) -> Option<Event> {
         loop {
-            let i = self.queue.top()?;
+            let Some(i) = self.queue.top() else {
+                // Nothing left at a finite time. A growing world's bodies may still grow into
+                // each other beyond the horizon, farther apart than the grid sized for it can
+                // see (they never came near enough to be paired): rebuild it for a later one.
+                if self.horizon < f64::INFINITY {
+                    if let Some(answer) = self.regrid(world, f64::INFINITY) {
+                        return answer;
+                    }
+                    continue;
+                }
+                return None;
+            };
             let key = self.queue.top_key();
             if key.seconds() > self.horizon {
                 // Growing radii: past the horizon the grid may miss contacts; rebuild it.

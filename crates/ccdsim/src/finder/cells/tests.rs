@@ -5,8 +5,9 @@ use super::{Cells, CellsStats};
 use crate::finder::{all_pairs_next_event, Finder, FinderOptions};
 use crate::generate::{gas, GasConfig};
 use crate::geom::Vector;
+use crate::growth::Growth;
 use crate::resolve::{resolve_body_body, resolve_body_wall, resolve_exit};
-use crate::scene::Scene;
+use crate::scene::{BodySpec, Scene};
 use crate::world::World;
 use crate::{Event, EventKind};
 
@@ -407,4 +408,25 @@ fn pair_recompute_is_two_recomputes() {
         let periodic3 = gas(&periodic(cfg(400, 0.3, 0.4, 0.6, seed))).unwrap();
         pair_recompute_matches_two_recomputes::<3>(&periodic3, seed);
     }
+}
+
+#[test]
+fn growing_bodies_too_far_apart_to_be_paired_still_meet() {
+    // Two balls at rest, 16 contact distances apart, in an open world: a grid sized for the
+    // first horizon never pairs them, and the queue holds nothing at a finite time. They
+    // still grow into each other (at t = 300 s).
+    let mut scene = Scene::<3>::default();
+    for x in [0.0, 8.0] {
+        scene
+            .bodies
+            .push(BodySpec::new(Vector([x, 0.0, 0.0]), Vector::ZERO, 0.25));
+    }
+    scene.settings.growth = Some(Growth { rate: 0.05 });
+    validated_run::<3>(&scene, 1);
+    let world = World::from_scene(&scene).unwrap();
+    let mut finder = with_skin::<3>(0.0);
+    finder.init(&world).unwrap();
+    let e = finder.next_event(&world).expect("the balls meet");
+    assert_eq!((e.kind, e.a, e.b), (EventKind::Body, 0, 1));
+    assert_eq!(Some(e.time), all_pairs_next_event(&world).map(|e| e.time));
 }
