@@ -858,6 +858,13 @@ impl<const D: usize> Grid<D> {
                         if !t.is_finite() {
                             continue;
                         }
+                        if !leaves_for_good && t == m.time + if up { falls } else { rises } {
+                            // Out and back within one instant (roots closer than the time's
+                            // rounding, as for a body on the face moving off it at a speed
+                            // rounding left behind): no crossing, or it would be crossed out
+                            // of the other cell at that same instant, back and forth for ever.
+                            continue;
+                        }
                         if t >= after {
                             offer(t, up);
                         } else if leaves_for_good {
@@ -1299,6 +1306,31 @@ mod tests {
         let crossing = grid.next_crossing_falling(&k, &m, &Vector([0.0, -9.81]), 0.0);
         // Down through the lower y face (code 2·1 + 0), now.
         assert_eq!(crossing, Some((0.0, 2)));
+    }
+
+    #[test]
+    fn a_body_leaving_a_face_for_an_instant_is_not_crossed_back_and_forth() {
+        let grid = Grid::<2>::new(100, 1.0, Vector::ZERO, Vector([12.0; 2]), None);
+        // On the face at y = 9, moving up at a speed rounding left (5e-16 m/s) and falling:
+        // above the face for 1e-16 s, less than the time's rounding at t = 1.25 s.
+        let g = Vector([0.0, -9.81]);
+        let m = Motion {
+            pos: Vector([5.5, 9.0]),
+            vel: Vector([0.0, 5.307e-16]),
+            time: 1.25,
+        };
+        let above = [5u32, 9];
+        let below = [5u32, 8];
+        // From the cell above it falls out now, through its lower face (code 2).
+        assert_eq!(
+            grid.next_crossing_falling(&above, &m, &g, 1.25),
+            Some((1.25, 2))
+        );
+        // From the cell below it does not go up again at that instant: it next leaves that
+        // cell through its lower face, at y = 8, 0.45 s later.
+        let (t, code) = grid.next_crossing_falling(&below, &m, &g, 1.25).unwrap();
+        assert_eq!(code, 2);
+        assert!((t - (1.25 + (1.0 / 4.905f64).sqrt())).abs() < 1e-12, "{t}");
     }
 
     #[test]

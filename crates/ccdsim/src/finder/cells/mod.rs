@@ -127,7 +127,10 @@
 //! whose parabola opens away from the cell is always crossed: at the later root, or at the
 //! finder's clock when that root lies before it (rounding) or there is none. The cell on the
 //! other side computes the same roots from the same bound and sees the parabola open towards
-//! it, so the body does not bounce back.
+//! it, so the body does not bounce back. That cell also passes over a face the body leaves and
+//! comes back through at one instant (roots closer than the time's rounding: a body on the
+//! face moving off it at a speed of 10⁻¹⁶ m/s that rounding left behind, falling back):
+//! crossed, it would be crossed back out of the first cell at that instant, for ever.
 //!
 //! # Growing radii
 //!
