@@ -124,7 +124,8 @@ def _scene_json(scene: SceneLike) -> str:
 class Simulation:
     """An exact event-driven simulation of a scene.
 
-    ``scene`` is a scene in the scene-file format (see the README): a dict, or its JSON text.
+    ``scene`` is a scene in the scene-file format (see docs/scene-format.md): a dict, or its
+    JSON text.
     ``finder`` names the broad phase (default ``"cells"``, the fast one). Bad input raises
     ``ValueError`` with a one-line message naming the field or body.
     """

@@ -257,7 +257,7 @@ impl PySimulation {
         )
     }
 
-    /// Why the run stopped while events remained (see the README), or None.
+    /// Why the run stopped while events remained (see docs/numerics.md), or None.
     #[getter]
     fn halt(&mut self) -> Option<String> {
         with_sim!(self, s, s.halt().map(|h| h.to_string()))
