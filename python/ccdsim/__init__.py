@@ -260,7 +260,11 @@ class Simulation:
         """Runs to ``until``, writing a frame every ``every`` seconds from now (now included) to
         ``path``: extended XYZ for ``.xyz``/``.extxyz`` (ASE, OVITO; full precision), GSD for
         ``.gsd`` (the ``gsd`` package, HOOMD, freud; float32, box centred on the origin).
-        Returns the number of frames. Runs in Rust without the GIL."""
+        Returns the number of frames. Runs in Rust without the GIL.
+
+        This advances the simulation: afterwards :attr:`time` is the last frame's time (or
+        where the run halted), as after :meth:`run_until`. To keep a simulation where it is,
+        write the trajectory from a second ``Simulation`` of the same scene."""
         return self._sim.write_trajectory(str(path), float(every), float(until))
 
     def run_until_pressure_tensor(self, t: float) -> np.ndarray:
