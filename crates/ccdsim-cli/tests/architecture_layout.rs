@@ -13,8 +13,8 @@ fn root() -> &'static Path {
 /// The paths the layout block names, made relative to the root (an indented `src/x` belongs
 /// to the crate named on the last unindented line).
 fn layout_paths() -> Vec<String> {
-    let architecture = std::fs::read_to_string(root().join("ARCHITECTURE.md")).unwrap();
-    let section = architecture.split("## Layout").nth(1).expect("a Layout section");
+    let text = std::fs::read_to_string(root().join("ARCHITECTURE.md")).unwrap();
+    let section = text.split("## Layout").nth(1).expect("a Layout section");
     let block = section.split("```").nth(1).expect("a code block");
     let mut parent = String::new();
     let mut paths = Vec::new();
@@ -56,11 +56,11 @@ fn every_library_module_and_crate_is_in_the_layout() {
             continue;
         }
         let p = format!("crates/ccdsim/src/{name}");
-        assert!(named(&p), "{p} is missing from the layout section of ARCHITECTURE.md");
+        assert!(named(&p), "{p} is missing from ARCHITECTURE.md's layout");
     }
     for entry in std::fs::read_dir(root().join("crates")).unwrap() {
         let name = entry.unwrap().file_name().into_string().unwrap();
         let p = format!("crates/{name}");
-        assert!(named(&p), "{p} is missing from the layout section of ARCHITECTURE.md");
+        assert!(named(&p), "{p} is missing from ARCHITECTURE.md's layout");
     }
 }
