@@ -124,7 +124,8 @@ def _scene_json(scene: SceneLike) -> str:
 class Simulation:
     """An exact event-driven simulation of a scene.
 
-    ``scene`` is a scene in the scene-file format (see the README): a dict, or its JSON text.
+    ``scene`` is a scene in the scene-file format (see docs/scene-format.md): a dict, or its
+    JSON text.
     ``finder`` names the broad phase (default ``"cells"``, the fast one). Bad input raises
     ``ValueError`` with a one-line message naming the field or body.
     """
@@ -259,7 +260,11 @@ class Simulation:
         """Runs to ``until``, writing a frame every ``every`` seconds from now (now included) to
         ``path``: extended XYZ for ``.xyz``/``.extxyz`` (ASE, OVITO; full precision), GSD for
         ``.gsd`` (the ``gsd`` package, HOOMD, freud; float32, box centred on the origin).
-        Returns the number of frames. Runs in Rust without the GIL."""
+        Returns the number of frames. Runs in Rust without the GIL.
+
+        This advances the simulation: afterwards :attr:`time` is the last frame's time (or
+        where the run halted), as after :meth:`run_until`. To keep a simulation where it is,
+        write the trajectory from a second ``Simulation`` of the same scene."""
         return self._sim.write_trajectory(str(path), float(every), float(until))
 
     def run_until_pressure_tensor(self, t: float) -> np.ndarray:

@@ -1,4 +1,5 @@
-"""Scene generators: each returns a scene dict in the scene-file format (see the README)."""
+"""Scene generators: each returns a scene dict in the scene-file format (see
+docs/scene-format.md)."""
 
 from __future__ import annotations
 

@@ -175,7 +175,8 @@ impl PySimulation {
 
     /// Runs to `until`, writing a frame every `every` seconds from now (now included) to
     /// `path` (.xyz/.extxyz: extended XYZ; .gsd: GSD); the number of frames. Runs without the
-    /// GIL.
+    /// GIL. This advances the simulation: afterwards its time is the last frame's (or where
+    /// the run halted), as after `run_until`.
     fn write_trajectory(
         &mut self,
         py: Python<'_>,
@@ -257,7 +258,7 @@ impl PySimulation {
         )
     }
 
-    /// Why the run stopped while events remained (see the README), or None.
+    /// Why the run stopped while events remained (see docs/numerics.md), or None.
     #[getter]
     fn halt(&mut self) -> Option<String> {
         with_sim!(self, s, s.halt().map(|h| h.to_string()))

@@ -4,7 +4,8 @@
 //! Bodies move in straight lines between events; the next event (a body–body or body–wall
 //! contact) is found by a [`Finder`], resolved with an impulse, and the loop goes on. Every
 //! finder returns exactly the event the [`AllPairs`] oracle would, so runs with different
-//! finders are byte-identical. See the README for the scene and run-file formats.
+//! finders are byte-identical. The scene and run-file formats are documented in the
+//! repository's docs/scene-format.md and docs/run-files.md.
 //!
 //! ```
 //! use ccdsim::generate::{rack, RackConfig};

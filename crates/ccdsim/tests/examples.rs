@@ -1,5 +1,6 @@
-//! The game examples the README runs (`cargo run --release -p ccdsim --example …`): each
-//! plays to its end without an error, and the run file it records passes `verify`.
+//! The game examples the README and docs/game-api.md run (`cargo run --release -p ccdsim
+//! --example …`): each plays to its end without an error, and the run file it records
+//! passes `verify`.
 
 #[path = "../examples/air_hockey.rs"]
 #[allow(dead_code)]

@@ -9,7 +9,7 @@ use std::process::ExitCode;
 /// Output formats.
 #[derive(clap::ValueEnum, Clone, Copy)]
 enum Format {
-    /// A header object, then one object per event (see the README).
+    /// A header object, then one object per event (see docs/run-files.md).
     Jsonl,
 }
 

@@ -60,7 +60,7 @@ impl Default for FinderOptions {
 /// The skin the `cells` finder uses in `D` dimensions when [`FinderOptions::cells_skin`] is
 /// `None`: lists pay in 3D (about 23 candidates per cell scan against 9 in a list at packing
 /// 0.45), not in 2D (5.7 candidates per scan, few to save, and list rebuilds cost more than
-/// cell crossings): see the README's measurements.
+/// cell crossings): see the measurements in docs/benchmarks.md.
 #[must_use]
 pub fn auto_cells_skin(dim: usize) -> f64 {
     if dim >= 3 {

@@ -102,7 +102,8 @@ struct EventOut<'a, const D: usize> {
     pivots: Option<&'a [bool]>,
 }
 
-/// Writes a run as JSON Lines: a header object, then one object per event (see the README).
+/// Writes a run as JSON Lines: a header object, then one object per event (see
+/// docs/run-files.md).
 /// Body events name bodies by id; wall events give the wall index as `b`. Edits are `edit`
 /// (new position or velocity), `add` (with the body's slot, radius, mass, filter and
 /// restitution; its id is `a`), `remove` and `filter` lines (see [`crate::edit`]). Returns the

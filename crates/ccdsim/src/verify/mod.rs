@@ -71,9 +71,9 @@ enum TurnOrFall {
 
 /// Most quarter periodic boxes a pair's relative motion between two events is followed
 /// across. Two bodies resolved at time `t` (speed times the spacing of floats at `t` within
-/// `5·10⁻¹⁰` of the radius, see the README's numerical rules) move apart by at most about
-/// `9·10⁶ r_max` by then, and a periodic box's sides exceed `4 r_max`: fewer than `4·10⁷`
-/// quarter boxes.
+/// `5·10⁻¹⁰` of the radius, see the numerical rules in docs/numerics.md) move apart by at
+/// most about `9·10⁶ r_max` by then, and a periodic box's sides exceed `4 r_max`: fewer than
+/// `4·10⁷` quarter boxes.
 const MAX_PIECES: u64 = 1 << 26;
 
 /// Allowed overlap relative to the contact distance.

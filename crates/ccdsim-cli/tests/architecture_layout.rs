@@ -1,5 +1,5 @@
-//! The README's layout section matches the tree: every path it names exists, and every
-//! top-level module of the library and every crate of the workspace is named.
+//! The layout section of ARCHITECTURE.md matches the tree: every path it names exists, and
+//! every top-level module of the library and every crate of the workspace is named.
 
 use std::path::Path;
 
@@ -13,8 +13,8 @@ fn root() -> &'static Path {
 /// The paths the layout block names, made relative to the root (an indented `src/x` belongs
 /// to the crate named on the last unindented line).
 fn layout_paths() -> Vec<String> {
-    let readme = std::fs::read_to_string(root().join("README.md")).unwrap();
-    let section = readme.split("## Layout").nth(1).expect("a Layout section");
+    let text = std::fs::read_to_string(root().join("ARCHITECTURE.md")).unwrap();
+    let section = text.split("## Layout").nth(1).expect("a Layout section");
     let block = section.split("```").nth(1).expect("a code block");
     let mut parent = String::new();
     let mut paths = Vec::new();
@@ -41,7 +41,7 @@ fn every_path_in_the_layout_exists() {
     for p in &paths {
         assert!(
             root().join(p).exists(),
-            "README layout names {p}, which is not in the tree"
+            "ARCHITECTURE.md's layout names {p}, which is not in the tree"
         );
     }
 }
@@ -56,11 +56,11 @@ fn every_library_module_and_crate_is_in_the_layout() {
             continue;
         }
         let p = format!("crates/ccdsim/src/{name}");
-        assert!(named(&p), "{p} is missing from the README's layout section");
+        assert!(named(&p), "{p} is missing from ARCHITECTURE.md's layout");
     }
     for entry in std::fs::read_dir(root().join("crates")).unwrap() {
         let name = entry.unwrap().file_name().into_string().unwrap();
         let p = format!("crates/{name}");
-        assert!(named(&p), "{p} is missing from the README's layout section");
+        assert!(named(&p), "{p} is missing from ARCHITECTURE.md's layout");
     }
 }
