@@ -585,7 +585,7 @@ impl<const D: usize> Verifier<D> {
         if let Some(law) = self.growth {
             self.check_pair_rule(c, law.speed(self.radius[i] + self.radius[j]), (vi, vj), e)?;
         } else {
-            self.check_energy(t, e0, e1, e, &format!("bodies {i} and {j}"))?;
+            self.check_energy(t, (e0, e1), e0, e, &format!("bodies {i} and {j}"))?;
         }
         self.report.body_collisions += 1;
         self.report.kinetic_energy_end += e1 - e0;
@@ -789,14 +789,16 @@ impl<const D: usize> Verifier<D> {
         match (self.growth, wall_normal(&wall, c.pos[0])) {
             (Some(law), Some(n)) => {
                 let grow = law.speed(self.radius[i]);
-                self.check_growth_rule(t, n, v0, v1, (grow, e), &who)?;
+                let lab = magnitude(before) + magnitude(c.vel[0]) + magnitude(wall_velocity);
+                self.check_growth_rule(t, n, (v0, v1), lab, (grow, e), &who)?;
             }
             (Some(_), None) => {}
             // Coming to rest: `check_rests` checks the velocity along the wall.
             (None, _) if c.rests[0] => {}
             (None, _) => {
                 let (e0, e1) = (0.5 * m * v0.norm_sq(), 0.5 * m * v1.norm_sq());
-                self.check_energy(t, e0, e1, e, &who)?;
+                let speed = before.norm() + c.vel[0].norm() + wall_velocity.norm();
+                self.check_energy(t, (e0, e1), 0.5 * m * speed * speed, e, &who)?;
             }
         }
         if moving {
@@ -1064,9 +1066,18 @@ impl<const D: usize> Verifier<D> {
     }
 
     /// A collision of restitution `e` took the kinetic energy of `who` from `e0` to `e1`: an
-    /// elastic one keeps it, to rounding; an inelastic one does not add to it.
-    fn check_energy(&self, t: f64, e0: f64, e1: f64, e: f64, who: &str) -> Result<(), Violation> {
-        let tol = CONSERVATION_TOLERANCE * e0 + f64::MIN_POSITIVE;
+    /// elastic one keeps it, to rounding; an inelastic one does not add to it. Rounding is
+    /// relative to `e0` and to `lab`, the energy at the speeds the simulation computed with
+    /// (in a moving wall's frame `e0` can be far smaller: a body riding along with the wall).
+    fn check_energy(
+        &self,
+        t: f64,
+        (e0, e1): (f64, f64),
+        lab: f64,
+        e: f64,
+        who: &str,
+    ) -> Result<(), Violation> {
+        let tol = CONSERVATION_TOLERANCE * (e0 + lab) + f64::MIN_POSITIVE;
         let bad = if e == 1.0 {
             beyond((e1 - e0).abs(), tol)
         } else {
@@ -1094,11 +1105,14 @@ impl<const D: usize> Verifier<D> {
         let (i, j) = (c.event.a as usize, c.event.b as usize);
         // From the second body towards the first, as the rule takes it.
         let n = self.image(c.pos[0] - c.pos[1]);
+        // Rounding is relative to the bodies' own speeds, not only to their relative one: a
+        // body riding along with a kinematic one, or two falling side by side.
+        let lab = magnitude(vi) + magnitude(vj) + magnitude(c.vel[0]) + magnitude(c.vel[1]);
         self.check_growth_rule(
             c.event.time,
             n,
-            vi - vj,
-            c.vel[0] - c.vel[1],
+            (vi - vj, c.vel[0] - c.vel[1]),
+            lab,
             (grow, e),
             &format!("bodies {i} and {j}"),
         )
@@ -1108,13 +1122,14 @@ impl<const D: usize> Verifier<D> {
     /// body alone at a wall) lies along `n` and turns the normal velocity `u` (along `n`,
     /// which points towards the first body) into `(1 + e)·σ̇ − e·u` when `u < σ̇`, where
     /// `σ̇ = grow` is the speed at which the contact distance grows (zero for fixed radii) and
-    /// `e` the collision's restitution.
+    /// `e` the collision's restitution. Rounding is relative to these velocities and to
+    /// `lab`, the sum of the speeds the simulation computed them from (m/s).
     fn check_growth_rule(
         &self,
         t: f64,
         n: Vector<D>,
-        v0: Vector<D>,
-        v1: Vector<D>,
+        (v0, v1): (Vector<D>, Vector<D>),
+        lab: f64,
         (grow, e): (f64, f64),
         who: &str,
     ) -> Result<(), Violation> {
@@ -1123,7 +1138,7 @@ impl<const D: usize> Verifier<D> {
         let want = if u0 < g { (1.0 + e) * g - e * u0 } else { u0 };
         let change = v1 - v0;
         let sideways = (change - n * change.dot(n)).norm();
-        let scale = v0.norm() + v1.norm() + g + f64::MIN_POSITIVE;
+        let scale = magnitude(v0) + magnitude(v1) + g + lab + f64::MIN_POSITIVE;
         if beyond((u1 - want).abs(), 1e-9 * scale) || beyond(sideways, 1e-9 * scale) {
             return Err(self.fail(
                 t,
@@ -1570,6 +1585,13 @@ fn slab_length<const D: usize>(r_max: f64, speed: f64, gravity: Option<Vector<D>
 #[allow(clippy::neg_cmp_op_on_partial_ord)]
 pub(super) fn beyond(x: f64, limit: f64) -> bool {
     !(x <= limit)
+}
+
+/// The sum of `v`'s components' magnitudes, a scale for rounding that, unlike the Euclidean
+/// norm, does not underflow to zero for speeds below 10⁻¹⁶² m/s (a body stopped by repeated
+/// inelastic collisions at one instant gets there).
+fn magnitude<const D: usize>(v: Vector<D>) -> f64 {
+    v.0.iter().map(|x| x.abs()).sum()
 }
 
 /// An overlap `depth` relative to the contact distance `sigma`; NaN (a failed check) when
