@@ -310,13 +310,7 @@ impl<R: Read, const D: usize> RunReader<R, D> {
         }
         if !checksum_ok(&self.buf) {
             // A torn last record is a truncated tail; damage followed by data is corruption.
-            let mut probe = [0u8; 1];
-            let more =
-                read_full(&mut self.input, &mut probe).map_err(|source| RecordError::Io {
-                    path: self.path.clone(),
-                    source,
-                })?;
-            if more == 0 {
+            if !self.more_follows()? {
                 self.tail = Tail::Truncated { bytes: got as u64 };
                 return Ok(None);
             }
@@ -341,13 +335,7 @@ impl<R: Read, const D: usize> RunReader<R, D> {
             self.tail = Tail::Complete;
             // Nothing may follow the end record: bytes there were written by something else,
             // or a run file was appended to another.
-            let mut probe = [0u8; 1];
-            let more =
-                read_full(&mut self.input, &mut probe).map_err(|source| RecordError::Io {
-                    path: self.path.clone(),
-                    source,
-                })?;
-            if more > 0 {
+            if self.more_follows()? {
                 return Err(RecordError::TrailingData {
                     path: self.path.clone(),
                     offset: self.data_start + self.index * record_len(D) as u64,
@@ -355,6 +343,16 @@ impl<R: Read, const D: usize> RunReader<R, D> {
             }
         }
         Ok(Some(rec))
+    }
+
+    /// Whether any byte follows what has been read (it consumes one byte if so).
+    fn more_follows(&mut self) -> Result<bool, RecordError> {
+        let mut probe = [0u8; 1];
+        let more = read_full(&mut self.input, &mut probe).map_err(|source| RecordError::Io {
+            path: self.path.clone(),
+            source,
+        })?;
+        Ok(more > 0)
     }
 
     fn corrupt(&self, why: String) -> RecordError {
