@@ -292,13 +292,13 @@ impl<'a, const D: usize> Builder<'a, D> {
                 _ => {}
             }
             if g.gravity != 0 {
-                s.gravity = ccdsim::gravity::Gravity::new(&acc[..D]);
+                s.gravity = ccdsim::Gravity::new(&acc[..D]);
                 s.rest_speed = [None, Some(0.1), Some(1.0)][g.rest_speed as usize % 3];
             }
         }
         s.tc = [None, Some(1e-3), Some(0.05)][g.tc as usize % 3];
         if g.growth != 0 && g.moving_walls.is_empty() {
-            s.growth = Some(ccdsim::growth::Growth {
+            s.growth = Some(ccdsim::Growth {
                 rate: [0.0, 0.05, 0.5][g.growth as usize % 3],
             });
         }

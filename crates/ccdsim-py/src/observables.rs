@@ -83,7 +83,7 @@ fn rdf<'py>(
             let positions = if periodic {
                 positions
                     .into_iter()
-                    .map(|p| ccdsim::periodic::wrap_point(p - o, &l))
+                    .map(|p| ccdsim::contact::periodic::wrap_point(p - o, &l))
                     .collect()
             } else {
                 positions

@@ -1,7 +1,7 @@
 //! Where and how fast things go over a whole run, for framing views and colouring by speed.
 
-use ccdsim::moving_wall::translated;
-use ccdsim::pivot::Pivot;
+use ccdsim::motion::pivot::Pivot;
+use ccdsim::motion::translated;
 use ccdsim::{Aabb, Collision, EventKind, Scene, Vector, Wall};
 
 use crate::states::{edit_code, BodyStates};

@@ -359,9 +359,9 @@ impl<const D: usize> Playback<D> {
 
 /// Body `i`'s motion in a world rebuilt at time `t` (see [`Playback::world_at`]): its stored
 /// state, or for a turning body its state on its turn at `t`.
-fn world_motion<const D: usize>(s: &BodyStates<D>, i: usize, t: f64) -> ccdsim::narrow::Motion<D> {
+fn world_motion<const D: usize>(s: &BodyStates<D>, i: usize, t: f64) -> ccdsim::Motion<D> {
     match s.turn(i) {
-        Some(_) => ccdsim::narrow::Motion {
+        Some(_) => ccdsim::Motion {
             pos: s.position_at(i, t),
             vel: s.velocity_at(i, t),
             time: t,
@@ -385,8 +385,8 @@ mod tests {
     use super::*;
     use crate::wire::{encode_snapshot, meta_json, STATE_HEADER};
     use ccdsim::generate::{gas, GasConfig};
-    use ccdsim::gravity::Gravity;
     use ccdsim::record::RunWriter;
+    use ccdsim::Gravity;
     use ccdsim::Simulation;
     use std::path::PathBuf;
 

@@ -1,9 +1,12 @@
 //! Every body's lazy state, every resting body's support, and every moving wall's motion, as
 //! replayed from a run file.
 
-use ccdsim::moving_wall::{start_motions, translated, WallMotion};
-use ccdsim::narrow::Motion;
-use ccdsim::pivot::{from_2d, Pivot};
+use ccdsim::motion::{start_motions, translated};
+
+use ccdsim::motion::pivot::Pivot;
+use ccdsim::motion::Path;
+use ccdsim::Motion;
+use ccdsim::WallMotion;
 use ccdsim::{Collision, EventKind, Scene, Vector, Wall};
 use std::sync::Arc;
 
@@ -76,7 +79,7 @@ impl SlotTable {
 /// version 11, or 12 when they rest on 2D segments too, see [`ccdsim::resting`]), each body
 /// also has a *support*: the static plane or segment it rests on, if any
 /// ([`BodyStates::support`]). A resting body slides along its wall with the acceleration
-/// [`ccdsim::resting::slide_acceleration`] gives instead of `g`
+/// [`ccdsim::contact::resting::slide_acceleration`] gives instead of `g`
 /// ([`BodyStates::acceleration`]). The records' flags say which bodies rest: a wall event
 /// flagged for its body puts it on that wall, a body event flagged for one of its bodies keeps
 /// that body on the wall it rested on, and any record naming a body without its flag lifts it
@@ -87,7 +90,7 @@ impl SlotTable {
 /// In such a run with 2D segments (format version 13, see [`ccdsim::pivot`]), a body too slow
 /// to fly off a segment's end rolls over it: a wall event of a body with the segment it slid
 /// on, flagged as turning (`pivots[0]`), starts a *turn* about the end point of that segment
-/// it reached ([`ccdsim::ledge::end_reached`]), from the record's position and velocity
+/// it reached ([`ccdsim::contact::ledge::end_reached`]), from the record's position and velocity
 /// ([`BodyStates::turn`]). Until the next record naming the body, its position and velocity
 /// come from that turn ([`Pivot::position`], [`Pivot::velocity`]), not from its stored state
 /// and an acceleration (a turning body has none: [`BodyStates::acceleration`] is `None` for
@@ -148,7 +151,7 @@ impl<const D: usize> BodyStates<D> {
                 Some(_) => vec![NO_SUPPORT; n],
                 None => Vec::new(),
             },
-            slides: ccdsim::resting::slides(scene).into(),
+            slides: ccdsim::scene::slides(scene).into(),
             turns: Vec::new(),
             walls: scene.walls.clone().into(),
             slots: Arc::new(SlotTable {
@@ -341,14 +344,13 @@ impl<const D: usize> BodyStates<D> {
             ));
         };
         let r = self.radius(a);
-        ccdsim::ledge::recorded_turn((p, q), r, g, (c.pos[0], c.vel[0]), c.event.time).map_err(
-            |dist| {
+        ccdsim::contact::ledge::recorded_turn((p, q), r, g, (c.pos[0], c.vel[0]), c.event.time)
+            .map_err(|dist| {
                 format!(
                     "turns body {a} about an end point of segment {b} it does not touch (its \
                      centre {dist} m from it, its radius {r} m)"
                 )
-            },
-        )
+            })
     }
 
     /// Checks the record's resting flags (see [`BodyStates::check`]).
@@ -554,13 +556,7 @@ impl<const D: usize> BodyStates<D> {
     /// ([`BodyStates::turn`]).
     #[must_use]
     pub fn position_at(&self, i: usize, t: f64) -> Vector<D> {
-        if let Some(p) = self.turn(i) {
-            return from_2d(p.position(t));
-        }
-        match self.acceleration(i) {
-            Some(a) => self.motion(i).falling_at(t, &a),
-            None => self.motion(i).at(t),
-        }
+        self.path(i).position(t)
     }
 
     /// Velocity of body `i` at time `t`, metres per second: the stored one, or in a run with
@@ -568,12 +564,16 @@ impl<const D: usize> BodyStates<D> {
     /// circle for a turning body ([`BodyStates::turn`]).
     #[must_use]
     pub fn velocity_at(&self, i: usize, t: f64) -> Vector<D> {
-        if let Some(p) = self.turn(i) {
-            return from_2d(p.velocity(t));
-        }
-        match self.acceleration(i) {
-            Some(a) => self.motion(i).falling_velocity(t, &a),
-            None => self.vel[i],
+        self.path(i).velocity(t)
+    }
+
+    /// Body `i`'s path from its last record: its turn about a point ([`BodyStates::turn`]),
+    /// or its stored motion under its [`BodyStates::acceleration`].
+    #[must_use]
+    pub fn path(&self, i: usize) -> Path<D> {
+        match self.turn(i) {
+            Some(p) => Path::Turn(*p),
+            None => Path::new(self.motion(i), self.acceleration(i)),
         }
     }
 
@@ -735,7 +735,7 @@ mod tests {
 
     #[test]
     fn the_records_flags_put_bodies_on_their_walls_and_lift_them_off() {
-        use ccdsim::gravity::Gravity;
+        use ccdsim::Gravity;
         use ccdsim::{Event, Settings};
         let incline = Wall::Plane {
             point: Vector([0.0, 0.0]),
@@ -912,7 +912,7 @@ mod tests {
     /// A ball of radius 0.2 on a shelf at y = 1 from x = 0 to 2 over a floor, moving right at
     /// 1 m/s under g = (0, −10): too slow to fly off the end (1² < r g), it rolls over it.
     fn roll_over_scene() -> Scene<2> {
-        use ccdsim::gravity::Gravity;
+        use ccdsim::Gravity;
         use ccdsim::Settings;
         Scene {
             settings: Settings {
@@ -1014,7 +1014,7 @@ mod tests {
 
     #[test]
     fn turning_flags_that_cannot_be_are_refused() {
-        use ccdsim::gravity::Gravity;
+        use ccdsim::Gravity;
         use ccdsim::{Settings, Simulation};
         let scene = roll_over_scene();
         let mut sim = Simulation::new(&scene, "all-pairs").unwrap();

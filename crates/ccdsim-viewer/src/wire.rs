@@ -321,7 +321,7 @@ pub fn meta_json<const D: usize>(p: &Playback<D>, finder: &str) -> serde_json::V
     }
     if let Some(rest_speed) = p.scene().settings.rest_speed {
         meta["rest_speed"] = serde_json::json!(rest_speed);
-        meta["slides"] = serde_json::json!(ccdsim::resting::slides(p.scene()));
+        meta["slides"] = serde_json::json!(ccdsim::scene::slides(p.scene()));
     }
     meta
 }

@@ -557,7 +557,7 @@ fn records_naming_slots_without_a_body_are_refused() {
 
 #[test]
 fn a_run_with_moving_walls_plays_the_simulations_walls_and_bodies() {
-    use ccdsim::moving_wall::translated;
+    use ccdsim::motion::translated;
     use common::walls::{record_wall_run, DT, FRAMES};
     let dir = common::temp_dir("playback-walls");
     let path = dir.join("walls.ccd");

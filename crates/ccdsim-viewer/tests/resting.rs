@@ -4,7 +4,7 @@
 
 mod common;
 
-use ccdsim::resting::slide_acceleration;
+use ccdsim::contact::resting::slide_acceleration;
 use ccdsim::{EventKind, Vector};
 use ccdsim_viewer::render::colour::{self, Rgb};
 use ccdsim_viewer::render::Camera;

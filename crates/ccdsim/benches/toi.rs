@@ -1,7 +1,9 @@
 //! Time-of-impact throughput per pair kind: pairs per second of the pure narrow-phase
 //! functions on random approaching and non-approaching motions.
 
-use ccdsim::narrow::{toi_circle_circle, toi_circle_plane, toi_circle_segment, Motion};
+use ccdsim::contact::narrow::{toi_circle_circle, toi_circle_plane, toi_circle_segment};
+
+use ccdsim::Motion;
 use ccdsim::Vector;
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
 use rand::{Rng, SeedableRng};

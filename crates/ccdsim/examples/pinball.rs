@@ -11,8 +11,8 @@
 //! ccdsim verify pinball.ccd && ccdsim view pinball.ccd
 //! ```
 
-use ccdsim::gravity::Gravity;
 use ccdsim::record::RunWriter;
+use ccdsim::Gravity;
 use ccdsim::{BodySpec, Scene, Sensor, SensorChange, Simulation, Vector, Wall};
 
 /// Table width and length, metres.

@@ -15,12 +15,11 @@
 //! A filter is written as the `f64` whose bits are `group << 32 | mask`, an id as the `f64`
 //! whose bits are the id, a body's own restitution as itself and "the scene's" as NaN: every
 //! value comes back bit for bit. A run file with records of `b` ≠ 0 is format version 9, and
-//! one with records of `b` = 5 (moving walls, see [`crate::moving_wall`]) version 10.
+//! one with records of `b` = 5 (moving walls, see [`crate::world::time_of_impact`]) version 10.
 
 use crate::collision_filter::CollisionFilter;
-use crate::event::{Event, EventKind};
+use crate::event::{Collision, Event, EventKind};
 use crate::geom::Vector;
-use crate::sim::Collision;
 
 pub(crate) const MOTION: u32 = 0;
 pub(crate) const ADD: u32 = 1;
@@ -83,7 +82,7 @@ pub enum Edit<const D: usize> {
         /// The new filter.
         filter: CollisionFilter,
     },
-    /// Moving wall `wall` (see [`crate::moving_wall`]) got a new velocity: from `time` on it
+    /// Moving wall `wall` (see [`crate::world::time_of_impact`]) got a new velocity: from `time` on it
     /// is displaced by `offset` from the scene's geometry and translates at `vel`.
     WallMotion {
         /// The moving wall's index among the moving walls.

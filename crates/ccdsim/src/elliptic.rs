@@ -1,5 +1,5 @@
 //! Carlson's symmetric elliptic integral of the first kind, `R_F`, and the Legendre forms
-//! built on it: the times of a pendulum's swing ([`crate::pivot`]) are such integrals.
+//! built on it: the times of a pendulum's swing ([`crate::motion::pivot`]) are such integrals.
 //!
 //! `R_F(x, y, z) = ½ ∫₀^∞ dt / √((t + x)(t + y)(t + z))` is computed by Carlson's duplication
 //! (B. C. Carlson, "Numerical computation of real or complex elliptic integrals", Numerical

@@ -1,5 +1,6 @@
 //! Events and their total order: (time, kind, lower id, higher id).
 
+use crate::geom::Vector;
 use std::cmp::Ordering;
 
 /// What an event is between: two bodies, or a body and a wall; or a thermostat reset.
@@ -123,6 +124,37 @@ impl PartialEq for Event {
     }
 }
 impl Eq for Event {}
+
+/// A resolved collision: the event and the involved bodies' states right after it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Collision<const D: usize> {
+    /// The event that was resolved.
+    pub event: Event,
+    /// Positions at `event.time` of body `event.a` and (body events) body `event.b`.
+    pub pos: [Vector<D>; 2],
+    /// Velocities after the collision, in the same order.
+    pub vel: [Vector<D>; 2],
+    /// For each body of the event (`event.a`, then `event.b` for body events), true when it
+    /// rests on a wall after it (see [`crate::contact::resting`]): for a wall event on that wall,
+    /// for a body event on the wall it rested on before (the collision left its velocity as
+    /// it was). Edits and resets lift every body they change off its wall.
+    pub rests: [bool; 2],
+    /// For each body of the event, as `rests`, true when it turns about a segment's end
+    /// point after it (see [`crate::motion::pivot`]): for a wall event, about an end point of that
+    /// segment; its `pos` and `vel` are then the state its turn starts from.
+    pub pivots: [bool; 2],
+}
+
+impl<const D: usize> Collision<D> {
+    /// Number of bodies involved: 2 for body events, 1 for wall events.
+    #[must_use]
+    pub fn body_count(&self) -> usize {
+        match self.event.kind {
+            EventKind::Body => 2,
+            EventKind::Wall | EventKind::Reset | EventKind::Edit => 1,
+        }
+    }
+}
 
 #[cfg(test)]
 mod tests {

@@ -24,9 +24,10 @@
 //! Each check depends only on the world's stored states and the events, never on the finder,
 //! so every finder halts at the same event with the same reason.
 
+use crate::contact::narrow::contact_beyond_range;
+use crate::contact::toi_body_wall;
 use crate::event::{Event, EventKind};
 use crate::geom::Vector;
-use crate::narrow::{contact_beyond_range, toi_body_wall};
 use crate::resolution::RESOLUTION_LIMIT;
 use crate::world::World;
 
@@ -91,7 +92,7 @@ pub enum Halt {
     /// such hops going for ever, each a few ulps of time long): a ball come to rest on a floor
     /// where bodies do not rest (no `settings.rest_speed`, or a wall that does not hold them,
     /// such as a rod, a segment in 3D, on which it would roll), or one wedged between two
-    /// walls, alternating between them (see [`crate::resting`]). The run stops.
+    /// walls, alternating between them (see [`crate::contact::resting`]). The run stops.
     #[error(
         "at t = {time:e} s body {body} touches wall {wall} with no normal speed under gravity, again and again at one instant or in hops too low to resolve (it rests there, or is wedged between two walls): such contacts are not simulated, so the run stops (settings.rest_speed lets bodies rest on single planes, and on segments in 2D)"
     )]
@@ -105,7 +106,7 @@ pub enum Halt {
     },
     /// Bodies `a` and `b` touch at `time` without normal speed while their accelerations
     /// press them together (a body come to rest on another one resting on a wall, see
-    /// [`crate::resting`]): the collision there changed nothing and would repeat at the same
+    /// [`crate::contact::resting`]): the collision there changed nothing and would repeat at the same
     /// time for ever. Bodies resting on bodies are not simulated: the run stops.
     #[error(
         "at t = {time:e} s bodies {a} and {b} touch with no normal speed while gravity presses them together (one rests on the other): bodies resting on bodies are not simulated, so the run stops (settings.tc keeps such bounces elastic)"
@@ -140,7 +141,7 @@ pub enum Halt {
     },
     /// Body `body`, sliding on segment `wall`, reaches its end at `time` too slowly to fly
     /// clear of the edge. No longer raised: such a body rolls over the edge, turning about
-    /// the end point ([`crate::pivot`]). Kept so that code matching on halts still builds.
+    /// the end point ([`crate::motion::pivot`]). Kept so that code matching on halts still builds.
     #[error(
         "at t = {time:e} s body {body} slides off the end of wall {wall} too slowly to fly clear of it (this build does not stop there: such a body rolls over the edge)"
     )]
@@ -328,7 +329,7 @@ pub fn beyond_range<const D: usize>(world: &World<D>) -> Option<Halt> {
         let m = world.motion(i);
         for (w, wall) in world.walls().iter().enumerate() {
             let t = if world.laws().is_some_and(|l| l.resting) {
-                crate::narrow::toi_body_wall_resting(world, i, w)
+                crate::world::toi_body_wall_resting(world, i, w)
             } else {
                 toi_body_wall(&m, world.radius(i), wall, world.laws())
             };

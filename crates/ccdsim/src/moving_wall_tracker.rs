@@ -1,5 +1,5 @@
 //! Each body's next contact with a moving wall, in a priority queue (see
-//! [`crate::moving_wall`]).
+//! [`crate::world::time_of_impact`]).
 //!
 //! A body's next contact is the earliest over the moving walls of
 //! [`toi_body_moving_wall`]: O(walls) when its motion changes, O(n · walls) when a wall's
@@ -8,7 +8,7 @@
 //! than about twice as many entries as bodies.
 
 use crate::event::Event;
-use crate::moving_wall::toi_body_moving_wall;
+use crate::world::toi_body_moving_wall;
 use crate::world::World;
 use std::cmp::Reverse;
 use std::collections::BinaryHeap;

@@ -1,8 +1,8 @@
 //! Collision response: impulses along the contact normal, with masses and restitution.
 
+use crate::contact::narrow::wall_normal;
+use crate::contact::periodic::min_image;
 use crate::geom::Vector;
-use crate::narrow::wall_normal;
-use crate::periodic::min_image;
 use crate::wall::Wall;
 use crate::world::World;
 
@@ -71,7 +71,7 @@ fn resolve_free_pair<const D: usize>(
     let e = world.pair_restitution(i, j, t);
     if let Some(law) = world.growth() {
         // Growing radii: reverse the speed at which the surfaces approach (see
-        // `crate::growth`): u' = (1 + e)·σ̇ − e·u along the line of centres.
+        // `crate::contact::growth`): u' = (1 + e)·σ̇ − e·u along the line of centres.
         if dist > 0.0 {
             let n = d * (1.0 / dist);
             let grow = law.speed(world.radius(i) + world.radius(j));
@@ -120,9 +120,9 @@ fn mass_shares<const D: usize>(world: &World<D>, i: usize, j: usize) -> (f64, f6
     }
 }
 
-/// [`resolve_body_body_contact`] where bodies rest on walls (see [`crate::resting`]; such
+/// [`resolve_body_body_contact`] where bodies rest on walls (see [`crate::contact::resting`]; such
 /// worlds have gravity, fixed radii and no periodic box). A resting body stays on its plane
-/// when the collision pressed it into it ([`crate::resting::pressed_impulse`]), or left its
+/// when the collision pressed it into it ([`pressed_impulse`]), or left its
 /// velocity as it was (the pair was already parting).
 #[inline(never)]
 fn resolve_resting_pair<const D: usize>(
@@ -141,7 +141,7 @@ fn resolve_resting_pair<const D: usize>(
     let mut held = (false, false);
     let n = d * (1.0 / dist);
     let vn = if dist > 0.0 { (vj - vi).dot(n) } else { 0.0 };
-    if let Some((v2, by)) = crate::resting::pressed_impulse(world, (i, vi), (j, vj), n, vn, e) {
+    if let Some((v2, by)) = pressed_impulse(world, (i, vi), (j, vj), n, vn, e) {
         ((vi2, vj2), held) = (v2, by);
     } else if vn < 0.0 {
         // The free collision, as in `resolve_body_body_contact` (no growth under gravity).
@@ -169,13 +169,13 @@ fn resolve_resting_pair<const D: usize>(
 /// Resolves a collision of body `i` with wall `w` at time `t`: the body is moved to `t` and
 /// the normal component of its velocity relative to the wall reflected (scaled by the
 /// restitution); the wall, static or moving (`w ≥ walls().len()`, see
-/// [`crate::moving_wall`]), has infinite mass and keeps its velocity. Under growing radii
+/// [`crate::world::time_of_impact`]), has infinite mass and keeps its velocity. Under growing radii
 /// the speed reflected is that of the body's surface relative to the wall, `(v − w)·n − Γ·r`
-/// (see [`crate::growth`]).
+/// (see [`crate::contact::growth`]).
 ///
 /// Under `settings.rest_speed` a body that leaves a static wall gravity presses it on at a
 /// normal speed of at most that speed comes to rest on it instead, its normal velocity
-/// removed ([`World::support`] is then `w`; see [`crate::resting`]). A body meeting the
+/// removed ([`World::support`] is then `w`; see [`crate::contact::resting`]). A body meeting the
 /// segment it slides on has reached its end: see [`resolve_slide_end`].
 ///
 /// Returns the overlap depth at contact relative to the radius (0 when not overlapping).
@@ -185,7 +185,7 @@ pub fn resolve_body_wall<const D: usize>(world: &mut World<D>, i: usize, w: usiz
     let wall = world.wall_at(w, t);
     let r = world.radius_at(i, t);
     // Growing radii: the surface moves towards the wall at the growth speed too (see
-    // `crate::growth`).
+    // `crate::contact::growth`).
     let grow = world.growth().map_or(0.0, |law| law.speed(world.radius(i)));
     let mut v2 = v;
     let mut rests = false;
@@ -198,10 +198,10 @@ pub fn resolve_body_wall<const D: usize>(world: &mut World<D>, i: usize, w: usiz
         if let (Some(rest_speed), Some(_), Some(g)) =
             (world.rest_speed(), world.slide_of(w), world.gravity())
         {
-            if crate::resting::comes_to_rest(v2.dot(n), rest_speed)
-                && crate::resting::held_at(&wall, &g, p)
+            if crate::contact::resting::comes_to_rest(v2.dot(n), rest_speed)
+                && crate::contact::resting::held_at(&wall, &g, p)
             {
-                v2 = crate::resting::along_support(&v2, &wall);
+                v2 = crate::contact::resting::along_support(&v2, &wall);
                 rests = true;
             }
         }
@@ -222,7 +222,7 @@ pub enum SlideEnd {
     GoesOn(usize),
     /// It flies clear of the edge, falling.
     FliesClear,
-    /// It turns about the end point ([`crate::pivot`]); `laws_changed` when parking it gave
+    /// It turns about the end point ([`crate::motion::pivot`]); `laws_changed` when parking it gave
     /// the world its first collision filter (re-initialise a finder then).
     Pivots {
         /// See [`World::start_pivot`](crate::World::pivot).
@@ -231,10 +231,10 @@ pub enum SlideEnd {
 }
 
 /// Resolves the arrival of body `i`, sliding on segment `w`, at the segment's end at time `t`
-/// (see [`crate::ledge`]): it rests on the segment that goes straight on from there, if
+/// (see [`crate::contact::ledge`]): it rests on the segment that goes straight on from there, if
 /// there is one, its velocity projected onto it; otherwise it flies off if it is fast enough
 /// to clear the edge, its state as it was, falling under gravity from now on; otherwise it
-/// turns about the end point ([`crate::pivot`], 2D), parked for the finders (see
+/// turns about the end point ([`crate::motion::pivot`], 2D), parked for the finders (see
 /// [`World::pivot`]).
 pub fn resolve_slide_end<const D: usize>(
     world: &mut World<D>,
@@ -247,23 +247,30 @@ pub fn resolve_slide_end<const D: usize>(
     let Wall::Segment { a, b } = world.walls()[w] else {
         unreachable!("bodies slide to the ends of segments only");
     };
-    let end = crate::ledge::end_reached(a, b, p);
-    if let Some(next) = crate::ledge::continuation(world.walls(), world.slides(), w, end) {
-        let v2 = crate::resting::along_support(&v, &world.walls()[next]);
+    let end = crate::contact::ledge::end_reached(a, b, p);
+    if let Some(next) = crate::contact::ledge::continuation(world.walls(), world.slides(), w, end) {
+        let v2 = crate::contact::resting::along_support(&v, &world.walls()[next]);
         world.set_state(i, p, v2, t);
         world.rest_on(i, next);
         return SlideEnd::GoesOn(next);
     }
     let g = world.gravity().expect("bodies slide under gravity");
-    let m = crate::narrow::Motion {
+    let m = crate::motion::Motion {
         pos: p,
         vel: v,
         time: t,
     };
-    let pivot = (D == 2 && !crate::ledge::flies_clear(&m, end, &g))
+    let pivot = (D == 2 && !crate::contact::ledge::flies_clear(&m, end, &g))
         .then(|| {
-            use crate::pivot::to_2d;
-            crate::pivot::Pivot::new(to_2d(end), world.radius(i), to_2d(g), to_2d(p), to_2d(v), t)
+            use crate::motion::pivot::to_2d;
+            crate::motion::pivot::Pivot::new(
+                to_2d(end),
+                world.radius(i),
+                to_2d(g),
+                to_2d(p),
+                to_2d(v),
+                t,
+            )
         })
         .flatten();
     match pivot {
@@ -278,7 +285,7 @@ pub fn resolve_slide_end<const D: usize>(
     }
 }
 
-/// Applies the exit of body `i` through face `face` (see [`crate::periodic`]) of the periodic
+/// Applies the exit of body `i` through face `face` (see [`crate::contact::periodic`]) of the periodic
 /// box at time `t`: the body is moved to `t` and then by one period back into the box along
 /// the face's axis. Its velocity is unchanged.
 pub fn resolve_exit<const D: usize>(world: &mut World<D>, i: usize, face: usize, t: f64) {
@@ -296,10 +303,70 @@ pub fn resolve_exit<const D: usize>(world: &mut World<D>, i: usize, face: usize,
     world.set_state(i, p, v, t);
 }
 
+/// The velocities after a collision of bodies `i` and `j` (velocities `vi`, `vj` at the
+/// contact, `n` the unit vector from `i` to `j`, `vn = (vj − vi)·n < 0`, restitution `e`)
+/// when it presses one of them, or both, into the wall it rests on: such a body is held by
+/// its wall, which takes the normal part of its push, so it moves along the wall only
+/// (its velocity changes along `P n`, `P` the projection onto the wall). The pair's
+/// impulse `J = −(1 + e) vn / (w_i (P_i n)·n + w_j (P_j n)·n)` (`w` the inverse masses, 0
+/// for a kinematic body; `P = 1` for a body not held) reverses their normal speed times
+/// `e` as a free collision does. Returns the two velocities and which body its wall
+/// held; `None` when no body is pressed into its wall (or the pair parts), for the free
+/// collision.
+#[must_use]
+#[inline(never)]
+#[allow(clippy::type_complexity)]
+pub fn pressed_impulse<const D: usize>(
+    world: &World<D>,
+    (i, vi): (usize, Vector<D>),
+    (j, vj): (usize, Vector<D>),
+    n: Vector<D>,
+    vn: f64,
+    e: f64,
+) -> Option<((Vector<D>, Vector<D>), (bool, bool))> {
+    if vn >= 0.0 {
+        return None;
+    }
+    // The direction the pair's impulse moves body `k` (pushed along `push`) and the wall
+    // that holds it, if one does.
+    let g = world.gravity().unwrap_or(Vector::ZERO);
+    let held = |k: usize, push: Vector<D>| match world.support(k).map(|w| world.walls()[w]) {
+        Some(wall) if push.dot(crate::contact::resting::support_normal(&wall, &g)) < 0.0 => (
+            crate::contact::resting::along_support(&push, &wall),
+            Some(wall),
+        ),
+        _ => (push, None),
+    };
+    let (ui, hi) = held(i, Vector::ZERO - n);
+    let (uj, hj) = held(j, n);
+    if hi.is_none() && hj.is_none() {
+        return None;
+    }
+    let inverse = |k: usize| 1.0 / world.mass(k);
+    let (wi, wj) = (inverse(i), inverse(j));
+    let denominator = wi * ui.dot(Vector::ZERO - n) + wj * uj.dot(n);
+    if denominator <= 0.0 {
+        // Pressed straight into its wall by a kinematic body: no motion takes the push.
+        return None;
+    }
+    let impulse = -(1.0 + e) * vn / denominator;
+    let along = |v: Vector<D>, u: Vector<D>, w: f64, wall: Option<Wall<D>>| {
+        let v2 = v + u * (impulse * w);
+        // On its wall to the last bit where the wall is axis-aligned.
+        wall.map_or(v2, |wall| {
+            crate::contact::resting::along_support(&v2, &wall)
+        })
+    };
+    Some((
+        (along(vi, ui, wi, hi), along(vj, uj, wj, hj)),
+        (hi.is_some(), hj.is_some()),
+    ))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::periodic::min_image;
+    use crate::contact::periodic::min_image;
     use crate::scene::{BodySpec, Scene};
 
     fn body(x: f64, vx: f64) -> BodySpec<2> {

@@ -5,9 +5,9 @@
 
 use crate::collision_filter::CollisionFilter;
 use crate::geom::{ball_volume, Vector};
-use crate::gravity::Gravity;
-use crate::growth::Growth;
-use crate::moving_wall::MovingWall;
+use crate::motion::Gravity;
+use crate::motion::Growth;
+use crate::motion::MovingWall;
 use crate::resolution::{resolution_error, resolves, ulp, RESOLUTION_LIMIT};
 use crate::sensor::{sensor_fits_box, Sensor};
 use crate::thermostat::Thermostat;
@@ -157,11 +157,11 @@ pub struct Settings {
     /// [`crate::thermostat`].
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub thermostat: Option<Thermostat>,
-    /// Growing radii (Lubachevsky–Stillinger compression), if any; see [`crate::growth`].
+    /// Growing radii (Lubachevsky–Stillinger compression), if any; see [`crate::contact::growth`].
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub growth: Option<Growth>,
     /// Uniform gravity, if any: the acceleration of every body, metres per second squared,
-    /// one component per dimension; see [`crate::gravity`].
+    /// one component per dimension; see [`crate::contact::gravity`].
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub gravity: Option<Gravity>,
     /// The TC model of inelastic collapse (Luding & McNamara), seconds: a collision of a
@@ -172,7 +172,7 @@ pub struct Settings {
     pub tc: Option<f64>,
     /// Resting contacts under gravity, metres per second: a body that leaves a collision with
     /// a static plane it is pressed on by gravity at a normal speed of at most `rest_speed`
-    /// comes to rest on it and slides along it (see [`crate::resting`]).
+    /// comes to rest on it and slides along it (see [`crate::contact::resting`]).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub rest_speed: Option<f64>,
 }
@@ -210,7 +210,7 @@ pub struct Scene<const D: usize> {
     #[serde(default)]
     pub walls: Vec<Wall<D>>,
     /// Periodic boundaries: the sides `[L₁, …, L_D]` of the box `[0, L₁) × … × [0, L_D)` whose
-    /// opposite faces are identified (see [`crate::periodic`]). A periodic scene has no walls,
+    /// opposite faces are identified (see [`crate::contact::periodic`]). A periodic scene has no walls,
     /// every body starts inside the box, and every side exceeds twice the largest contact
     /// distance (`4 · r_max`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -219,7 +219,7 @@ pub struct Scene<const D: usize> {
     /// and never touch them (see [`crate::sensor`]).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub sensors: Vec<Sensor<D>>,
-    /// Walls that translate (a paddle, a piston; see [`crate::moving_wall`]): moving wall `k`
+    /// Walls that translate (a paddle, a piston; see [`crate::world::time_of_impact`]): moving wall `k`
     /// is wall `walls.len() + k` in events. Not in periodic scenes, nor with growing radii.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub moving_walls: Vec<MovingWall<D>>,
@@ -1051,7 +1051,7 @@ fn first_overlap<const D: usize>(
                 let sum = bi.radius + bj.radius;
                 let dp = bi.pos - bj.pos;
                 let d = match period {
-                    Some(p) => crate::periodic::min_image(dp, &p).norm(),
+                    Some(p) => crate::contact::periodic::min_image(dp, &p).norm(),
                     None => dp.norm(),
                 };
                 if d < sum && best.is_none_or(|(bj0, _)| j < bj0) {
@@ -1064,6 +1064,21 @@ fn first_overlap<const D: usize>(
         }
     }
     None
+}
+
+/// The acceleration of a body sliding on each static wall of `scene`, by wall index
+/// ([`crate::contact::resting::slide_acceleration`]; `None` where no body rests), when bodies rest on walls there
+/// (`settings.rest_speed` and gravity); empty otherwise.
+#[must_use]
+pub fn slides<const D: usize>(scene: &Scene<D>) -> Vec<Option<Vector<D>>> {
+    match (scene.settings.rest_speed, scene.gravity()) {
+        (Some(_), Some(g)) => scene
+            .walls
+            .iter()
+            .map(|w| crate::contact::resting::slide_acceleration(&g, w))
+            .collect(),
+        _ => Vec::new(),
+    }
 }
 
 #[cfg(test)]

@@ -1,18 +1,18 @@
 //! The simulation loop: find the next event, resolve it, tell the finder, repeat.
 
+use crate::contact::periodic::wrap_point;
+use crate::contact::pivot_end::PivotEnd;
 use crate::event::{Event, EventKind};
 use crate::finder::{make_finder, Finder, FinderError, FinderOptions};
 use crate::geom::Vector;
 use crate::halt::{beyond_range, unresolved, Halt, ResolutionGuard};
 use crate::moving_wall_tracker::MovingWallTracker;
-use crate::observables::{observables, Observables};
-use crate::periodic::wrap_point;
-use crate::pivot_end::PivotEnd;
+use crate::observables::thermodynamic::{observables, Observables};
 use crate::resolve::{
     resolve_body_body_contact, resolve_body_wall, resolve_exit, resolve_slide_end, SlideEnd,
 };
 use crate::scene::{Scene, SceneError};
-use crate::sensor::{SensorEvent, SensorTracker};
+use crate::sensor::SensorEvent;
 use crate::thermostat::ResetClock;
 use crate::world::World;
 use image_counts::ImageCounts;
@@ -22,6 +22,7 @@ mod body_slots;
 mod collapse;
 mod image_counts;
 pub(crate) mod pivot_events;
+mod sensor_tracker;
 mod wall_chain;
 pub(crate) use body_slots::reserve_count;
 use collapse::CollapseWatch;
@@ -30,36 +31,8 @@ use wall_chain::WallChain;
 pub use wall_chain::WEDGED_AFTER;
 mod resets;
 
-/// A resolved collision: the event and the involved bodies' states right after it.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Collision<const D: usize> {
-    /// The event that was resolved.
-    pub event: Event,
-    /// Positions at `event.time` of body `event.a` and (body events) body `event.b`.
-    pub pos: [Vector<D>; 2],
-    /// Velocities after the collision, in the same order.
-    pub vel: [Vector<D>; 2],
-    /// For each body of the event (`event.a`, then `event.b` for body events), true when it
-    /// rests on a wall after it (see [`crate::resting`]): for a wall event on that wall,
-    /// for a body event on the wall it rested on before (the collision left its velocity as
-    /// it was). Edits and resets lift every body they change off its wall.
-    pub rests: [bool; 2],
-    /// For each body of the event, as `rests`, true when it turns about a segment's end
-    /// point after it (see [`crate::pivot`]): for a wall event, about an end point of that
-    /// segment; its `pos` and `vel` are then the state its turn starts from.
-    pub pivots: [bool; 2],
-}
-
-impl<const D: usize> Collision<D> {
-    /// Number of bodies involved: 2 for body events, 1 for wall events.
-    #[must_use]
-    pub fn body_count(&self) -> usize {
-        match self.event.kind {
-            EventKind::Body => 2,
-            EventKind::Wall | EventKind::Reset | EventKind::Edit => 1,
-        }
-    }
-}
+pub use crate::event::Collision;
+pub use sensor_tracker::SensorTracker;
 
 /// Counters kept while running.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -83,7 +56,7 @@ pub struct Stats {
     /// Thermostat resets applied (see [`crate::thermostat`]); counted in `events` too.
     pub resets: u64,
     /// Work the moving walls did on the bodies at their collisions, joules (see
-    /// [`crate::moving_wall`]): the kinetic energy those collisions changed, which under
+    /// [`crate::world::time_of_impact`]): the kinetic energy those collisions changed, which under
     /// growing radii includes what the growth rule adds at them; 0 without moving walls.
     pub wall_work: f64,
     /// Periodic worlds: box exits applied (a body leaving through a face and re-entering
@@ -157,7 +130,7 @@ pub struct Simulation<const D: usize> {
     /// Bodies that move freely (neither kinematic nor vacant): those the thermostat resets.
     free_bodies: usize,
     /// Each body's next contact with a moving wall, if the world has moving walls (see
-    /// [`crate::moving_wall`]).
+    /// [`crate::world::time_of_impact`]).
     moving: Option<MovingWallTracker>,
     /// The events of bodies turning about segment ends, which finders do not see.
     pivots: PivotEvents,
@@ -738,7 +711,7 @@ impl<const D: usize> Simulation<D> {
     }
 
     /// Resolves the end of body `e.a`'s turn about a segment's end point (see
-    /// [`crate::pivot_end`]): it comes off falling (it meets that point no more, see
+    /// [`crate::contact::pivot_end`]): it comes off falling (it meets that point no more, see
     /// [`World::released`]), or rests on the segment it swings back onto or lands on, its
     /// velocity along it.
     #[cold]
@@ -756,7 +729,7 @@ impl<const D: usize> Simulation<D> {
             PivotEnd::Back { .. } | PivotEnd::Land { .. } => {
                 let k = e.b as usize;
                 let wall = self.world.walls()[k];
-                let v2 = crate::resting::along_support(&v, &wall);
+                let v2 = crate::contact::resting::along_support(&v, &wall);
                 self.world.set_state(a, p, v2, t);
                 let holds = self.world.slide_of(k).is_some();
                 if holds {
@@ -799,14 +772,14 @@ impl<const D: usize> Simulation<D> {
         }
     }
 
-    /// Radius of body `i` now, metres (it grows in a growing world, see [`crate::growth`]).
+    /// Radius of body `i` now, metres (it grows in a growing world, see [`crate::contact::growth`]).
     #[must_use]
     pub fn radius(&self, i: usize) -> f64 {
         self.world.radius_at(i, self.world.now())
     }
 
     /// Multiplies every body's velocity by `factor` from the current time on (growing
-    /// packings are cooled this way, see [`crate::growth`]). O(n): the finder is rebuilt.
+    /// packings are cooled this way, see [`crate::contact::growth`]). O(n): the finder is rebuilt.
     pub fn rescale_velocities(&mut self, factor: f64) -> Result<(), SimError> {
         if !(factor.is_finite() && factor >= 0.0) {
             return Err(SimError::Input(format!(
@@ -1118,7 +1091,7 @@ impl<const D: usize> Simulation<D> {
             }
             let d = self.world.position_at(j, t) - pos;
             let d = match self.world.periodic() {
-                Some(size) => crate::periodic::min_image(d, &size),
+                Some(size) => crate::contact::periodic::min_image(d, &size),
                 None => d,
             };
             d.norm() < r + self.world.radius_at(j, t)
@@ -1185,7 +1158,7 @@ impl<const D: usize> Simulation<D> {
     }
 
     /// Gives moving wall `k` (wall `walls().len() + k` in events, see
-    /// [`crate::moving_wall`]) the velocity `vel`, m/s, from the current time on: a game's
+    /// [`crate::world::time_of_impact`]) the velocity `vel`, m/s, from the current time on: a game's
     /// paddle steered each frame, a piston started or stopped. The wall stays where it is now;
     /// bodies it then meets bounce off it exactly, with every finder. O(n · moving walls):
     /// every body's next contact with a moving wall is computed anew (the finder is not

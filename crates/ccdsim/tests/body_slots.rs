@@ -212,7 +212,7 @@ enum Laws {
 fn steered_run(finder: &str, kinematic: bool, laws: Laws) -> Vec<u8> {
     let settings = match laws {
         Laws::Gravity => Settings {
-            gravity: ccdsim::gravity::Gravity::new(&[0.0, -9.81]),
+            gravity: ccdsim::Gravity::new(&[0.0, -9.81]),
             ..Settings::default()
         },
         Laws::Thermostat => Settings {
@@ -224,7 +224,7 @@ fn steered_run(finder: &str, kinematic: bool, laws: Laws) -> Vec<u8> {
             ..Settings::default()
         },
         Laws::Growth => Settings {
-            growth: Some(ccdsim::growth::Growth { rate: 0.01 }),
+            growth: Some(ccdsim::Growth { rate: 0.01 }),
             ..Settings::default()
         },
     };

@@ -345,9 +345,9 @@ fn small_periodic_boxes() {
                 rng.random_range(0.0..size[0]),
                 rng.random_range(0.0..size[1]),
             ]);
-            let ok = bodies
-                .iter()
-                .all(|b| ccdsim::periodic::min_image(b.pos - p, &Vector(size)).norm() > 1.0);
+            let ok = bodies.iter().all(|b| {
+                ccdsim::contact::periodic::min_image(b.pos - p, &Vector(size)).norm() > 1.0
+            });
             if ok {
                 let v = Vector([rng.random_range(-2.0..2.0), rng.random_range(-2.0..2.0)]);
                 bodies.push(BodySpec::new(p, v, 0.5));

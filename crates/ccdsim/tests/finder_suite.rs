@@ -415,7 +415,7 @@ fn moving_wall_oracle<const D: usize>(world: &ccdsim::World<D>) -> Option<Event>
         .filter(|&i| world.pivot(i).is_none())
         .flat_map(|i| (0..world.moving_wall_count()).map(move |k| (i, k)))
         .filter_map(|(i, k)| {
-            ccdsim::moving_wall::toi_body_moving_wall(world, i, k)
+            ccdsim::world::toi_body_moving_wall(world, i, k)
                 .filter(|t| t.is_finite())
                 .map(|t| Event::wall(t, i, first + k))
         })
@@ -428,9 +428,9 @@ fn moving_wall_oracle<const D: usize>(world: &ccdsim::World<D>) -> Option<Event>
 /// incremental, pivot events): each search starts at the later of the two motions'
 /// reference times and ends where a turn ends by itself.
 fn pivot_oracle<const D: usize>(world: &ccdsim::World<D>) -> Option<Event> {
-    use ccdsim::pivot::{to_2d as two, wall_2d};
-    use ccdsim::pivot_contact::{first_contact_points, toi_pivot_wall, Parabola};
-    use ccdsim::pivot_end::{pivot_end, PivotEnd};
+    use ccdsim::contact::pivot_contact::{first_contact_points, toi_pivot_wall, Parabola};
+    use ccdsim::contact::pivot_end::{pivot_end, PivotEnd};
+    use ccdsim::motion::pivot::{to_2d as two, wall_2d};
     if D != 2 || world.pivoting().next().is_none() {
         return None;
     }
@@ -1583,7 +1583,7 @@ fn inelastic_collapse_to_infinite_time() {
 
 /// `scene` with radii growing at `rate` per second (see `ccdsim::growth`).
 fn growing<const D: usize>(mut scene: Scene<D>, rate: f64) -> Scene<D> {
-    scene.settings.growth = Some(ccdsim::growth::Growth { rate });
+    scene.settings.growth = Some(ccdsim::Growth { rate });
     scene
 }
 
@@ -1720,7 +1720,7 @@ fn growing_radii_with_per_body_restitution() {
 
 /// `scene` under uniform gravity `g` (see `ccdsim::gravity`).
 fn falling<const D: usize>(mut scene: Scene<D>, g: [f64; D]) -> Scene<D> {
-    scene.settings.gravity = ccdsim::gravity::Gravity::new(&g);
+    scene.settings.gravity = ccdsim::Gravity::new(&g);
     scene
 }
 
@@ -2398,7 +2398,7 @@ fn rods_under_gravity() {
 /// 0.5 m/s): in 2D its box becomes four planes (bodies rest on planes only) and an incline
 /// across its lower left corner, bodies crossing it left out.
 fn resting<const D: usize>(mut scene: Scene<D>, g: [f64; D]) -> Scene<D> {
-    scene.settings.gravity = ccdsim::gravity::Gravity::new(&g);
+    scene.settings.gravity = ccdsim::Gravity::new(&g);
     scene.settings.restitution = 0.5;
     scene.settings.rest_speed = Some(0.5);
     if D == 2 {
@@ -2611,7 +2611,7 @@ fn ledge_scene(n: usize, seed: u64, speeds: (f64, f64)) -> Scene<2> {
     Scene {
         settings: ccdsim::Settings {
             restitution: 0.5,
-            gravity: ccdsim::gravity::Gravity::new(&[0.0, -9.81]),
+            gravity: ccdsim::Gravity::new(&[0.0, -9.81]),
             rest_speed: Some(0.8),
             ..ccdsim::Settings::default()
         },

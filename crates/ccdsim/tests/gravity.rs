@@ -2,8 +2,8 @@
 //! format version 4, and the halt of a ball come to rest.
 
 use ccdsim::generate::{box_walls, pegs, PegsConfig};
-use ccdsim::gravity::Gravity;
 use ccdsim::record::{RunReader, RunRecord, RunWriter, VERSION_GRAVITY};
+use ccdsim::Gravity;
 use ccdsim::{AnyScene, BodySpec, Halt, Scene, SceneError, Simulation, Vector, Wall};
 
 /// A 3D ball dropped from height `h` (centre `h + r` above the floor) in a box.
@@ -150,7 +150,7 @@ fn scenes_with_gravity_are_validated() {
         "moving_walls": [{"a": [0, 3, 1], "b": [2, 3, 1], "velocity": [0, 0, 1]}]}"#;
     assert!(AnyScene::from_json(text).is_ok());
     // With growing radii too: rods meet growing balls as well.
-    s.settings.growth = Some(ccdsim::growth::Growth { rate: 0.1 });
+    s.settings.growth = Some(ccdsim::Growth { rate: 0.1 });
     assert_eq!(s.validate(), Ok(()));
 }
 
@@ -193,7 +193,7 @@ fn run_files_of_growing_scenes_under_gravity_are_version_4_read_back_and_verify(
         ..PegsConfig::default()
     })
     .unwrap();
-    scene.settings.growth = Some(ccdsim::growth::Growth { rate: 0.05 });
+    scene.settings.growth = Some(ccdsim::Growth { rate: 0.05 });
     let mut sim = Simulation::new(&scene, "bvh").unwrap();
     let mut w = RunWriter::new(Vec::new(), "bvh".into(), &scene).unwrap();
     let mut events = Vec::new();

@@ -3,10 +3,10 @@
 //! combined with moving walls, per-body restitution and kinematic bodies.
 
 use ccdsim::generate::{gas, GasConfig};
-use ccdsim::growth::Growth;
 use ccdsim::packing::{compress, dilute_start, CompressConfig, CompressStop, SizeMix};
 use ccdsim::record::RunWriter;
 use ccdsim::verify::VerifyReport;
+use ccdsim::Growth;
 use ccdsim::{BodySpec, EventKind, MovingWall, Scene, SceneError, Simulation, Vector, Wall};
 use replay::{records, replay};
 
@@ -479,13 +479,13 @@ fn verify_rejects_a_moving_wall_bounce_that_ignores_the_growth() {
     // keeps the kinetic energy in the wall's frame but leaves the surfaces approaching.
     let c = events[k];
     let i = c.event.a as usize;
-    let m = ccdsim::moving_wall::start_motions(&scene.moving_walls, scene.start_time)
+    let m = ccdsim::motion::start_motions(&scene.moving_walls, scene.start_time)
         [(c.event.b - first_moving) as usize];
-    let wall = ccdsim::moving_wall::translated(
+    let wall = ccdsim::motion::translated(
         &scene.moving_walls[(c.event.b - first_moving) as usize].wall,
         m.offset_at(c.event.time),
     );
-    let n = ccdsim::narrow::wall_normal(&wall, c.pos[0]).unwrap();
+    let n = ccdsim::contact::narrow::wall_normal(&wall, c.pos[0]).unwrap();
     let before = events[..k]
         .iter()
         .rev()

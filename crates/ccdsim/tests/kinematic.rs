@@ -2,9 +2,9 @@
 //! program gives them; they push dynamic bodies and meet no wall and no other kinematic body.
 
 use ccdsim::generate::box_walls;
-use ccdsim::gravity::Gravity;
 use ccdsim::record::{RunWriter, VERSION_KINEMATIC};
 use ccdsim::verify::Verifier;
+use ccdsim::Gravity;
 use ccdsim::{AnyScene, BodySpec, Scene, Simulation, Vector};
 
 fn paddle(pos: [f64; 2], vel: [f64; 2]) -> BodySpec<2> {

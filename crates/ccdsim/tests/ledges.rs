@@ -6,8 +6,8 @@
 
 mod replay;
 
-use ccdsim::gravity::Gravity;
 use ccdsim::record::RunWriter;
+use ccdsim::Gravity;
 use ccdsim::{BodySpec, Collision, EventKind, Halt, Scene, Settings, Simulation, Vector, Wall};
 
 const FINDERS: [&str; 4] = ["all-pairs", "bvh", "sedgewick", "cells"];

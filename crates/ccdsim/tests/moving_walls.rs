@@ -129,7 +129,7 @@ fn steered_run(finder: &str) -> Vec<u8> {
             },
         ],
         settings: Settings {
-            gravity: ccdsim::gravity::Gravity::new(&[0.0, -9.81]),
+            gravity: ccdsim::Gravity::new(&[0.0, -9.81]),
             ..Settings::default()
         },
         ..Scene::default()
@@ -208,8 +208,7 @@ fn the_energy_a_piston_gives_is_the_work_verify_reports() {
         ..Scene::default()
     };
     for gravity in [false, true] {
-        scene.settings.gravity =
-            gravity.then(|| ccdsim::gravity::Gravity::new(&[0.5, -3.0]).unwrap());
+        scene.settings.gravity = gravity.then(|| ccdsim::Gravity::new(&[0.5, -3.0]).unwrap());
         let mut sim = Simulation::new(&scene, "cells").unwrap();
         let mut run = RunWriter::new(Vec::new(), "piston".into(), &scene).unwrap();
         sim.run_until_with(6.0, |c| run.write_event(c).unwrap());
@@ -383,8 +382,8 @@ fn a_ball_squeezed_by_a_piston_stops_the_run_with_a_reason_instead_of_hanging() 
 
 mod properties {
     use super::*;
-    use ccdsim::moving_wall::toi_body_moving_wall;
     use ccdsim::wall::wall_clearance;
+    use ccdsim::world::toi_body_moving_wall;
     use proptest::prelude::*;
 
     fn vec2(range: f64) -> impl Strategy<Value = Vector<2>> {
@@ -420,7 +419,7 @@ mod properties {
                 bodies: vec![BodySpec::new(pos, vel, r)],
                 moving_walls: vec![MovingWall { wall, velocity: w0 }],
                 settings: Settings {
-                    gravity: falling.then(|| ccdsim::gravity::Gravity::new(&g.0).unwrap()),
+                    gravity: falling.then(|| ccdsim::Gravity::new(&g.0).unwrap()),
                     ..Settings::default()
                 },
                 ..Scene::default()

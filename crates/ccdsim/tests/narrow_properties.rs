@@ -1,9 +1,10 @@
 //! Properties of the narrow phase: the gap is ~0 at the returned time, no earlier contact
 //! exists, receding pairs never collide.
 
+use ccdsim::contact::narrow::{toi_circle_circle, toi_circle_segment};
 use ccdsim::geom::Vector;
-use ccdsim::narrow::{toi_circle_circle, toi_circle_segment, Motion};
 use ccdsim::scene::{wall_clearance, Wall};
+use ccdsim::Motion;
 use proptest::prelude::*;
 
 fn vec2() -> impl Strategy<Value = Vector<2>> {

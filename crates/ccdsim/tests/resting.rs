@@ -5,8 +5,8 @@
 mod replay;
 
 use ccdsim::discrete::DiscreteStepper;
-use ccdsim::gravity::Gravity;
 use ccdsim::record::RunWriter;
+use ccdsim::Gravity;
 use ccdsim::{BodySpec, Halt, Scene, SceneError, Settings, Simulation, Vector, Wall};
 
 const FINDERS: [&str; 4] = ["all-pairs", "bvh", "sedgewick", "cells"];

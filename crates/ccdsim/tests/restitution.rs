@@ -1,7 +1,7 @@
 //! Per-body restitution and the TC model of inelastic collapse (`settings.tc`).
 
 use ccdsim::generate::box_walls;
-use ccdsim::gravity::Gravity;
+use ccdsim::Gravity;
 use ccdsim::{AnyScene, BodySpec, Scene, Simulation, Vector};
 
 fn ball(pos: [f64; 2], vel: [f64; 2], restitution: Option<f64>) -> BodySpec<2> {

@@ -2,9 +2,9 @@
 //! runs with every finder, run files that verify, and how bounces that die away on a rod end.
 
 use ccdsim::generate::box_walls;
-use ccdsim::gravity::Gravity;
 use ccdsim::record::{RunReader, RunWriter};
 use ccdsim::verify::Verifier;
+use ccdsim::Gravity;
 use ccdsim::{BodySpec, EventKind, Halt, MovingWall, Scene, Simulation, Vector, Wall};
 
 const FINDERS: [&str; 4] = ["all-pairs", "bvh", "sedgewick", "cells"];
@@ -102,7 +102,7 @@ fn a_growing_ball_dropped_onto_a_rod_meets_it_when_its_grown_radius_does() {
     // ½·g·t² + 0.5·Γ·t − 2 = 0; every finder alike, and the run file verifies.
     let rate = 0.4;
     let mut scene = rod_scene([4.5, 4.0, 5.5], [0.0, 0.0, 0.0], 1.0);
-    scene.settings.growth = Some(ccdsim::growth::Growth { rate });
+    scene.settings.growth = Some(ccdsim::Growth { rate });
     let (b, c) = (0.5 * rate, -2.0);
     let want = (-b + (b * b - 4.0 * (0.5 * G) * c).sqrt()) / G;
     let mut times = Vec::new();

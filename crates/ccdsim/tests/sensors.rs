@@ -1,12 +1,12 @@
 //! Sensors (`sensors[]`): regions that report bodies entering and leaving them at the roots
 //! of the contact equations, change no motion, and give the same events with every finder.
 
+use ccdsim::contact::periodic::min_image;
 use ccdsim::generate::{box_walls, pegs, PegsConfig};
 use ccdsim::generate::{gas, GasConfig};
-use ccdsim::gravity::Gravity;
-use ccdsim::growth::Growth;
-use ccdsim::periodic::min_image;
 use ccdsim::record::{RunWriter, VERSION_SENSORS};
+use ccdsim::Gravity;
+use ccdsim::Growth;
 use ccdsim::{AnyScene, BodySpec, Scene, Sensor, SensorChange, SensorEvent, Simulation, Vector};
 
 const FINDERS: [&str; 4] = ["all-pairs", "bvh", "sedgewick", "cells"];

@@ -5,9 +5,9 @@
 //! a wall.
 
 use ccdsim::generate::{box_walls, gas, GasConfig};
-use ccdsim::gravity::Gravity;
 use ccdsim::record::{RunReader, RunWriter};
 use ccdsim::verify::VerifyReport;
+use ccdsim::Gravity;
 use ccdsim::{BodySpec, Collision, EventKind, Scene, Simulation, Vector, Wall};
 use replay::replay;
 use std::io::Cursor;
@@ -214,7 +214,7 @@ fn deletable<const D: usize>(
             }
             _ => {
                 let wall = &scene.walls[c.event.b as usize];
-                let n = ccdsim::narrow::wall_normal(wall, c.pos[0]).unwrap();
+                let n = ccdsim::contact::narrow::wall_normal(wall, c.pos[0]).unwrap();
                 (c.vel[0].dot(n).abs(), scene.bodies[a].radius)
             }
         };

@@ -4,8 +4,8 @@ use anyhow::{Context, Result};
 use ccdsim::generate::{
     gas, pegs, rack, thesis, GasConfig, Lattice, PegsConfig, RackConfig, ThesisConfig,
 };
-use ccdsim::gravity::Gravity;
 use ccdsim::AnyScene;
+use ccdsim::Gravity;
 use std::path::PathBuf;
 use std::process::ExitCode;
 

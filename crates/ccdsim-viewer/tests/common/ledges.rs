@@ -6,9 +6,9 @@
 //! (`ccdsim::record::VERSION_PIVOTS`), whether or not a body turns in them.
 
 use super::resting::{checkpoint, recorded_motion, Checkpoint};
-use ccdsim::gravity::Gravity;
-use ccdsim::narrow::Motion;
 use ccdsim::record::{RunReader, RunWriter};
+use ccdsim::Gravity;
+use ccdsim::Motion;
 use ccdsim::{BodySpec, Collision, EventKind, Scene, Settings, Simulation, Vector, Wall};
 use std::path::Path;
 

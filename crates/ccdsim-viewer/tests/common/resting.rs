@@ -5,9 +5,9 @@
 
 #![allow(dead_code)]
 
-use ccdsim::gravity::Gravity;
-use ccdsim::narrow::Motion;
 use ccdsim::record::RunWriter;
+use ccdsim::Gravity;
+use ccdsim::Motion;
 use ccdsim::{BodySpec, Scene, Settings, Simulation, Vector, Wall};
 use std::path::Path;
 

@@ -5,9 +5,9 @@
 #![allow(dead_code)]
 
 use ccdsim::generate::box_walls;
-use ccdsim::gravity::Gravity;
-use ccdsim::narrow::Motion;
 use ccdsim::record::RunWriter;
+use ccdsim::Gravity;
+use ccdsim::Motion;
 use ccdsim::{BodySpec, CollisionFilter, Scene, Simulation, Vector};
 use std::path::Path;
 

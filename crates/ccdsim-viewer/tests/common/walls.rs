@@ -5,9 +5,9 @@
 #![allow(dead_code)]
 
 use ccdsim::generate::box_walls;
-use ccdsim::moving_wall::WallMotion;
-use ccdsim::narrow::Motion;
 use ccdsim::record::RunWriter;
+use ccdsim::Motion;
+use ccdsim::WallMotion;
 use ccdsim::{BodySpec, MovingWall, Scene, Simulation, Vector, Wall};
 use std::path::Path;
 

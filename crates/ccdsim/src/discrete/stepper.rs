@@ -4,8 +4,9 @@
 
 use super::overlap_tree::OverlapTree;
 use super::wall_contact::{home_side, wall_push_out};
+use crate::contact::narrow::{toi_circle_circle, toi_circle_wall};
 use crate::geom::{Aabb, Vector};
-use crate::narrow::{toi_circle_circle, toi_circle_wall, Motion};
+use crate::motion::Motion;
 use crate::resolve::{resolve_body_body, resolve_body_wall};
 use crate::scene::{Scene, SceneError};
 use crate::world::World;

@@ -1,10 +1,10 @@
 //! The naive all-pairs finder: the reference every other finder is tested against.
 
 use super::{finite_event, Finder, FinderError};
+use crate::contact::periodic::{toi_bodies_periodic, toi_box_exit};
 use crate::event::Event;
-use crate::narrow::{toi_bodies_in, toi_body_wall_in};
-use crate::periodic::{toi_bodies_periodic, toi_box_exit};
 use crate::world::World;
+use crate::world::{toi_bodies_in, toi_body_wall_in};
 
 /// Checks every body pair and every (body, wall) pair on every query: O(n²) per event,
 /// O(1) extra memory, obviously correct.
@@ -22,12 +22,12 @@ impl AllPairs {
 /// The minimum event over all pairs of `world`: the definition of a correct answer (`None`
 /// when there is none, or when it lies at an infinite time, see [`finite_event`]).
 ///
-/// In a periodic world (see [`crate::periodic`]) a pair's time is
-/// [`crate::periodic::toi_circle_circle_periodic`], and every body's box exit is an event too (a wall event
+/// In a periodic world (see [`crate::contact::periodic`]) a pair's time is
+/// [`crate::contact::periodic::toi_circle_circle_periodic`], and every body's box exit is an event too (a wall event
 /// naming face `f` as wall `walls.len() + f`). Pairs whose collision filters keep them apart
-/// ([`World::collides`]) have no event. In a growing world (see [`crate::growth`]) the
-/// functions are the growing forms ([`toi_pair`](crate::narrow::toi_pair),
-/// [`toi_bodies_periodic`], [`toi_body_wall`](crate::narrow::toi_body_wall)).
+/// ([`World::collides`]) have no event. In a growing world (see [`crate::contact::growth`]) the
+/// functions are the growing forms ([`toi_pair`](crate::contact::toi_pair),
+/// [`toi_bodies_periodic`], [`toi_body_wall`](crate::contact::toi_body_wall)).
 #[must_use]
 pub fn all_pairs_next_event<const D: usize>(world: &World<D>) -> Option<Event> {
     let n = world.len();

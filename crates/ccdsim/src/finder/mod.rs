@@ -6,16 +6,16 @@
 //! through [`Finder::update`] which bodies' stored states changed, and asked through
 //! [`Finder::next_event`] for the next event. That event must be exactly — bit for bit — the
 //! minimum under [`Event`]'s total order of
-//! [`toi_circle_circle`](crate::narrow::toi_circle_circle) over all body pairs and
-//! [`toi_circle_wall`](crate::narrow::toi_circle_wall) over all (body, wall) pairs, evaluated
+//! [`toi_circle_circle`](crate::contact::narrow::toi_circle_circle) over all body pairs and
+//! [`toi_circle_wall`](crate::contact::narrow::toi_circle_wall) over all (body, wall) pairs, evaluated
 //! on the world's stored states: what [`AllPairs`] computes. Any internal bookkeeping (cell
 //! crossings, rebuilt trees) stays inside the finder. When that minimum lies at an infinite
 //! time there is no next event ([`finite_event`]): a contact at an infinite time never
 //! happens.
 //!
 //! In a periodic world ([`World::periodic`]) the pair function is
-//! [`toi_circle_circle_periodic`](crate::periodic::toi_circle_circle_periodic) and each body's
-//! exit from the box ([`toi_box_exit`](crate::periodic::toi_box_exit)) is an event too, a wall
+//! [`toi_circle_circle_periodic`](crate::contact::periodic::toi_circle_circle_periodic) and each body's
+//! exit from the box ([`toi_box_exit`](crate::contact::periodic::toi_box_exit)) is an event too, a wall
 //! event naming face `f` as wall `walls.len() + f`; the simulation applies exits silently. Every
 //! finder of this crate serves periodic worlds; a finder that cannot would refuse them in
 //! `init` with [`FinderError::Unsupported`].

@@ -18,16 +18,16 @@
 //! returned, and the heap orders entries by [`Event`]'s total order first, so the valid top is
 //! the oracle's minimum, ties included.
 //!
-//! In a periodic world ([`crate::periodic`]) pairs are predicted by the oracle's periodic
+//! In a periodic world ([`crate::contact::periodic`]) pairs are predicted by the oracle's periodic
 //! function [`toi_circle_circle_periodic`], and each body's exit from the box is predicted
 //! with its walls, named like the oracle names it (wall `walls.len() + face`): it depends on
 //! the body's state alone, like a wall event.
 
 use super::{finite_event, Finder, FinderError, FinderMemory};
+use crate::contact::periodic::{toi_bodies_periodic, toi_box_exit};
 use crate::event::{Event, EventKind};
-use crate::narrow::{toi_bodies_in, toi_body_wall_in};
-use crate::periodic::{toi_bodies_periodic, toi_box_exit};
 use crate::world::World;
+use crate::world::{toi_bodies_in, toi_body_wall_in};
 use std::cmp::Reverse;
 use std::collections::BinaryHeap;
 

@@ -344,7 +344,7 @@ fn random_positions<const D: usize>(
                     for &j in list {
                         let sum = (r + radii[j]) * (1.0 + 1e-9);
                         let dp = if cfg.periodic {
-                            crate::periodic::min_image(pos[j] - p, &size)
+                            crate::contact::periodic::min_image(pos[j] - p, &size)
                         } else {
                             pos[j] - p
                         };

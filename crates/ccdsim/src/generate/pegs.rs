@@ -4,7 +4,7 @@
 
 use super::{box_walls, GenerateError};
 use crate::geom::Vector;
-use crate::gravity::Gravity;
+use crate::motion::Gravity;
 use crate::scene::{BodySpec, Scene};
 use crate::sensor::Sensor;
 use crate::wall::Wall;

@@ -1,7 +1,7 @@
 //! The radial distribution function g(r).
 
+use crate::contact::periodic::min_image;
 use crate::geom::Vector;
-use crate::periodic::min_image;
 use crate::trajectory::{Cell, Frame};
 
 /// The radial distribution function accumulated over frames.

@@ -1,8 +1,8 @@
 //! The pressure tensor of a hard-body fluid from its collisions.
 
+use crate::contact::periodic::min_image;
 use crate::event::EventKind;
 use crate::geom::Vector;
-use crate::periodic::min_image;
 use crate::sim::{Collision, Simulation};
 
 /// Accumulates the pressure tensor over a stretch of a run, exactly:

@@ -1,8 +1,8 @@
 //! The contact network of a packing: which bodies touch (within a tolerance), the rattlers,
 //! and the mean contact number of the rest.
 
+use crate::contact::periodic::{min_image, wrap_point};
 use crate::geom::Vector;
-use crate::periodic::{min_image, wrap_point};
 use crate::wall::{wall_clearance, Wall};
 use std::collections::HashMap;
 

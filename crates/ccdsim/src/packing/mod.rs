@@ -1,6 +1,6 @@
 //! Jammed packings by compression: the Lubachevsky–Stillinger algorithm.
 //!
-//! [`compress`] runs a scene with growing radii ([`crate::growth`]: every radius grows at
+//! [`compress`] runs a scene with growing radii ([`crate::contact::growth`]: every radius grows at
 //! `Γ` times its start value per second) in blocks of events. After each block it measures
 //! the reduced pressure `Z = P V / (N kT)` over the block from the collision virial, and
 //! brings the kinetic temperature back to the target (growth collisions heat the packing).
@@ -30,8 +30,8 @@ pub use start::{dilute_start, SizeMix};
 
 use crate::finder::{make_finder, FinderOptions};
 use crate::geom::Vector;
-use crate::growth::Growth;
 use crate::halt::Halt;
+use crate::motion::Growth;
 use crate::observables::pair_correlation::ball_volume;
 use crate::observables::{temperature, world_volume};
 use crate::scene::{BodySpec, Scene};

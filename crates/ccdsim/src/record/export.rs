@@ -35,14 +35,14 @@ struct Header<'a, const D: usize> {
     thermostat: Option<crate::thermostat::Thermostat>,
     /// Uniform gravity, for scenes with gravity only.
     #[serde(skip_serializing_if = "Option::is_none")]
-    gravity: Option<crate::gravity::Gravity>,
+    gravity: Option<crate::motion::Gravity>,
     /// Sensor regions, for scenes with sensors only.
     #[serde(skip_serializing_if = "<[_]>::is_empty")]
     sensors: &'a [crate::sensor::Sensor<D>],
     /// Moving walls as the scene gives them (where they start, their velocity), for scenes
     /// with moving walls only; wall events name moving wall `k` as `walls.len() + k`.
     #[serde(skip_serializing_if = "<[_]>::is_empty")]
-    moving_walls: &'a [crate::moving_wall::MovingWall<D>],
+    moving_walls: &'a [crate::motion::MovingWall<D>],
 }
 
 #[derive(Serialize)]
@@ -92,11 +92,11 @@ struct EventOut<'a, const D: usize> {
     #[serde(skip_serializing_if = "Option::is_none")]
     restitution: Option<f64>,
     /// Runs where bodies rest on walls: for each body of the line, whether it rests on a
-    /// wall after the event (see [`crate::resting`]); absent when none does.
+    /// wall after the event (see [`crate::contact::resting`]); absent when none does.
     #[serde(skip_serializing_if = "Option::is_none")]
     rests: Option<&'a [bool]>,
     /// Runs where bodies roll over segment ends: for each body of the line, whether it turns
-    /// about a segment's end point after the event (see [`crate::pivot`]), from the line's
+    /// about a segment's end point after the event (see [`crate::motion::pivot`]), from the line's
     /// position and velocity; absent when none does.
     #[serde(skip_serializing_if = "Option::is_none")]
     pivots: Option<&'a [bool]>,

@@ -17,12 +17,12 @@
 //!
 //! Version 3 is version 2 for scenes with growing radii (`settings.growth` in the header):
 //! the records are the same, but their contacts and velocities follow the growth (see
-//! [`crate::growth`]), which a reader of version 2 would not know to check.
+//! [`crate::contact::growth`]), which a reader of version 2 would not know to check.
 //!
 //! Version 4 is version 2 for scenes with gravity (`settings.gravity` in the header): bodies
-//! move on parabolas between events (see [`crate::gravity`]), so positions, contacts and the
+//! move on parabolas between events (see [`crate::contact::gravity`]), so positions, contacts and the
 //! energy a reader checks differ from straight motion. A scene with gravity and growing radii
-//! (see [`crate::falling_growth`]) is version 4 too, the later of the two: its header carries
+//! (see [`crate::contact::falling_growth`]) is version 4 too, the later of the two: its header carries
 //! both settings, and a build that predates the combination refuses the header's scene.
 //!
 //! Version 5 is version 4 for scenes with kinematic bodies (`bodies[].kinematic`): bodies of
@@ -48,11 +48,11 @@
 //! scene's. Every steered run file is written in it; version 8 files still read.
 //!
 //! Version 10 is version 9 for scenes with moving walls (`moving_walls` in the header, see
-//! [`crate::moving_wall`]), steered or not: wall events may name a moving wall (`b` from
+//! [`crate::world::time_of_impact`]), steered or not: wall events may name a moving wall (`b` from
 //! the number of static walls on), and edit records of code 5 give one a new velocity.
 //!
 //! Version 11 is version 10 for scenes where bodies rest on walls (`settings.rest_speed`,
-//! see [`crate::resting`]): a wall event after which the body rests on the wall, sliding
+//! see [`crate::contact::resting`]): a wall event after which the body rests on the wall, sliding
 //! along it, sets bit 6 of its tag (`0x40`); a body event after which body `a` (`b`) still
 //! rests on the wall it rested on before sets bit 6 (bit 7, `0x80`).
 //!
@@ -98,11 +98,11 @@ pub const VERSION_MOVING_WALLS: u32 = 10;
 pub const VERSION_RESTING: u32 = 11;
 /// Format version of run files of scenes where bodies rest on segments too: a wall record
 /// of a body with the segment it slides on is its arrival at the segment's end (see
-/// [`crate::ledge`]), flagged as resting when it goes on along the next segment, which
+/// [`crate::contact::ledge`]), flagged as resting when it goes on along the next segment, which
 /// the record then names.
 pub const VERSION_SEGMENT_RESTING: u32 = 12;
 /// Format version of run files of scenes where bodies rest on segments, in which they may
-/// also turn about a segment's end point (see [`crate::pivot`]): version 12 whose records
+/// also turn about a segment's end point (see [`crate::motion::pivot`]): version 12 whose records
 /// may set tag bit 5 (`0x20`, body `a`) or bit 4 (`0x10`, body `b`) for a body that turns
 /// about an end point after the event, with the position and velocity its turn starts from.
 /// On a wall record naming a segment the body slid on, the bit says it rolls over that
@@ -116,7 +116,7 @@ pub const VERSION_NEWEST: u32 = VERSION_PIVOTS;
 /// The format version a run of `scene` is written in.
 #[must_use]
 pub fn version_for<const D: usize>(scene: &crate::scene::Scene<D>) -> u32 {
-    if crate::resting::slides(scene)
+    if crate::scene::slides(scene)
         .iter()
         .zip(&scene.walls)
         .any(|(slide, wall)| slide.is_some() && matches!(wall, crate::wall::Wall::Segment { .. }))

@@ -1,18 +1,18 @@
 //! The events of bodies turning about segment ends, which the finders do not see.
 //!
 //! A pivoting body ([`World::pivot`]) is parked for the finders: at rest, colliding with
-//! nothing. Its own events are found here, by the functions of [`crate::pivot_contact`] and
-//! [`crate::pivot_end`], against every body and every wall: the first contact with each
+//! nothing. Its own events are found here, by the functions of [`crate::contact::pivot_contact`] and
+//! [`crate::contact::pivot_end`], against every body and every wall: the first contact with each
 //! other body is kept per pair and recomputed when either changes (O(pivots) a change), the
 //! first wall contact and the end of the turn when the pivot or a moving wall changes. The
 //! simulation takes the earlier of the finder's event and the first of these, under the
 //! events' total order, so the run is the same whatever the finder.
 
+use crate::contact::pivot_contact::{first_contact_points, toi_pivot_wall, Parabola};
+use crate::contact::pivot_end::{pivot_end, PivotEnd};
 use crate::event::Event;
 use crate::geom::Vector;
-use crate::pivot::Pivot;
-use crate::pivot_contact::{first_contact_points, toi_pivot_wall, Parabola};
-use crate::pivot_end::{pivot_end, PivotEnd};
+use crate::motion::pivot::Pivot;
 use crate::wall::Wall;
 use crate::world::{to_2d, wall_2d, World};
 

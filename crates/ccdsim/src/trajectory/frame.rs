@@ -122,7 +122,7 @@ impl<const D: usize> Frame<D> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::gravity::Gravity;
+    use crate::motion::Gravity;
     use crate::scene::{BodySpec, Scene};
 
     #[test]
@@ -138,7 +138,7 @@ mod tests {
         scene.settings.gravity = Gravity::new(&[0.0, -4.0]);
         // With growing radii too: positions on the parabolas, radii grown (0.5·1.3 at 1.5 s).
         for (growth, radius) in [(None, 0.5), (Some(0.2), 0.65)] {
-            scene.settings.growth = growth.map(|rate| crate::growth::Growth { rate });
+            scene.settings.growth = growth.map(|rate| crate::motion::Growth { rate });
             let mut sim = Simulation::new(&scene, "all-pairs").unwrap();
             assert!(sim.advance(1.5).is_empty());
             let f = Frame::of(&sim);

@@ -2,7 +2,7 @@
 //! verifier's own geometry, independent of the simulator's narrow phase.
 
 use crate::geom::Vector;
-use crate::narrow::Motion;
+use crate::motion::Motion;
 use crate::wall::{wall_clearance, Wall};
 
 /// `x · 2^e` for any `e` (in steps that neither overflow nor underflow on the way).

@@ -27,7 +27,7 @@
 //! are exactly those above.
 
 use crate::geom::Vector;
-use crate::narrow::Motion;
+use crate::motion::Motion;
 use crate::wall::{wall_clearance, Wall};
 
 /// Smallest clearance (see [`wall_clearance`]) between a body falling under `g` from its

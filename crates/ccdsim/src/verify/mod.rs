@@ -14,7 +14,7 @@
 //! so a replay costs about as much per event as the simulation; [`Verifier::all_pairs`]
 //! checks every pair instead, for tests and small runs.
 //!
-//! With growing radii ([`crate::growth`]) contact distances are taken at each time, the miss
+//! With growing radii ([`crate::contact::growth`]) contact distances are taken at each time, the miss
 //! check minimises the distance less the growth (a convex function of time) in closed form
 //! (an end of the stretch, or where its derivative vanishes), and kinetic energy, which growth collisions add, is not checked: instead the
 //! impulse must lie along the line of centres (the wall's normal) and give the normal
@@ -22,7 +22,7 @@
 //! relative to the wall), with `e` the collision's restitution as the simulation chose it:
 //! the pair's mean of the bodies' own, or 1 under the TC model (`verify/restitution.rs`).
 //!
-//! Under uniform gravity ([`crate::gravity`]) bodies follow parabolas between events: the
+//! Under uniform gravity ([`crate::contact::gravity`]) bodies follow parabolas between events: the
 //! expected positions are the falling ones and velocities just before an event are the stored
 //! ones plus `g` times the time since. Two bodies share the acceleration, so a pair's relative
 //! motion stays linear and the pair checks run on positions and velocities taken at the start
@@ -31,7 +31,7 @@
 //! kinetic energy of the pair (of the body, at a wall) at the contact time, and the report
 //! carries the potential energy as well.
 //!
-//! Under gravity with growing radii ([`crate::falling_growth`]) the growth rule is checked
+//! Under gravity with growing radii ([`crate::contact::falling_growth`]) the growth rule is checked
 //! with the velocities at the contact time, two falling bodies' miss check is growth's (their
 //! relative motion is linear), and the closest approach along a parabola (to a wall, or of a
 //! falling body to a kinematic one) is taken less the growth (see the `falling` module).
@@ -44,13 +44,14 @@ mod restitution;
 mod slots;
 
 use crate::collision_filter::CollisionFilter;
+use crate::contact::narrow::wall_normal;
+use crate::contact::periodic::min_image;
+use crate::contact::pivot_contact::{first_contact_points, toi_pivot_wall, Parabola};
 use crate::event::EventKind;
 use crate::geom::Vector;
-use crate::growth::GrowthLaw;
-use crate::narrow::{wall_normal, Motion};
-use crate::periodic::min_image;
-use crate::pivot::Pivot;
-use crate::pivot_contact::{first_contact_points, toi_pivot_wall, Parabola};
+use crate::motion::pivot::Pivot;
+use crate::motion::GrowthLaw;
+use crate::motion::{Motion, Path};
 use crate::scene::Scene;
 use crate::sim::Collision;
 use crate::thermostat::ResetClock;
@@ -111,7 +112,7 @@ pub struct VerifyReport {
     /// energy drift, less this, is what its collisions changed.
     pub edit_energy: f64,
     /// Work the moving walls did on the bodies at their collisions, joules (see
-    /// [`crate::moving_wall`]; under growing radii, with what the growth added at them): the
+    /// [`crate::world::time_of_impact`]; under growing radii, with what the growth added at them): the
     /// run's energy drift, less this and the edits' energy, is what its other collisions
     /// changed.
     pub wall_work: f64,
@@ -154,7 +155,7 @@ pub struct Verifier<const D: usize> {
     table: Vec<(Vector<D>, Vector<D>)>,
     /// The moving walls' geometry at the start, and how each moves now.
     moving: Vec<Wall<D>>,
-    wall_motion: Vec<crate::moving_wall::WallMotion<D>>,
+    wall_motion: Vec<crate::motion::WallMotion<D>>,
     period: Option<Vector<D>>,
     /// Each collision's coefficient of restitution, as the simulation chooses it.
     restitutions: Restitutions,
@@ -179,7 +180,7 @@ pub struct Verifier<const D: usize> {
     vacant: Vec<bool>,
     /// The first record of an added body, waiting for its id record.
     pending_add: Option<Collision<D>>,
-    /// `settings.rest_speed`, if bodies rest on walls (see [`crate::resting`]).
+    /// `settings.rest_speed`, if bodies rest on walls (see [`crate::contact::resting`]).
     rest_speed: Option<f64>,
     /// The least restitution of the scene and its bodies: a wall bounce leaves at least
     /// this fraction of the normal speed (the TC model only raises it).
@@ -188,10 +189,10 @@ pub struct Verifier<const D: usize> {
     /// bodies rest on walls.
     supports: Vec<Option<usize>>,
     /// The turn about a segment's end point each body makes, and that segment, by index, as
-    /// the records say (see [`crate::pivot`]); empty unless bodies rest on walls.
+    /// the records say (see [`crate::motion::pivot`]); empty unless bodies rest on walls.
     pivots: Vec<Option<(Pivot, usize)>>,
     /// Each static wall's slide acceleration where bodies rest on it
-    /// ([`crate::resting::slides`]); empty unless bodies rest on walls.
+    /// ([`crate::scene::slides`]); empty unless bodies rest on walls.
     slides: Vec<Option<Vector<D>>>,
 }
 
@@ -258,7 +259,7 @@ impl<const D: usize> Verifier<D> {
                 Some(_) => vec![None; scene.bodies.len()],
                 None => Vec::new(),
             },
-            slides: crate::resting::slides(scene),
+            slides: crate::scene::slides(scene),
             growth,
             gravity,
             vacant: Vec::new(),
@@ -271,7 +272,7 @@ impl<const D: usize> Verifier<D> {
             walls: scene.walls.clone(),
             table: crate::wall::table_edges(&scene.walls),
             moving: scene.moving_walls.iter().map(|m| m.wall).collect(),
-            wall_motion: crate::moving_wall::start_motions(&scene.moving_walls, scene.start_time),
+            wall_motion: crate::motion::start_motions(&scene.moving_walls, scene.start_time),
             period: scene.periodic,
             restitutions: Restitutions::new(scene),
             kinematic,
@@ -311,7 +312,7 @@ impl<const D: usize> Verifier<D> {
     fn g(&self, i: usize) -> Option<Vector<D>> {
         let g = self.gravity.filter(|_| !self.is_kinematic(i))?;
         match self.supports.get(i).copied().flatten() {
-            Some(w) => crate::resting::slide_acceleration(&g, &self.walls[w]),
+            Some(w) => crate::contact::resting::slide_acceleration(&g, &self.walls[w]),
             None => Some(g),
         }
     }
@@ -337,7 +338,7 @@ impl<const D: usize> Verifier<D> {
         self.pivots.get(i).and_then(Option::as_ref)
     }
 
-    /// Body `i`'s motion as the contact search of [`crate::pivot_contact`] takes it.
+    /// Body `i`'s motion as the contact search of [`crate::contact::pivot_contact`] takes it.
     fn mover(&self, i: usize) -> TurnOrFall {
         match self.pivot(i) {
             Some((p, _)) => TurnOrFall::Turn(*p),
@@ -355,7 +356,7 @@ impl<const D: usize> Verifier<D> {
 
     /// [`Verifier::pair_overlap`] when body `i` or `j` turns about a segment's end point: the
     /// first time their centres come within `(1 − 2·OVERLAP_TOLERANCE)` of their contact
-    /// distance over `[t0, t1]`, by the search of [`crate::pivot_contact`] (which skips no
+    /// distance over `[t0, t1]`, by the search of [`crate::contact::pivot_contact`] (which skips no
     /// root), and the overlap then; `None` when they never do.
     fn pivot_pair_overlap(&self, i: usize, j: usize, t0: f64, t1: f64) -> Option<(f64, f64)> {
         let sigma = self.radius[i] + self.radius[j];
@@ -593,7 +594,7 @@ impl<const D: usize> Verifier<D> {
     }
 
     /// [`Verifier::check_pair`] when a body rests on a plane after the collision (see
-    /// [`crate::resting`]): the planes took the pushes of the bodies pressed into them, so
+    /// [`crate::contact::resting`]): the planes took the pushes of the bodies pressed into them, so
     /// the momentum change `dp` must lie along their normals, and no energy is made.
     fn check_held_pair(
         &mut self,
@@ -611,7 +612,7 @@ impl<const D: usize> Verifier<D> {
             let (true, Some(w), Some(g)) = (c.rests[s], support, self.gravity) else {
                 continue;
             };
-            let normal = crate::resting::support_normal(&self.walls[w], &g);
+            let normal = crate::contact::resting::support_normal(&self.walls[w], &g);
             let mut u = normal;
             for b in &basis {
                 u = u - *b * u.dot(*b);
@@ -803,7 +804,7 @@ impl<const D: usize> Verifier<D> {
         }
         if moving {
             // The kinetic energy the collision changed, the growth's share included under
-            // growing radii (see `crate::moving_wall`).
+            // growing radii (see `crate::world::time_of_impact`).
             self.report.wall_work += e1 - e0;
         }
         self.report.wall_collisions += 1;
@@ -812,7 +813,7 @@ impl<const D: usize> Verifier<D> {
     }
 
     /// A wall record of body `i` with the segment `w` it slides on: its arrival at an end of
-    /// `w`, flying clear of the edge with its velocity unchanged (see [`crate::ledge`]; going
+    /// `w`, flying clear of the edge with its velocity unchanged (see [`crate::contact::ledge`]; going
     /// on along the next segment is recorded as a landing on that one).
     fn check_slide_end(&mut self, c: &Collision<D>, i: usize, w: usize) -> Result<(), Violation> {
         let t = c.event.time;
@@ -848,7 +849,7 @@ impl<const D: usize> Verifier<D> {
                 ),
             ));
         }
-        let end = crate::ledge::end_reached(a, b, p);
+        let end = crate::contact::ledge::end_reached(a, b, p);
         let m = Motion {
             pos: p,
             vel: v,
@@ -858,7 +859,7 @@ impl<const D: usize> Verifier<D> {
         let slack = 1e-9 * (v.norm_sq() + r * g.norm());
         if c.pivots[0] {
             // Rolling over the edge: too slow to fly clear.
-            if crate::ledge::edge_margin(&m, end, &g) >= slack {
+            if crate::contact::ledge::edge_margin(&m, end, &g) >= slack {
                 return Err(self.fail(
                     t,
                     format!(
@@ -871,7 +872,7 @@ impl<const D: usize> Verifier<D> {
             self.report.wall_collisions += 1;
             return Ok(());
         }
-        if crate::ledge::edge_margin(&m, end, &g) <= -slack {
+        if crate::contact::ledge::edge_margin(&m, end, &g) <= -slack {
             return Err(self.fail(
                 t,
                 format!(
@@ -886,7 +887,7 @@ impl<const D: usize> Verifier<D> {
     }
 
     /// True when body `i`, at `pos`, slides on a segment that segment `w` continues straight
-    /// on from the end it has reached ([`crate::ledge::continuation`]).
+    /// on from the end it has reached ([`crate::contact::ledge::continuation`]).
     fn goes_on(&self, i: usize, w: usize, pos: Vector<D>) -> bool {
         let Some(s) = self.supports.get(i).copied().flatten() else {
             return false;
@@ -894,12 +895,12 @@ impl<const D: usize> Verifier<D> {
         let Wall::Segment { a, b } = self.walls[s] else {
             return false;
         };
-        let end = crate::ledge::end_reached(a, b, pos);
-        crate::ledge::continuation(&self.walls, &self.slides, s, end) == Some(w)
+        let end = crate::contact::ledge::end_reached(a, b, pos);
+        crate::contact::ledge::continuation(&self.walls, &self.slides, s, end) == Some(w)
     }
 
     /// The turn body `i` (slot `s` of record `c`) makes after it, as the record's flag says
-    /// (see [`crate::pivot`]): about the end point of the segment the record names (the one
+    /// (see [`crate::motion::pivot`]): about the end point of the segment the record names (the one
     /// it slid to the end of), or, after a body collision, about the point it turned about
     /// before; from the record's position and velocity.
     fn turn_after(
@@ -927,7 +928,7 @@ impl<const D: usize> Verifier<D> {
             ));
         };
         let r = self.radius[i];
-        match crate::ledge::recorded_turn((a, b), r, g, (c.pos[s], c.vel[s]), t) {
+        match crate::contact::ledge::recorded_turn((a, b), r, g, (c.pos[s], c.vel[s]), t) {
             Ok(pivot) => Ok(pivot.map(|p| (p, segment))),
             Err(_) => Err(self.fail(
                 t,
@@ -966,7 +967,7 @@ impl<const D: usize> Verifier<D> {
     }
 
     /// The walls the bodies of record `c` (`ids`) rest on after it, as its flags say, each
-    /// checked against the rule of [`crate::resting`]: after a wall collision, on a static
+    /// checked against the rule of [`crate::contact::resting`]: after a wall collision, on a static
     /// plane gravity presses it on, which it left at most `rest_speed` fast, with no normal
     /// velocity; after a body collision, on its wall before, its velocity unchanged.
     fn check_rests(
@@ -989,7 +990,7 @@ impl<const D: usize> Verifier<D> {
                     let Some(wall) = self.walls.get(w).copied() else {
                         return Err(self.fail(t, format!("body {i} rests on wall {w}, no wall")));
                     };
-                    if crate::resting::slide_acceleration(&g, &wall).is_none() {
+                    if crate::contact::resting::slide_acceleration(&g, &wall).is_none() {
                         return Err(self.fail(
                             t,
                             format!(
@@ -997,7 +998,7 @@ impl<const D: usize> Verifier<D> {
                             ),
                         ));
                     }
-                    let normal = crate::resting::support_normal(&wall, &g);
+                    let normal = crate::contact::resting::support_normal(&wall, &g);
                     if let Wall::Segment { a, b } = wall {
                         // Between the ends, on the side gravity presses against.
                         let u = b - a;
@@ -1028,7 +1029,7 @@ impl<const D: usize> Verifier<D> {
                             ),
                         ));
                     }
-                    let slide = crate::resting::along_support(&self.vel_of(i, t), &wall);
+                    let slide = crate::contact::resting::along_support(&self.vel_of(i, t), &wall);
                     if (c.vel[s] - slide).norm() > scale {
                         return Err(self.fail(
                             t,
@@ -1048,7 +1049,7 @@ impl<const D: usize> Verifier<D> {
                         );
                     };
                     // Left as it was, or pressed into its wall: either way along it.
-                    let normal = crate::resting::support_normal(&self.walls[w], &g);
+                    let normal = crate::contact::resting::support_normal(&self.walls[w], &g);
                     let v = c.vel[s];
                     let scale = 1e-9 * (1.0 + v.norm() + self.vel_of(i, t).norm());
                     if v.dot(normal).abs() > scale * normal.norm() {
@@ -1484,19 +1485,13 @@ impl<const D: usize> Verifier<D> {
 impl<const D: usize> Verifier<D> {
     /// Position at `t` of a body moving as `m`: along a straight line, or falling.
     fn pos_at(&self, m: &Motion<D>, t: f64, g: Option<Vector<D>>) -> Vector<D> {
-        match &g {
-            Some(g) => m.falling_at(t, g),
-            None => m.at(t),
-        }
+        Path::new(*m, g).position(t)
     }
 
     /// Velocity at `t` of a body moving as `m`: the stored one, or under gravity that plus
     /// `g` times the time since its reference time.
     fn vel_at(&self, m: &Motion<D>, t: f64, g: Option<Vector<D>>) -> Vector<D> {
-        match &g {
-            Some(g) => m.falling_velocity(t, g),
-            None => m.vel,
-        }
+        Path::new(*m, g).velocity(t)
     }
 
     /// The displacement `dp` itself, or its nearest image in a periodic scene.

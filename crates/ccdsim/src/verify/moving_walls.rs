@@ -1,4 +1,4 @@
-//! The replay of moving walls (see [`crate::moving_wall`]): where each is, the miss check
+//! The replay of moving walls (see [`crate::world::time_of_impact`]): where each is, the miss check
 //! of a body against one, and the edits that give one a new velocity.
 //!
 //! A moving wall's contact with a body is checked like a static wall's, in the wall's frame:
@@ -9,8 +9,8 @@
 //! report sums in `wall_work`.
 
 use super::{beyond, Verifier, Violation, OVERLAP_TOLERANCE};
-use crate::moving_wall::{translated, WallMotion};
-use crate::narrow::Motion;
+use crate::motion::Motion;
+use crate::motion::{translated, WallMotion};
 use crate::sim::Collision;
 use crate::wall::Wall;
 

@@ -28,7 +28,7 @@
 const WIDE_CELLS: i64 = 4096;
 
 use crate::geom::Vector;
-use crate::narrow::Motion;
+use crate::motion::Motion;
 use std::collections::{HashMap, HashSet};
 
 /// Where a body is filed: the range of cell indices its grown swept box covers, per axis.

@@ -13,7 +13,7 @@ use crate::collision_filter::CollisionFilter;
 use crate::edit::Edit;
 use crate::event::EventKind;
 use crate::geom::Vector;
-use crate::narrow::Motion;
+use crate::motion::Motion;
 use crate::sim::Collision;
 
 impl<const D: usize> Verifier<D> {

@@ -1,7 +1,7 @@
 //! "Construct hierarchy" (thesis §4.5–4.6): top-down, split at the median along an axis that
 //! cycles with the level, with a linear-time selection, into a flat balanced array.
 
-use super::tree::{is_finite_box, swept_box, Node, SweptTree};
+use super::tree::{is_finite_box, swept_box, Item, Node, SweptTree};
 use crate::geom::Aabb;
 use crate::world::World;
 use std::cmp::Ordering;
@@ -20,7 +20,7 @@ impl<const D: usize> SweptTree<D> {
         self.horizon = horizon;
         self.built_horizon = horizon;
         match world.periodic() {
-            Some(size) => super::traverse::half_image_shifts(&size, &mut self.shifts),
+            Some(size) => super::tree::half_image_shifts(&size, &mut self.shifts),
             None => self.shifts.clear(),
         }
         self.leaf_boxes.clear();
@@ -69,13 +69,6 @@ impl<const D: usize> SweptTree<D> {
             *slot = item.body;
         }
     }
-}
-
-/// A body and twice the centre of its swept box, the build's sort key.
-#[derive(Clone, Copy, Debug)]
-pub(crate) struct Item<const D: usize> {
-    key: [f64; D],
-    body: u32,
 }
 
 /// Twice the centre of `b` along `axis` (the factor ½ does not change the order).

@@ -57,9 +57,9 @@
 //!
 //! # Periodic boxes
 //!
-//! In a periodic world ([`crate::periodic`]) the oracle's time for a pair is the earliest
+//! In a periodic world ([`crate::contact::periodic`]) the oracle's time for a pair is the earliest
 //! contact over the images `k·L`, `k ∈ {−1, 0, 1}^D`, of the second body
-//! ([`crate::periodic::toi_circle_circle_periodic`]), and each body's exit from the box is
+//! ([`crate::contact::periodic::toi_circle_circle_periodic`]), and each body's exit from the box is
 //! an event named like a wall. Exits depend on one body's state, so they go into the wall cache beside the walls
 //! (a periodic scene has none) and bound the growth of Δ like wall events do. The tree is
 //! built over the stored positions, which lie in the box, as before; besides its self-check
@@ -106,9 +106,9 @@ pub use options::OPTIONS;
 pub use validate::InvalidTree;
 
 use super::{finite_event, DebugBox, Finder, FinderError, FinderOptions};
+use crate::contact::periodic::toi_bodies_periodic;
 use crate::event::Event;
-use crate::narrow::toi_bodies_in;
-use crate::periodic::toi_bodies_periodic;
+use crate::world::toi_bodies_in;
 use crate::world::World;
 use tree::{children, l1, SweptTree};
 use walls::WallCache;

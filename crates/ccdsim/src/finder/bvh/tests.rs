@@ -8,7 +8,7 @@ use crate::event::EventKind;
 use crate::finder::{all_pairs_next_event, make_finder};
 use crate::generate::{gas, GasConfig};
 use crate::geom::{Aabb, Vector};
-use crate::narrow::Motion;
+use crate::motion::Motion;
 use crate::resolve::{resolve_body_body, resolve_body_wall};
 use crate::scene::{BodySpec, Scene};
 use proptest::prelude::*;
@@ -196,7 +196,7 @@ fn traversal_finds_the_earliest_pair_within_the_horizon() {
         let body_min = (0..300)
             .flat_map(|i| (i + 1..300).map(move |j| (i, j)))
             .filter_map(|(i, j)| {
-                crate::narrow::toi_circle_circle(
+                crate::contact::narrow::toi_circle_circle(
                     &w.motion(i),
                     w.radius(i),
                     &w.motion(j),
@@ -460,7 +460,7 @@ fn check_build_refit<const D: usize>(
     let mut best = None;
     for i in 0..world.len() {
         for j in i + 1..world.len() {
-            let toi = crate::narrow::toi_circle_circle(
+            let toi = crate::contact::narrow::toi_circle_circle(
                 &world.motion(i),
                 world.radius(i),
                 &world.motion(j),
@@ -521,7 +521,7 @@ fn check_pair_boxes<const D: usize>(
     ra: f64,
     rb: f64,
 ) -> Result<(), TestCaseError> {
-    let Some(toi) = crate::narrow::toi_circle_circle(&a, ra, &b, rb) else {
+    let Some(toi) = crate::contact::narrow::toi_circle_circle(&a, ra, &b, rb) else {
         return Ok(()); // a grazing pass that rounding turned into a miss: nothing to find
     };
     let t0 = a.time.max(b.time);
@@ -596,7 +596,7 @@ proptest! {
 fn half_image_shifts_and_their_negations_are_every_non_zero_shift() {
     fn check<const D: usize>(size: Vector<D>) {
         let mut half = Vec::new();
-        super::traverse::half_image_shifts(&size, &mut half);
+        super::tree::half_image_shifts(&size, &mut half);
         assert_eq!(half.len(), (3usize.pow(D as u32) - 1) / 2);
         let mut all: Vec<Vector<D>> = half.iter().flat_map(|&s| [s, Vector::ZERO - s]).collect();
         all.sort_by(|a, b| a.0.partial_cmp(&b.0).unwrap());
@@ -628,7 +628,7 @@ fn periodic_pairs_are_found_through_the_images() {
     };
     let world = world_of(&scene);
     let size = world.periodic().unwrap();
-    let want = crate::periodic::toi_circle_circle_periodic(
+    let want = crate::contact::periodic::toi_circle_circle_periodic(
         &world.motion(0),
         0.5,
         &world.motion(1),

@@ -3,10 +3,10 @@
 //! box also the pair-check of the tree against its own images.
 
 use super::tree::{children, SweptTree, ROUND_PAD};
+use crate::contact::periodic::toi_bodies_periodic;
 use crate::event::Event;
 use crate::geom::{Aabb, Vector};
-use crate::narrow::toi_bodies_in;
-use crate::periodic::toi_bodies_periodic;
+use crate::world::toi_bodies_in;
 use crate::world::World;
 
 /// What one traversal found and how much work it took.
@@ -26,24 +26,6 @@ struct Check<'a, const D: usize> {
     /// The sides of the periodic box, if the world has one.
     period: Option<Vector<D>>,
     out: Traversal,
-}
-
-/// Sets `out` to half of the `3^D − 1` non-zero image shifts `k·L`, `k ∈ {−1, 0, 1}^D`:
-/// those whose first non-zero component is positive. Each other shift is the negation of one
-/// of them.
-pub(crate) fn half_image_shifts<const D: usize>(size: &Vector<D>, out: &mut Vec<Vector<D>>) {
-    out.clear();
-    for code in 0..3usize.pow(D as u32) {
-        let mut k = [0i32; D];
-        let mut c = code;
-        for kd in &mut k {
-            *kd = (c % 3) as i32 - 1;
-            c /= 3;
-        }
-        if k.iter().find(|&&x| x != 0).is_some_and(|&x| x > 0) {
-            out.push(Vector(std::array::from_fn(|d| f64::from(k[d]) * size[d])));
-        }
-    }
 }
 
 impl<const D: usize> SweptTree<D> {

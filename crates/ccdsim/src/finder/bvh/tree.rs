@@ -2,7 +2,7 @@
 //! bodies, and the padded swept box of one body (the only geometric primitive it holds).
 
 use crate::geom::{Aabb, Vector};
-use crate::narrow::Motion;
+use crate::motion::Motion;
 
 /// Padding, relative to a body's radius plus its travel since its reference time, that covers
 /// the narrow phase's root-finding error (of order √ε times those lengths; see the module
@@ -54,7 +54,7 @@ pub(crate) struct SweptTree<const D: usize> {
     /// Scratch: each body's swept box during a build, by body index.
     pub leaf_boxes: Vec<Aabb<D>>,
     /// Scratch: the bodies with their sort keys during a build.
-    pub items: Vec<super::build::Item<D>>,
+    pub items: Vec<Item<D>>,
     /// Start of the swept interval, seconds (the world's current time at the build).
     pub now: f64,
     /// End of the swept interval, seconds: `now + Δ`.
@@ -67,7 +67,7 @@ pub(crate) struct SweptTree<const D: usize> {
     /// The box of all balls at `now` (not swept), metres.
     pub extent_now: Aabb<D>,
     /// In a periodic world, half of the non-zero image shifts (see
-    /// [`half_image_shifts`](super::traverse::half_image_shifts)), set by each build; empty
+    /// [`half_image_shifts`]), set by each build; empty
     /// otherwise.
     pub shifts: Vec<Vector<D>>,
 }
@@ -190,4 +190,29 @@ fn straight_swept_box<const D: usize>(m: &Motion<D>, r: f64, now: f64, horizon: 
 #[inline]
 pub(crate) fn is_finite_box<const D: usize>(b: &Aabb<D>) -> bool {
     b.min.is_finite() && b.max.is_finite()
+}
+
+/// A body and twice the centre of its swept box, the build's sort key.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Item<const D: usize> {
+    pub(super) key: [f64; D],
+    pub(super) body: u32,
+}
+
+/// Sets `out` to half of the `3^D − 1` non-zero image shifts `k·L`, `k ∈ {−1, 0, 1}^D`:
+/// those whose first non-zero component is positive. Each other shift is the negation of one
+/// of them.
+pub(crate) fn half_image_shifts<const D: usize>(size: &Vector<D>, out: &mut Vec<Vector<D>>) {
+    out.clear();
+    for code in 0..3usize.pow(D as u32) {
+        let mut k = [0i32; D];
+        let mut c = code;
+        for kd in &mut k {
+            *kd = (c % 3) as i32 - 1;
+            c /= 3;
+        }
+        if k.iter().find(|&&x| x != 0).is_some_and(|&x| x > 0) {
+            out.push(Vector(std::array::from_fn(|d| f64::from(k[d]) * size[d])));
+        }
+    }
 }

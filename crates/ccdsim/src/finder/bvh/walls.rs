@@ -1,15 +1,15 @@
 //! Body–wall events: each body's earliest wall event (in a periodic box, its box exit too),
 //! cached and recomputed only for bodies whose stored state changed.
 
+use crate::contact::periodic::toi_box_exit;
 use crate::event::Event;
-use crate::narrow::toi_body_wall_in;
-use crate::periodic::toi_box_exit;
+use crate::world::toi_body_wall_in;
 use crate::world::World;
 
 /// Each body's earliest wall event and the [`World::change_count`] it was computed at.
 ///
 /// In a periodic world a body's exit from the box counts as a wall event, naming face `f` as
-/// wall `walls.len() + f`, as the oracle names it ([`crate::periodic`]).
+/// wall `walls.len() + f`, as the oracle names it ([`crate::contact::periodic`]).
 ///
 /// A body's wall events depend on its stored state alone (walls never move), so the cached
 /// value stays exact until the body's change count moves. After a collision only the one or

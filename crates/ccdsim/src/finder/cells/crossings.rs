@@ -6,10 +6,10 @@
 //! than a crossing already processed) undoes them. See the module docs of `cells` for why
 //! this finds the oracle's events.
 
+use super::candidate::{Best, Probe};
 use super::key::Key;
-use super::predict::{Best, Probe};
 use super::{Cells, KEY_IS_CROSSING, NO_CROSSING};
-use crate::narrow::Motion;
+use crate::motion::Motion;
 use crate::world::World;
 
 impl<const D: usize> Cells<D> {

@@ -1,6 +1,6 @@
 //! Interior scans of crossing mode, four pairs at a time: the candidates of a block of cells
 //! are gathered from the cells' slots without a branch per cell, then evaluated by the
-//! four-lane kernel [`toi_sides`](crate::narrow_lanes::toi_sides), each lane with its pair's balls in the oracle's order.
+//! four-lane kernel [`toi_sides`](crate::contact::narrow_lanes::toi_sides), each lane with its pair's balls in the oracle's order.
 //!
 //! *Gathering.* Each cell's record is copied whole (its [`CELL_SLOTS`] slots) to the end of a
 //! buffer, and the end advances by the number of used slots: the unused slots' copies are
@@ -30,15 +30,15 @@
 //! mispredictions, and was faster on the clock at 2D N = 10⁴ and 10⁶, for 25 more bytes per
 //! body (figures and what was tried: `bench/results/amd-epyc-2vcpu/cells-history.md`).
 
+use super::candidate::{Best, Probe};
 use super::grid::{CellBodies, Grid, CELL_SLOTS};
 use super::key::{ordered, Key};
-use super::predict::{Best, Probe};
 use super::Cells;
 use crate::collision_filter::{colliding_lanes, CollisionFilter};
+use crate::contact::narrow_lanes::{toi_sides, toi_sides_growing, Lanes, Side, ALL_LANES, LANES};
 use crate::geom::Vector;
-use crate::laws::Laws;
-use crate::narrow_lanes::{toi_sides, toi_sides_growing, Lanes, Side, ALL_LANES, LANES};
-use crate::world::Body;
+use crate::motion::Body;
+use crate::motion::Laws;
 use wide::{f64x4, i32x4, CmpGt};
 
 // A cell's slots fill one quad.

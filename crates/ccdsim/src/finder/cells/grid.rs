@@ -21,7 +21,7 @@
 
 use super::key::NONE;
 use crate::geom::Vector;
-use crate::narrow::Motion;
+use crate::motion::Motion;
 use crate::prefetch::prefetch;
 use crate::wall::Wall;
 
@@ -803,7 +803,7 @@ impl<const D: usize> Grid<D> {
     }
 
     /// [`Grid::next_crossing`] for a body falling under the acceleration `g` (see
-    /// [`crate::gravity`]): along each axis with a component of `g` the body crosses the
+    /// [`crate::contact::gravity`]): along each axis with a component of `g` the body crosses the
     /// lower face where its coordinate falls through it and the upper face where it rises
     /// through it, at the root of the face's quadratic, taken only when it lies at or after
     /// `after` (the time from which the body is known to lie in its cell: it may have left
@@ -852,7 +852,7 @@ impl<const D: usize> Grid<D> {
                 // good at the later one; or opens towards it: the body leaves at the earlier
                 // root and comes back at the later one.
                 let leaves_for_good = if up { a > 0.0 } else { a < 0.0 };
-                match crate::gravity::face_roots(x - bound, v, a) {
+                match crate::contact::gravity::face_roots(x - bound, v, a) {
                     Some((falls, rises)) => {
                         let t = m.time + if up { rises } else { falls };
                         if !t.is_finite() {

@@ -89,7 +89,7 @@
 //!
 //! A periodic world has no walls; its grid tiles the box `[0, L)` and neighbour cells across
 //! the box faces carry the image shift ±L. Stored positions stay in the box (exits are
-//! events, see [`crate::periodic`]), so the image that makes two bodies neighbours is one of
+//! events, see [`crate::contact::periodic`]), so the image that makes two bodies neighbours is one of
 //! the `3^D` images the oracle tries, and with at least three cells per axis two cells are
 //! neighbours through one image only: the contact that matters is the one through the
 //! neighbouring image, and the time cached for it is the oracle's: the same function on the
@@ -134,7 +134,7 @@
 //!
 //! # Growing radii
 //!
-//! In a growing world ([`crate::growth`]) contact distances grow with time. `init` then sizes
+//! In a growing world ([`crate::contact::growth`]) contact distances grow with time. `init` then sizes
 //! the grid, the wall reach and the lists for the radii at a *horizon* `t_h`, by default the
 //! time at which the radii have grown by [`GROWTH_HEADROOM`] of their current size: every
 //! argument above holds for contacts at times up to `t_h` with `σ_max` read as `σ_max(t_h)`.
@@ -256,6 +256,7 @@
 //! `predict` (cached predictions, walls, box exits), `grid`, `slots`, `gather`, `pair` (the
 //! crossing mode's collision pair scan), `key` and `tournament` (the queue).
 
+mod candidate;
 mod crossings;
 mod gather;
 mod grid;
@@ -273,11 +274,12 @@ use crate::geom::{Aabb, Vector};
 use crate::prefetch::prefetch;
 use crate::wall::Wall;
 use crate::world::World;
+use candidate::Probe;
 use grid::{Grid, MARGIN};
 use key::{Key, MAX_INDEX};
 use lists::{Lists, MAX_LIST_BODIES};
 pub use options::OPTIONS;
-use predict::{Cached, Probe, UNKNOWN_CHANGES};
+use predict::{Cached, UNKNOWN_CHANGES};
 use tournament::TournamentQueue;
 
 /// Crossing code of a body that crosses no face.
@@ -387,15 +389,15 @@ pub struct Cells<const D: usize> {
     regrids_in_a_row: u32,
     /// The world's growth law, if radii grow: pairs then take the growing functions (and the
     /// four-lane kernel its growing form).
-    growth: Option<crate::growth::GrowthLaw>,
+    growth: Option<crate::motion::GrowthLaw>,
     /// The world's laws, if any is in force (growth, gravity): what the narrow phase's
     /// dispatchers are given.
-    laws: Option<crate::laws::Laws<D>>,
+    laws: Option<crate::motion::Laws<D>>,
     /// The world's gravity, if any: crossings are then the roots of quadratics.
     gravity: Option<Vector<D>>,
     /// Which bodies are kinematic (they do not fall), by index; empty when none is.
     kinematic: Vec<bool>,
-    /// Where bodies rest on walls (see [`crate::resting`]): each body's acceleration
+    /// Where bodies rest on walls (see [`crate::contact::resting`]): each body's acceleration
     /// ([`World::acceleration`]) by index; empty otherwise.
     accels: Vec<Vector<D>>,
     /// The world's collision filters by body index (see [`crate::collision_filter`]);
@@ -767,7 +769,7 @@ impl<const D: usize> Finder<D> for Cells<D> {
         self.stats.recomputes = 0;
         self.peak_bytes = self.bytes();
         self.hints =
-            self.peak_bytes + n * std::mem::size_of::<crate::world::Body<D>>() >= HINTS_FROM_BYTES;
+            self.peak_bytes + n * std::mem::size_of::<crate::motion::Body<D>>() >= HINTS_FROM_BYTES;
         Ok(())
     }
 

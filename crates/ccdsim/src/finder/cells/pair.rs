@@ -41,17 +41,18 @@
 //! * Walls, box exit, `store` and `schedule` follow for `i`, then for `j`, exactly as the two
 //!   `recompute`s do them, in that order, and `recomputes` counts two.
 
+use super::candidate::{Best, Probe};
 use super::gather::{Gathered, GATHER_2D, GATHER_3D};
 use super::grid::Grid;
 use super::key::Key;
-use super::predict::{Best, Probe};
 use super::{Cells, Mode};
 use crate::collision_filter::CollisionFilter;
+use crate::contact::narrow_lanes::Side;
 use crate::geom::Vector;
-use crate::laws::Laws;
-use crate::narrow_lanes::Side;
+use crate::motion::Body;
+use crate::motion::Laws;
 use crate::prefetch::prefetch;
-use crate::world::{Body, World};
+use crate::world::World;
 
 impl<const D: usize> Cells<D> {
     /// Recomputes bodies `i` and `j` (both changed, at the same state of the world) as

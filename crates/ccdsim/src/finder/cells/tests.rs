@@ -5,7 +5,7 @@ use super::{Cells, CellsStats};
 use crate::finder::{all_pairs_next_event, Finder, FinderOptions};
 use crate::generate::{gas, GasConfig};
 use crate::geom::Vector;
-use crate::growth::Growth;
+use crate::motion::Growth;
 use crate::resolve::{resolve_body_body, resolve_body_wall, resolve_exit};
 use crate::scene::{BodySpec, Scene};
 use crate::world::World;

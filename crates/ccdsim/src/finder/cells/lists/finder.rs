@@ -2,21 +2,22 @@
 //! when a body leaves its shell, and the list mode's `recompute`, `schedule`, `update` and
 //! `validate`.
 
+use super::super::candidate::{Best, Probe};
 use super::super::grid::Grid;
 use super::super::key::Key;
-use super::super::predict::{Best, Probe};
 use super::super::slots::SLOTS;
 use super::super::{Cells, Mode, KEY_IS_CROSSING};
 use super::*;
 use crate::collision_filter::{colliding_lanes, pair_collides};
-use crate::geom::Vector;
-use crate::narrow::{toi_bodies_shifted, toi_pair};
-use crate::narrow_lanes::{
+use crate::contact::narrow_lanes::{
     first_lanes, toi_sides, toi_sides_growing, vector_lanes, Lanes, PairArgs, Side, ALL_LANES,
     LANES,
 };
+use crate::contact::{toi_bodies_shifted, toi_pair};
+use crate::geom::Vector;
+use crate::motion::Body;
 use crate::prefetch::prefetch;
-use crate::world::{Body, World};
+use crate::world::World;
 use wide::{f64x4, i32x4};
 
 impl<const D: usize> Cells<D> {
@@ -81,7 +82,7 @@ impl<const D: usize> Cells<D> {
     /// Offers body `p` the pairs of the list entries `entries`, of which the first `above`
     /// have a higher body index than `p`'s (`p` goes first in their pairs, the partner in
     /// the others'). The entries go four at a time, in list order, through the lane kernel
-    /// ([`toi_sides`](crate::narrow_lanes::toi_sides), each lane the scalar function's times bit for bit): `p` is put in
+    /// ([`toi_sides`](crate::contact::narrow_lanes::toi_sides), each lane the scalar function's times bit for bit): `p` is put in
     /// all lanes once; a quad of one part has `p` on one side, the quad where the parts meet
     /// selects each lane's sides by its part, and the last quad is padded with copies of the
     /// last entry, whose lanes are dropped (no time, never handed to the scalar function).

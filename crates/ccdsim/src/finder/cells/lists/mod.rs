@@ -17,11 +17,11 @@
 //! with a stride a quarter larger (amortised: the stride grows a logarithmic number of
 //! times).
 
+use super::candidate::Best;
 use super::grid::{Grid, MARGIN};
-use super::predict::Best;
 use super::slots::{CellRecord, CellSlots, SLOTS};
 use crate::geom::Vector;
-use crate::narrow::Motion;
+use crate::motion::Motion;
 use crate::prefetch::prefetch;
 use wide::{f64x4, i32x4, CmpEq, CmpGt, CmpLe};
 

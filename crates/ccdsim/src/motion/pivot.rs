@@ -1,5 +1,5 @@
 //! A ball turning about a point: the motion of a 2D body that slid off the end of a segment
-//! too slowly to fly clear ([`crate::ledge`], case 3), held against the end point by gravity.
+//! too slowly to fly clear ([`crate::contact::ledge`], case 3), held against the end point by gravity.
 //!
 //! # The motion
 //!

@@ -1,7 +1,7 @@
 //! How a pivot ends when nothing else meets the ball: it comes off the point, swings back
 //! onto the segment it slid off, or lands on another segment that ends at the point.
 //!
-//! A ball turning about the end point `e` of the segment it slid off ([`crate::pivot`])
+//! A ball turning about the end point `e` of the segment it slid off ([`crate::motion::pivot`])
 //! touches `e` all along. Another segment `k` that ends at `e` and leaves it in direction
 //! `d` is met where the centre's direction from `e`, `u(θ)`, turns perpendicular to `d`:
 //! until then `u·d < 0`, so `e` is the nearest point of `k` to the centre and the ball only
@@ -17,7 +17,7 @@
 //! landing (lowest index), then the swing back, then the release.
 
 use crate::geom::Vector;
-use crate::pivot::Pivot;
+use crate::motion::pivot::Pivot;
 use crate::wall::Wall;
 
 /// What ends a pivot by itself (module docs).

@@ -1,6 +1,6 @@
 //! When a body moving in a straight line enters or leaves a sensor seen through the images of
 //! a periodic box, while its radius may grow: the pure functions behind
-//! [`crate::sensor::SensorTracker`] in periodic and growing worlds.
+//! [`crate::sim::SensorTracker`] in periodic and growing worlds.
 //!
 //! # Which images matter
 //!
@@ -12,7 +12,7 @@
 //! period and its crossings are computed anew. Scenes also require `2·(R + r) < L` on every
 //! axis, so that a body overlaps at most one image at a time and the sensor's images do not
 //! overlap one another; as radii grow that may stop holding (as the pairs' condition may, see
-//! [`crate::periodic`]), and a body may then overlap two images at once: it is inside while it
+//! [`crate::contact::periodic`]), and a body may then overlap two images at once: it is inside while it
 //! overlaps any, so it leaves when it leaves their union, which [`leave_time`] follows from
 //! image to image. Every time is still a root of one image's equation, found by the same
 //! solvers as collisions; nothing is skipped while `R + r < L`.
@@ -25,11 +25,11 @@
 //! radii. Without growth (`σ̇ = 0`) they are [`first_contact`] and [`first_exit`], exactly the
 //! functions used outside periodic boxes.
 
-use crate::accelerated_contact::first_exit;
+use crate::contact::accelerated_contact::first_exit;
+use crate::contact::growth::{first_contact_growing, first_exit_growing};
+use crate::contact::narrow::first_contact;
+use crate::contact::periodic::min_image;
 use crate::geom::Vector;
-use crate::growth::{first_contact_growing, first_exit_growing};
-use crate::narrow::first_contact;
-use crate::periodic::min_image;
 
 /// The offset `raw` (body centre less sensor centre) of the image nearest to the body: `raw`
 /// itself outside a periodic box, else its minimum image (see [`min_image`]), which is one of

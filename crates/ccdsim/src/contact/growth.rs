@@ -27,14 +27,14 @@
 //! therefore parts faster than it grows and the packing heats up: compression rescales the
 //! velocities now and then ([`crate::Simulation::rescale_velocities`]). Against a wall the
 //! same rule holds with `σ̇ = Γ·r`, against a moving wall in the wall's frame (`u` relative to
-//! its velocity, see [`crate::moving_wall`]). `e` is the collision's restitution as for fixed
+//! its velocity, see [`crate::world::time_of_impact`]). `e` is the collision's restitution as for fixed
 //! radii: the mean of the pair's own (the body's own at a wall), or 1 under the TC model
 //! ([`crate::World::pair_restitution`]). A kinematic body (infinite mass) grows like every
 //! body and keeps its velocity: the other body takes the whole change. Momentum is conserved
 //! by pair collisions of dynamic bodies, kinetic energy is not (it grows by the work of the
 //! growth).
 //!
-//! Under gravity too, see [`crate::falling_growth`]: pairs keep this quadratic (falling bodies
+//! Under gravity too, see [`crate::contact::falling_growth`]: pairs keep this quadratic (falling bodies
 //! have no relative acceleration), walls and kinematic bodies take parabolas.
 //!
 //! # Exactness
@@ -45,66 +45,9 @@
 //! a horizon and rebuild it before passing that horizon (see each finder's docs).
 
 use crate::geom::Vector;
-use crate::narrow::Motion;
+use crate::motion::GrowthLaw;
+use crate::motion::Motion;
 use crate::wall::Wall;
-use serde::{Deserialize, Serialize};
-
-/// The growth setting of a scene (`settings.growth` in a scene file).
-///
-/// ```json
-/// "settings": { "growth": { "rate": 0.01 } }
-/// ```
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct Growth {
-    /// `Γ`, per second: every radius grows by `Γ` times its scene value each second.
-    pub rate: f64,
-}
-
-/// A growth law in force: radii at time `t` are the stored radii times [`GrowthLaw::scale`].
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct GrowthLaw {
-    /// `Γ`, per second.
-    pub rate: f64,
-    /// `t₀`, seconds: when radii equal the stored ones.
-    pub origin: f64,
-}
-
-impl GrowthLaw {
-    /// `1 + Γ·(t − t₀)`: the factor radii have at time `t`.
-    #[must_use]
-    #[inline]
-    pub fn scale(&self, t: f64) -> f64 {
-        1.0 + self.rate * (t - self.origin)
-    }
-
-    /// Radius at time `t`, metres, of a body whose stored radius is `r`.
-    #[must_use]
-    #[inline]
-    pub fn radius_at(&self, r: f64, t: f64) -> f64 {
-        r * self.scale(t)
-    }
-
-    /// Growth speed of a body whose stored radius is `r`, metres per second.
-    #[must_use]
-    #[inline]
-    pub fn speed(&self, r: f64) -> f64 {
-        r * self.rate
-    }
-
-    /// The first time `t ≥ from` at which a stored radius `r` has grown to `target` metres
-    /// (`from` when it already has; `+∞` when it never will).
-    #[must_use]
-    pub fn time_to_reach(&self, r: f64, target: f64, from: f64) -> f64 {
-        if self.radius_at(r, from) >= target {
-            return from;
-        }
-        if self.rate <= 0.0 {
-            return f64::INFINITY;
-        }
-        (self.origin + (target / r - 1.0) / self.rate).max(from)
-    }
-}
 
 /// Time `t ≥ 0` after which a point at offset `dp` moving at relative velocity `dv` first
 /// comes within `sigma + sigma_dot·t` of the origin, when it then approaches (see the module
@@ -156,7 +99,7 @@ pub fn first_contact_growing<const D: usize>(
 /// it leaves a growing ball (a body leaving a sensor while it grows, see [`crate::sensor`]).
 /// `None` when it never does.
 ///
-/// [`crate::accelerated_contact::first_exit`]'s contract for the quadratic of
+/// [`crate::contact::accelerated_contact::first_exit`]'s contract for the quadratic of
 /// [`first_contact_growing`], `f(t) = C + 2B·t + A·t²`: `0` when the point is out (`C ≥ 0`)
 /// and moving away (`B > 0`); otherwise the first root where `f` turns positive. For `A > 0`
 /// that is the later root, `(−B + √(B² − AC)) / A`, computed without cancellation; for
@@ -204,7 +147,7 @@ pub fn first_exit_growing<const D: usize>(
 
 /// Time of impact of two growing balls (stored radii `ra`, `rb`), ball `b` displaced by
 /// `shift` (a periodic image; zero otherwise), evaluated from `T = max(a.time, b.time)` as
-/// [`crate::narrow::toi_circle_circle_shifted`] is for fixed radii.
+/// [`crate::contact::narrow::toi_circle_circle_shifted`] is for fixed radii.
 #[must_use]
 #[inline]
 pub fn toi_circle_circle_growing<const D: usize>(

@@ -9,12 +9,16 @@
 //! 15 % more collisions per second than with masses and counts in arrays of their own. Ids,
 //! read only by tools, live in a separate array.
 
+pub mod time_of_impact;
+
+pub use time_of_impact::{
+    toi_bodies_in, toi_body_moving_wall, toi_body_segment, toi_body_wall_in, toi_body_wall_resting,
+    toi_pair_resting,
+};
+
 use crate::collision_filter::CollisionFilter;
 use crate::geom::Vector;
-use crate::growth::GrowthLaw;
-use crate::laws::Laws;
-use crate::moving_wall::{start_motions, translated, WallMotion};
-use crate::narrow::Motion;
+use crate::motion::{start_motions, translated, Body, GrowthLaw, Laws, Motion, Path, WallMotion};
 use crate::scene::{BodySpec, Scene, SceneError};
 use crate::wall::Wall;
 
@@ -42,7 +46,7 @@ fn wall_bits(w: usize) -> u32 {
 #[derive(Clone, Copy, Debug)]
 struct Pivoting<const D: usize> {
     body: usize,
-    pivot: crate::pivot::Pivot,
+    pivot: crate::motion::pivot::Pivot,
     /// The segment whose end point it turns about.
     wall: usize,
     filter: CollisionFilter,
@@ -50,24 +54,7 @@ struct Pivoting<const D: usize> {
     velocity: Vector<D>,
 }
 
-pub(crate) use crate::pivot::{from_2d, to_2d, wall_2d};
-
-/// The hot part of one body's state: its stored motion, radius, mass and change count.
-///
-/// `repr(C)` keeps the fields in this order: the ones every time of impact reads come first.
-#[derive(Clone, Copy, Debug, PartialEq)]
-#[repr(C)]
-pub struct Body<const D: usize> {
-    /// Stored motion: reference position (metres), velocity (metres per second) and the
-    /// reference time (seconds) at which the position holds.
-    pub motion: Motion<D>,
-    /// Radius, metres.
-    pub radius: f64,
-    /// Mass, kilograms.
-    mass: f64,
-    /// How many times the stored motion has been replaced (see [`World::change_count`]).
-    changes: u64,
-}
+pub(crate) use crate::motion::pivot::{from_2d, to_2d, wall_2d};
 
 impl<const D: usize> Body<D> {
     /// Body `spec` as a scene starts it at time `t` (seconds): its stored motion from `t`.
@@ -102,7 +89,7 @@ pub struct World<const D: usize> {
     /// The edges of the table the static walls form ([`crate::wall::table_edges`]), computed
     /// once: edits check every placement against it.
     table: Vec<(Vector<D>, Vector<D>)>,
-    /// The moving walls' geometry at the scene's start (see [`crate::moving_wall`]).
+    /// The moving walls' geometry at the scene's start (see [`crate::world::time_of_impact`]).
     moving_walls: Vec<Wall<D>>,
     /// Where each moving wall is and how it moves.
     wall_motions: Vec<WallMotion<D>>,
@@ -124,7 +111,7 @@ pub struct World<const D: usize> {
     vacant: Vec<bool>,
     /// The vacant slots, the most recently vacated last: bodies added fill them first.
     free: Vec<usize>,
-    /// `settings.rest_speed`, m/s, if bodies come to rest on walls (see [`crate::resting`]).
+    /// `settings.rest_speed`, m/s, if bodies come to rest on walls (see [`crate::contact::resting`]).
     rest_speed: Option<f64>,
     /// Under `rest_speed`: the static wall each body rested on last, by body index
     /// ([`NO_SUPPORT`] for none; with [`DEPARTED`] set, the segment it slid off), and its
@@ -135,7 +122,7 @@ pub struct World<const D: usize> {
     /// Under `rest_speed`: the acceleration of a body sliding on each static wall, by wall
     /// index (`None` where no body rests); empty otherwise.
     slides: Vec<Option<Vector<D>>>,
-    /// Bodies turning about the end point of a segment (see [`crate::pivot`]), parked where
+    /// Bodies turning about the end point of a segment (see [`crate::motion::pivot`]), parked where
     /// finders see them: at rest, falling by nothing, colliding with nothing. Few at a time.
     pivots: Vec<Pivoting<D>>,
     /// The id the next added body gets unless it names its own: above every id so far.
@@ -218,7 +205,7 @@ impl<const D: usize> World<D> {
                 Some(_) => vec![(NO_SUPPORT, 0); n],
                 None => Vec::new(),
             },
-            slides: crate::resting::slides(scene),
+            slides: crate::scene::slides(scene),
             laws: Laws {
                 growth: scene.settings.growth.map(|g| GrowthLaw {
                     rate: g.rate,
@@ -461,10 +448,7 @@ impl<const D: usize> World<D> {
         if self.pivots.is_empty() {
             return self.position_at(i, t);
         }
-        match self.gravity_of(i) {
-            Some(a) => self.motion(i).falling_at(t, &a),
-            None => self.motion(i).at(t),
-        }
+        Path::new(self.bodies[i].motion, self.gravity_of(i)).position(t)
     }
 
     /// Velocity of body `i` at time `t` as the finders see it, metres per second (see
@@ -475,31 +459,43 @@ impl<const D: usize> World<D> {
         if self.pivots.is_empty() {
             return self.velocity_at(i, t);
         }
-        match self.gravity_of(i) {
-            Some(a) => self.bodies[i].motion.falling_velocity(t, &a),
-            None => self.bodies[i].motion.vel,
-        }
+        Path::new(self.bodies[i].motion, self.gravity_of(i)).velocity(t)
     }
 
     /// [`World::position_at`] in a world where no body rests on a wall: without the call
     /// out that resting needs, so that hot callers that know it stay leaf functions.
     #[inline(always)]
     pub(crate) fn free_position_at(&self, i: usize, t: f64) -> Vector<D> {
-        match &self.laws.gravity {
-            Some(g) if !self.bodies[i].is_kinematic() => self.motion(i).falling_at(t, g),
-            _ => self.motion(i).at(t),
-        }
+        self.free_path(i).position(t)
     }
 
     /// [`World::velocity_at`] in a world where no body rests on a wall (see
     /// [`World::free_position_at`]).
     #[inline(always)]
     pub(crate) fn free_velocity_at(&self, i: usize, t: f64) -> Vector<D> {
+        self.free_path(i).velocity(t)
+    }
+
+    /// [`World::path`] in a world where no body rests on a wall: a parabola under gravity,
+    /// a straight line without it or for a kinematic body.
+    #[inline(always)]
+    fn free_path(&self, i: usize) -> Path<D> {
+        let b = &self.bodies[i];
         match &self.laws.gravity {
-            Some(g) if !self.bodies[i].is_kinematic() => {
-                self.bodies[i].motion.falling_velocity(t, g)
-            }
-            _ => self.bodies[i].motion.vel,
+            Some(g) if !b.is_kinematic() => Path::Parabola(b.motion, *g),
+            _ => Path::Line(b.motion),
+        }
+    }
+
+    /// Body `i`'s path from its last event to its next: where it is and how fast it moves at
+    /// any time in between ([`Path::position`], [`Path::velocity`]).
+    #[must_use]
+    #[inline]
+    pub fn path(&self, i: usize) -> Path<D> {
+        if self.laws.resting {
+            self.resting_path(i)
+        } else {
+            self.free_path(i)
         }
     }
 
@@ -507,29 +503,27 @@ impl<const D: usize> World<D> {
     /// callers stay small).
     #[inline(never)]
     fn position_at_resting(&self, i: usize, t: f64) -> Vector<D> {
-        if let Some((pivot, _)) = self.pivot(i) {
-            return from_2d(pivot.position(t));
-        }
-        match self.gravity_of(i) {
-            Some(a) => self.motion(i).falling_at(t, &a),
-            None => self.motion(i).at(t),
-        }
+        self.resting_path(i).position(t)
     }
 
     /// [`World::velocity_at`] where bodies rest on walls (out of line, as
     /// `position_at_resting`).
     #[inline(never)]
     fn velocity_at_resting(&self, i: usize, t: f64) -> Vector<D> {
-        if let Some((pivot, _)) = self.pivot(i) {
-            return from_2d(pivot.velocity(t));
-        }
-        match self.gravity_of(i) {
-            Some(a) => self.bodies[i].motion.falling_velocity(t, &a),
-            None => self.bodies[i].motion.vel,
+        self.resting_path(i).velocity(t)
+    }
+
+    /// [`World::path`] where bodies rest on walls: a turn about a segment's end, or a
+    /// parabola under the body's own acceleration ([`World::gravity_of`]), or a line.
+    #[inline]
+    fn resting_path(&self, i: usize) -> Path<D> {
+        match self.pivot(i) {
+            Some((pivot, _)) => Path::Turn(*pivot),
+            None => Path::new(self.bodies[i].motion, self.gravity_of(i)),
         }
     }
 
-    /// True when bodies may rest on walls (`settings.rest_speed`, see [`crate::resting`]).
+    /// True when bodies may rest on walls (`settings.rest_speed`, see [`crate::contact::resting`]).
     #[must_use]
     #[inline]
     pub fn has_resting(&self) -> bool {
@@ -537,7 +531,7 @@ impl<const D: usize> World<D> {
     }
 
     /// The acceleration of body `i` between events, m/s²: the world's gravity, or for a body
-    /// resting on a wall the acceleration it slides with (see [`crate::resting`]); `None`
+    /// resting on a wall the acceleration it slides with (see [`crate::contact::resting`]); `None`
     /// without gravity or for a kinematic body (which moves in a straight line).
     #[must_use]
     #[inline]
@@ -564,7 +558,7 @@ impl<const D: usize> World<D> {
         self.gravity_of(i).unwrap_or(Vector::ZERO)
     }
 
-    /// The static wall body `i` rests on, sliding along it (see [`crate::resting`]), if it
+    /// The static wall body `i` rests on, sliding along it (see [`crate::contact::resting`]), if it
     /// does: only under `settings.rest_speed`, and until its state next changes.
     #[must_use]
     #[inline]
@@ -580,7 +574,7 @@ impl<const D: usize> World<D> {
     }
 
     /// The segment body `i` has just slid off over an end, flying clear of it (see
-    /// [`crate::ledge`]), while its state is still the one it left with: its next contact
+    /// [`crate::contact::ledge`]), while its state is still the one it left with: its next contact
     /// with that segment is its return to the end point, not the touch it left at.
     #[must_use]
     pub fn departed(&self, i: usize) -> Option<usize> {
@@ -600,7 +594,7 @@ impl<const D: usize> World<D> {
     }
 
     /// The segment body `i` has just come off after turning about one of its end points (see
-    /// [`crate::pivot_end`]), while its state is still the one it came off with: it touches
+    /// [`crate::contact::pivot_end`]), while its state is still the one it came off with: it touches
     /// that point then without pressing it, and leaves it falling (`v·g > 0`), so it meets
     /// that point no more.
     #[must_use]
@@ -624,12 +618,12 @@ impl<const D: usize> World<D> {
     }
 
     /// The motion of body `i` if it is turning about the end point of a segment (see
-    /// [`crate::pivot`]; 2D only), and that segment's index. Finders see such a body parked
+    /// [`crate::motion::pivot`]; 2D only), and that segment's index. Finders see such a body parked
     /// where the turn started, at rest, falling by nothing and colliding with nothing: the
     /// simulation finds its events itself. [`World::position_at`], [`World::velocity_at`]
     /// and [`World::filter`] tell its true state.
     #[must_use]
-    pub fn pivot(&self, i: usize) -> Option<(&crate::pivot::Pivot, usize)> {
+    pub fn pivot(&self, i: usize) -> Option<(&crate::motion::pivot::Pivot, usize)> {
         self.pivots
             .iter()
             .find(|p| p.body == i)
@@ -656,7 +650,7 @@ impl<const D: usize> World<D> {
     pub(crate) fn start_pivot(
         &mut self,
         i: usize,
-        pivot: crate::pivot::Pivot,
+        pivot: crate::motion::pivot::Pivot,
         w: usize,
         (pos, vel): (Vector<D>, Vector<D>),
     ) -> bool {
@@ -680,7 +674,7 @@ impl<const D: usize> World<D> {
 
     /// The state a record gives body `i` after an event: its reference position and stored
     /// velocity, or for a body turning about a segment's end the velocity it started with
-    /// (from which, with the position, [`crate::pivot::Pivot::new`] makes its turn again).
+    /// (from which, with the position, [`crate::motion::pivot::Pivot::new`] makes its turn again).
     #[must_use]
     pub fn recorded_state(&self, i: usize) -> (Vector<D>, Vector<D>) {
         let vel = match self.pivots.iter().find(|p| p.body == i) {
@@ -700,7 +694,7 @@ impl<const D: usize> World<D> {
     }
 
     /// `settings.rest_speed`, m/s: bodies leaving a collision with a plane gravity presses
-    /// them on at most this fast come to rest on it (see [`crate::resting`]).
+    /// them on at most this fast come to rest on it (see [`crate::contact::resting`]).
     #[must_use]
     pub fn rest_speed(&self) -> Option<f64> {
         self.rest_speed
@@ -859,7 +853,7 @@ impl<const D: usize> World<D> {
     }
 
     /// The growth law of a growing world (radii grow linearly in time, see
-    /// [`crate::growth`]), or `None` when radii are fixed.
+    /// [`crate::contact::growth`]), or `None` when radii are fixed.
     #[must_use]
     #[inline]
     pub fn growth(&self) -> Option<&GrowthLaw> {
@@ -867,7 +861,7 @@ impl<const D: usize> World<D> {
     }
 
     /// The acceleration every body undergoes between events, metres per second squared, in a
-    /// world with gravity (see [`crate::gravity`]).
+    /// world with gravity (see [`crate::contact::gravity`]).
     #[must_use]
     #[inline]
     pub fn gravity(&self) -> Option<Vector<D>> {
@@ -955,7 +949,7 @@ impl<const D: usize> World<D> {
         &self.table
     }
 
-    /// Number of moving walls (see [`crate::moving_wall`]); moving wall `k` is wall
+    /// Number of moving walls (see [`crate::world::time_of_impact`]); moving wall `k` is wall
     /// `walls().len() + k` in events.
     #[must_use]
     pub fn moving_wall_count(&self) -> usize {
@@ -1002,7 +996,7 @@ impl<const D: usize> World<D> {
         };
     }
 
-    /// The sides of the periodic box, for periodic worlds (see [`crate::periodic`]).
+    /// The sides of the periodic box, for periodic worlds (see [`crate::contact::periodic`]).
     #[must_use]
     pub fn periodic(&self) -> Option<Vector<D>> {
         self.periodic
@@ -1188,15 +1182,6 @@ impl<const D: usize> World<D> {
             .iter()
             .filter(|b| !b.is_kinematic())
             .fold(Vector::ZERO, |acc, b| acc + b.motion.vel * b.mass)
-    }
-}
-
-impl<const D: usize> Body<D> {
-    /// True for a kinematic body: infinite mass (see [`crate::BodySpec::kinematic`]).
-    #[must_use]
-    #[inline]
-    pub fn is_kinematic(&self) -> bool {
-        self.mass == f64::INFINITY
     }
 }
 

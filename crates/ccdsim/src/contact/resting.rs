@@ -3,7 +3,7 @@
 //! Radii are fixed here: scenes refuse `rest_speed` with `settings.growth`, since a resting
 //! body whose radius grows would have to move its centre off the wall at `Γ·r` while it
 //! slides, which the sliding parabola does not model (growing bodies bounce instead, see
-//! [`crate::falling_growth`]).
+//! [`crate::contact::falling_growth`]).
 //!
 //! With restitution below 1 a ball's bounces on a floor die away geometrically: infinitely
 //! many collisions in finite time. With `settings.rest_speed` set, a body that leaves a
@@ -18,13 +18,13 @@
 //!
 //! * a sliding body and a falling one (or two sliding on different walls) have a constant
 //!   relative acceleration: their contact is the quartic of
-//!   [`toi_circle_circle_accelerating`](crate::gravity::toi_circle_circle_accelerating), the
+//!   [`toi_circle_circle_accelerating`](crate::contact::gravity::toi_circle_circle_accelerating), the
 //!   function kinematic bodies already use;
 //! * two bodies with the same acceleration (both falling, or both sliding on one wall) keep
 //!   the straight-line quadratic of their relative motion;
 //! * a sliding body meets walls as a falling body does, under its own acceleration, and
 //!   never its support: it touches it all along. A body sliding on a segment meets it once
-//!   more, when it reaches one of its ends ([`crate::ledge`]).
+//!   more, when it reaches one of its ends ([`crate::contact::ledge`]).
 //!
 //! A body **leaves** its wall when its velocity next changes (a collision with a body or
 //! another wall, an edit, a thermostat reset): it falls again under `g`. A body knocked along
@@ -34,7 +34,7 @@
 //! Two exceptions keep it on its wall. A collision that leaves its velocity as it was (the
 //! pair was already parting) changes nothing. And a body **pressed into its wall** by a
 //! body that hits it (a ball landing on a resting one) is held by the wall, which takes the
-//! normal part of the push ([`pressed_impulse`]): the resting body moves along the wall
+//! normal part of the push ([`crate::resolve::pressed_impulse`]): the resting body moves along the wall
 //! only, and the pair's normal speed is reversed times the restitution as in a free
 //! collision. Without this, the resting body would pass a share of the push to its wall in
 //! an endless sequence of collisions at one instant.
@@ -51,12 +51,12 @@
 //! it would roll off around it, a pendulum's motion, not a parabola. Bodies rest on planes
 //! only there; a slow ball bounces on a rod with the restitution, and bounces that die away
 //! on it end the run with [`crate::Halt::Resting`], as on any wall that does not hold them
-//! (see [`crate::gravity`]).
+//! (see [`crate::contact::gravity`]).
 //!
 //! **Segments end.** A body sliding on a segment reaches one of its ends: it slides on along
 //! a segment that goes straight on from there, flies off if it is fast enough to clear the
 //! edge, and otherwise rolls over the edge, turning about the end point until it comes off
-//! or lands ([`crate::pivot`]). See [`crate::ledge`].
+//! or lands ([`crate::motion::pivot`]). See [`crate::contact::ledge`].
 //!
 //! Every finder reads each body's acceleration from the world ([`crate::World::acceleration`])
 //! and skips its support ([`crate::World::support`]), so all of them return the oracle's
@@ -73,7 +73,7 @@ use crate::wall::Wall;
 /// is exact across an axis-aligned segment. `None` where no body rests: a plane gravity
 /// does not press on, a segment along gravity, a segment in 3D (a rod: a body held on it
 /// would roll off around it, a motion no finder bounds exactly, so it bounces there instead;
-/// see [`crate::gravity`]).
+/// see [`crate::contact::gravity`]).
 #[must_use]
 pub fn slide_acceleration<const D: usize>(g: &Vector<D>, wall: &Wall<D>) -> Option<Vector<D>> {
     match *wall {
@@ -146,83 +146,11 @@ pub fn held_at<const D: usize>(wall: &Wall<D>, g: &Vector<D>, p: Vector<D>) -> b
     }
 }
 
-/// The acceleration of a body sliding on each static wall of `scene`, by wall index
-/// ([`slide_acceleration`]; `None` where no body rests), when bodies rest on walls there
-/// (`settings.rest_speed` and gravity); empty otherwise.
-#[must_use]
-pub fn slides<const D: usize>(scene: &crate::Scene<D>) -> Vec<Option<Vector<D>>> {
-    match (scene.settings.rest_speed, scene.gravity()) {
-        (Some(_), Some(g)) => scene
-            .walls
-            .iter()
-            .map(|w| slide_acceleration(&g, w))
-            .collect(),
-        _ => Vec::new(),
-    }
-}
-
 /// `v` without its component along the plane normal `normal`: `v − n (v·n)/(n·n)`, the
 /// velocity a body comes to rest with.
 #[must_use]
 pub fn tangential<const D: usize>(v: &Vector<D>, normal: &Vector<D>) -> Vector<D> {
     *v - *normal * (v.dot(*normal) / normal.norm_sq())
-}
-
-/// The velocities after a collision of bodies `i` and `j` (velocities `vi`, `vj` at the
-/// contact, `n` the unit vector from `i` to `j`, `vn = (vj − vi)·n < 0`, restitution `e`)
-/// when it presses one of them, or both, into the wall it rests on: such a body is held by
-/// its wall, which takes the normal part of its push, so it moves along the wall only
-/// (its velocity changes along `P n`, `P` the projection onto the wall). The pair's
-/// impulse `J = −(1 + e) vn / (w_i (P_i n)·n + w_j (P_j n)·n)` (`w` the inverse masses, 0
-/// for a kinematic body; `P = 1` for a body not held) reverses their normal speed times
-/// `e` as a free collision does. Returns the two velocities and which body its wall
-/// held; `None` when no body is pressed into its wall (or the pair parts), for the free
-/// collision.
-#[must_use]
-#[inline(never)]
-#[allow(clippy::type_complexity)]
-pub fn pressed_impulse<const D: usize>(
-    world: &crate::World<D>,
-    (i, vi): (usize, Vector<D>),
-    (j, vj): (usize, Vector<D>),
-    n: Vector<D>,
-    vn: f64,
-    e: f64,
-) -> Option<((Vector<D>, Vector<D>), (bool, bool))> {
-    if vn >= 0.0 {
-        return None;
-    }
-    // The direction the pair's impulse moves body `k` (pushed along `push`) and the wall
-    // that holds it, if one does.
-    let g = world.gravity().unwrap_or(Vector::ZERO);
-    let held = |k: usize, push: Vector<D>| match world.support(k).map(|w| world.walls()[w]) {
-        Some(wall) if push.dot(support_normal(&wall, &g)) < 0.0 => {
-            (along_support(&push, &wall), Some(wall))
-        }
-        _ => (push, None),
-    };
-    let (ui, hi) = held(i, Vector::ZERO - n);
-    let (uj, hj) = held(j, n);
-    if hi.is_none() && hj.is_none() {
-        return None;
-    }
-    let inverse = |k: usize| 1.0 / world.mass(k);
-    let (wi, wj) = (inverse(i), inverse(j));
-    let denominator = wi * ui.dot(Vector::ZERO - n) + wj * uj.dot(n);
-    if denominator <= 0.0 {
-        // Pressed straight into its wall by a kinematic body: no motion takes the push.
-        return None;
-    }
-    let impulse = -(1.0 + e) * vn / denominator;
-    let along = |v: Vector<D>, u: Vector<D>, w: f64, wall: Option<Wall<D>>| {
-        let v2 = v + u * (impulse * w);
-        // On its wall to the last bit where the wall is axis-aligned.
-        wall.map_or(v2, |wall| along_support(&v2, &wall))
-    };
-    Some((
-        (along(vi, ui, wi, hi), along(vj, uj, wj, hj)),
-        (hi.is_some(), hj.is_some()),
-    ))
 }
 
 /// True when a body that leaves a collision with a wall at normal speed `outgoing` (m/s,

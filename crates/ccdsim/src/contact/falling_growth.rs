@@ -1,46 +1,47 @@
-//! Gravity and growing radii together: bodies fall on parabolas ([`crate::gravity`]) while
-//! every radius grows linearly in time ([`crate::growth`]), as when grains are compressed to
+//! Gravity and growing radii together: bodies fall on parabolas ([`crate::contact::gravity`]) while
+//! every radius grows linearly in time ([`crate::contact::growth`]), as when grains are compressed to
 //! a jammed packing under gravity (a sedimented packing).
 //!
 //! # Pairs
 //!
 //! Two falling bodies have no relative acceleration, so their offset from `T = max(t_a, t_b)`
 //! on is a straight line and their contact distance a line too: growth's quadratic
-//! ([`crate::growth::first_contact_growing`]) of their offset and relative velocity at `T`
+//! ([`crate::contact::growth::first_contact_growing`]) of their offset and relative velocity at `T`
 //! ([`toi_circle_circle_falling_growing`]). A kinematic body does not fall: against a falling
 //! one the offset is a parabola and `|x(t)|² = σ(t)²` a quartic
-//! ([`crate::accelerated_contact::first_contact_accelerating_growing`]).
+//! ([`crate::contact::accelerated_contact::first_contact_accelerating_growing`]).
 //!
 //! # Walls
 //!
 //! Against a plane the gap between surface and plane is
 //! `(gap − r) + (v_n − ṙ)·t + ½·g_n·t²`, a quadratic whose first entry
-//! ([`crate::gravity::first_entry`]) is the contact ([`toi_circle_plane_falling_growing`]).
+//! ([`crate::contact::gravity::first_entry`]) is the contact ([`toi_circle_plane_falling_growing`]).
 //! Against a segment (2D) the ball meets the interior where it enters the slab around the
 //! line, whose half-width `r + ṙ·t` now grows, with its foot on the segment, and an end point
 //! at the first root of the quartic `|w + v·t + ½·g·t²|² = (r + ṙ·t)²`. As under gravity with
 //! fixed radii every entry into the slab is a candidate; as under growth without gravity a
 //! contact with the line beyond an end cannot hide one with the interior, which a ball within
 //! reach of the line beyond an end reaches only through the end point's ball. In 3D a segment
-//! is a rod ([`crate::rod`]): the side is the quartic of the motion across it against the
+//! is a rod ([`crate::contact::rod`]): the side is the quartic of the motion across it against the
 //! growing radius, `|w⊥ + v⊥·t + ½·g⊥·t²|² = (r + ṙ·t)²`, every entry whose foot lies on the
 //! rod a candidate, and the end points' quartics as in 2D
-//! ([`crate::rod::toi_circle_rod_falling_growing`]).
+//! ([`crate::contact::rod::toi_circle_rod_falling_growing`]).
 //!
 //! # What "approaching" means
 //!
 //! The surfaces approach when the gap shrinks: for a plane when `v_n + g_n·t < ṙ`; in a
 //! pair as growth has it (`dp·dv < σσ̇`). A body in contact that recedes is given the time it
-//! comes back, as [`crate::gravity::first_entry`] says.
+//! comes back, as [`crate::contact::gravity::first_entry`] says.
 //!
 //! Every finder evaluates these functions with the oracle's arguments (through
-//! [`crate::narrow`]'s dispatchers), so their events agree bit for bit.
+//! [`crate::contact::narrow`]'s dispatchers), so their events agree bit for bit.
 
-use crate::accelerated_contact::first_contact_accelerating_growing;
+use crate::contact::accelerated_contact::first_contact_accelerating_growing;
+use crate::contact::gravity::{crossing, first_entry};
+use crate::contact::growth::first_contact_growing;
 use crate::geom::Vector;
-use crate::gravity::{crossing, first_entry};
-use crate::growth::{first_contact_growing, GrowthLaw};
-use crate::narrow::Motion;
+use crate::motion::GrowthLaw;
+use crate::motion::Motion;
 use crate::wall::Wall;
 
 /// Time of impact (absolute, seconds) of two growing balls (stored radii `ra`, `rb`) falling
@@ -118,7 +119,7 @@ pub fn toi_circle_plane_falling_growing<const D: usize>(
 /// with the segment `[a, b]`: in 2D the first entry into the growing slab around its line
 /// whose foot lies on the segment, or the first contact with an end point, from the ball's
 /// reference time (see the module docs); in 3D, a rod's
-/// ([`crate::rod::toi_circle_rod_falling_growing`]).
+/// ([`crate::contact::rod::toi_circle_rod_falling_growing`]).
 #[must_use]
 pub fn toi_circle_segment_falling_growing<const D: usize>(
     m: &Motion<D>,
@@ -129,7 +130,7 @@ pub fn toi_circle_segment_falling_growing<const D: usize>(
     law: &GrowthLaw,
 ) -> Option<f64> {
     if D != 2 {
-        return crate::rod::toi_circle_rod_falling_growing(m, r, a, b, g, law);
+        return crate::contact::rod::toi_circle_rod_falling_growing(m, r, a, b, g, law);
     }
     let (radius, speed) = (law.radius_at(r, m.time), law.speed(r));
     let u = b - a;
@@ -174,7 +175,7 @@ pub fn toi_circle_segment_falling_growing<const D: usize>(
         .reduce(f64::min);
     let end_a = first_contact_accelerating_growing(w, m.vel, *g, radius, speed);
     let end_b = first_contact_accelerating_growing(m.pos - b, m.vel, *g, radius, speed);
-    crate::gravity::earliest_at(m.time, [interior, end_a, end_b])
+    crate::contact::rod::earliest_at(m.time, [interior, end_a, end_b])
 }
 
 /// Time of impact (absolute, seconds) of a growing ball (stored radius `r`) falling under `g`
@@ -199,7 +200,7 @@ pub fn toi_circle_wall_falling_growing<const D: usize>(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::accelerated_contact::first_contact_accelerating;
+    use crate::contact::accelerated_contact::first_contact_accelerating;
     use crate::wall::wall_clearance;
     use proptest::array::{uniform2, uniform3};
     use proptest::prelude::*;
@@ -253,7 +254,7 @@ mod tests {
         let m = m2([0.0, 6.0], [0.0, 0.0], 0.0);
         let up = Vector([0.0, 0.0]);
         assert_eq!(
-            crate::gravity::toi_circle_plane_falling(&m, 1.0, floor.0, floor.1, &up),
+            crate::contact::gravity::toi_circle_plane_falling(&m, 1.0, floor.0, floor.1, &up),
             None
         );
         let t = toi_circle_plane_falling_growing(&m, 1.0, floor.0, floor.1, &up, &LAW).unwrap();
@@ -279,7 +280,7 @@ mod tests {
 
     #[test]
     fn a_growing_ball_arcing_over_the_end_lands_on_the_segment() {
-        // As for fixed radii (see `crate::gravity`): up past the end, down onto the top.
+        // As for fixed radii (see `crate::contact::gravity`): up past the end, down onto the top.
         let m = m2([7.0, -3.0], [-3.0, 10.0], 0.0);
         let (a, b) = (Vector([0.0, 0.0]), Vector([4.0, 0.0]));
         let law = GrowthLaw {

@@ -41,10 +41,12 @@
 //! float. A NaN time makes `T − time` or `T` NaN, so `b` is NaN and the lane goes to the
 //! scalar function.
 
+use crate::contact::narrow::MIN_UNSCALED_A;
+use crate::contact::{toi_pair, toi_pair_shifted};
 use crate::geom::Vector;
-use crate::growth::GrowthLaw;
-use crate::laws::Laws;
-use crate::narrow::{toi_pair, toi_pair_shifted, Motion, MIN_UNSCALED_A};
+use crate::motion::GrowthLaw;
+use crate::motion::Laws;
+use crate::motion::Motion;
 use wide::{f64x4, CmpGe, CmpGt, CmpLe, CmpLt};
 
 /// Pairs evaluated at once: the lanes of one register.
@@ -67,7 +69,7 @@ pub(crate) struct PairArgs<'a, const D: usize> {
     pub rb: f64,
     /// Displacement of the second ball's image, metres (ignored unless `SHIFTED`).
     pub shift: &'a Vector<D>,
-    /// The world's laws, if any is in force (see [`crate::laws`]).
+    /// The world's laws, if any is in force (see [`crate::motion::laws`]).
     pub laws: Option<&'a Laws<D>>,
 }
 
@@ -342,7 +344,7 @@ pub(crate) fn toi_sides<const D: usize, const SHIFTED: bool>(
 }
 
 /// The times of impact of four pairs of growing balls: in each lane
-/// [`toi_circle_circle_growing`](crate::growth::toi_circle_circle_growing)'s result bit for
+/// [`toi_circle_circle_growing`](crate::contact::growth::toi_circle_circle_growing)'s result bit for
 /// bit, by the same operations in the same order (the contact distance `(r_a + r_b)·(1 + Γ·(T
 /// − t₀))` and its speed `(r_a + r_b)·Γ`, then `B = dp·dv − σσ̇`, `C = |dp|² − σ²`, `A = |dv|² −
 /// σ̇²`, `T + C / (−B + √(B² − AC))`). Unshifted lanes skip the scalar function's `+ 0` shift,

@@ -1,6 +1,6 @@
 //! The edge model: what a body sliding on a segment does at the segment's end.
 //!
-//! A body resting on a 2D segment (see [`crate::resting`]) slides along it until its centre's
+//! A body resting on a 2D segment (see [`crate::contact::resting`]) slides along it until its centre's
 //! foot reaches an end point `e` ([`slide_end_time`], the first root of a quadratic, an event
 //! of that body with that segment for every finder). There the body touches `e` with its
 //! centre at `c = e + r n` (`n` the segment's unit normal on its side) and its velocity `v`
@@ -22,22 +22,21 @@
 //!    back onto it). `q` is used instead of `|x|² − r²` because the touch it leaves at is a
 //!    double root of the latter, which rounding would turn into a spurious contact.
 //! 3. **Otherwise it rolls over the edge** (2D): held against `e` by gravity, it turns about
-//!    `e` on a circle of radius `r`, an inverted pendulum in closed form ([`crate::pivot`]),
+//!    `e` on a circle of radius `r`, an inverted pendulum in closed form ([`crate::motion::pivot`]),
 //!    until it comes off where `e` stops pushing, swings back onto its segment, or lands on
-//!    another segment ending at `e` ([`crate::pivot_end`]). That motion is not a polynomial,
+//!    another segment ending at `e` ([`crate::contact::pivot_end`]). That motion is not a polynomial,
 //!    so the finders do not search it: they see the body parked where its turn started
 //!    ([`crate::World::pivot`]) and the simulation finds its contacts itself
-//!    ([`crate::pivot_contact`]), the same events for every finder.
+//!    ([`crate::contact::pivot_contact`]), the same events for every finder.
 //!
 //! A body reaching a segment's end is a wall event of that body and segment in run files:
 //! with the rest flag and naming the next segment for case 1, without it for case 2, with
 //! the pivot flag (format version 13) for case 3.
 
+use crate::contact::gravity::first_entry;
 use crate::geom::Vector;
-use crate::gravity::{first_entry, toi_circle_segment_falling_ends};
-use crate::narrow::Motion;
+use crate::motion::Motion;
 use crate::wall::Wall;
-use crate::world::World;
 
 /// Absolute time, seconds, at which a body sliding on the segment `[a, b]` with motion `m`
 /// and acceleration `acc` (along the segment) first has its centre's foot leave the segment
@@ -77,19 +76,19 @@ pub fn end_reached<const D: usize>(a: Vector<D>, b: Vector<D>, p: Vector<D>) -> 
     }
 }
 
-/// The turn a run file records (format 13, see [`crate::pivot`]): a ball of radius `r` (m)
+/// The turn a run file records (format 13, see [`crate::motion::pivot`]): a ball of radius `r` (m)
 /// with centre `pos` and velocity `vel` at time `t`, under gravity `g`, rolls over the end
 /// point of segment `[a, b]` it has reached ([`end_reached`]). `Err` with the centre's
 /// distance from that point (m) when it is not `r` from it (to `1e-9·r`), so does not touch
-/// it; `Ok(None)` where [`crate::pivot::Pivot::new`] makes no turn. 2D.
+/// it; `Ok(None)` where [`crate::motion::pivot::Pivot::new`] makes no turn. 2D.
 pub fn recorded_turn<const D: usize>(
     (a, b): (Vector<D>, Vector<D>),
     r: f64,
     g: Vector<D>,
     (pos, vel): (Vector<D>, Vector<D>),
     t: f64,
-) -> Result<Option<crate::pivot::Pivot>, f64> {
-    use crate::pivot::{to_2d, Pivot};
+) -> Result<Option<crate::motion::pivot::Pivot>, f64> {
+    use crate::motion::pivot::{to_2d, Pivot};
     let end = end_reached(a, b, pos);
     let dist = (pos - end).norm();
     if (dist - r).abs() > 1e-9 * r {
@@ -146,7 +145,7 @@ pub fn return_time<const D: usize>(m: &Motion<D>, end: Vector<D>, g: &Vector<D>)
 /// The segment that goes straight on from end point `end` of segment `w` (case 1 of the
 /// module docs): another segment with an end point equal to `end`, parallel to `w` (their
 /// 2D cross product exactly zero) and pointing away from it, on which bodies rest
-/// (`slides[k]` is `Some`, see [`crate::resting::slides`]). The lowest such index; `None`
+/// (`slides[k]` is `Some`, see [`crate::scene::slides`]). The lowest such index; `None`
 /// in 3D or when there is none.
 #[must_use]
 pub fn continuation<const D: usize>(
@@ -178,61 +177,6 @@ pub fn continuation<const D: usize>(
             && out[0] * away[1] == out[1] * away[0]
             && out.dot(away) > 0.0
     })
-}
-
-/// Time of impact of body `i` of `world` with segment `w` (from `a` to `b`) where bodies rest
-/// on walls ([`crate::narrow::toi_body_wall_resting`]): for a body sliding on `w`, its
-/// arrival at an end ([`slide_end_time`]); for one sliding on another segment, the usual
-/// contact under its slide's acceleration, but never at an end point the two share (it is
-/// a point of its support, which it touches all along); for one that has just flown off
-/// an end point, its return to that point ([`return_time`]) wherever a segment ends
-/// there, and the usual contact with the rest of the segment.
-#[must_use]
-pub fn toi_body_segment<const D: usize>(
-    world: &World<D>,
-    i: usize,
-    w: usize,
-    a: Vector<D>,
-    b: Vector<D>,
-) -> Option<f64> {
-    let body = &world.bodies()[i];
-    let (m, r, acc) = (&body.motion, body.radius, world.acceleration(i));
-    if let Some(support) = world.support(i) {
-        if support == w {
-            return slide_end_time(m, &acc, a, b);
-        }
-        let ends = match world.walls()[support] {
-            Wall::Segment { a: sa, b: sb } => [a != sa && a != sb, b != sa && b != sb],
-            Wall::Plane { .. } => [true; 2],
-        };
-        return toi_circle_segment_falling_ends(m, r, a, b, &acc, ends);
-    }
-    if let Some(left) = world.released(i) {
-        // Come off an end point after turning about it: never that point again.
-        let Wall::Segment { a: la, b: lb } = world.walls()[left] else {
-            unreachable!("bodies turn about segment ends only");
-        };
-        let end = end_reached(la, lb, m.pos);
-        return toi_circle_segment_falling_ends(m, r, a, b, &acc, [a != end, b != end]);
-    }
-    if let (Some(left), Some(g)) = (world.departed(i), world.gravity()) {
-        let Wall::Segment { a: la, b: lb } = world.walls()[left] else {
-            unreachable!("bodies fly off segments only");
-        };
-        let end = end_reached(la, lb, m.pos);
-        if left == w {
-            return return_time(m, end, &g);
-        }
-        let ends = [a != end, b != end];
-        if ends != [true; 2] {
-            let rest = toi_circle_segment_falling_ends(m, r, a, b, &acc, ends);
-            return [rest, return_time(m, end, &g)]
-                .into_iter()
-                .flatten()
-                .reduce(f64::min);
-        }
-    }
-    toi_circle_segment_falling_ends(m, r, a, b, &acc, [true; 2])
 }
 
 #[cfg(test)]
@@ -315,7 +259,7 @@ mod tests {
         ];
         let slides: Vec<_> = walls
             .iter()
-            .map(|w| crate::resting::slide_acceleration(&G, w))
+            .map(|w| crate::contact::resting::slide_acceleration(&G, w))
             .collect();
         // From (1, 0) segment 1 goes on (it is drawn the other way); 2 turns up.
         assert_eq!(
@@ -332,7 +276,7 @@ mod tests {
         let back = [seg([0.0, 0.0], [1.0, 0.0]), seg([1.0, 0.0], [0.5, 0.0])];
         let slides: Vec<_> = back
             .iter()
-            .map(|w| crate::resting::slide_acceleration(&G, w))
+            .map(|w| crate::contact::resting::slide_acceleration(&G, w))
             .collect();
         assert_eq!(continuation(&back, &slides, 0, Vector([1.0, 0.0])), None);
     }

@@ -1,9 +1,8 @@
-//! No new import circle in the library: files that import each other in a loop (through
-//! `crate::`, `super::` and `self::` paths, in `use` declarations or inline) make a layer
-//! that cannot be understood, tested or moved on its own. The circles the library still has
-//! are listed in `tests/import_circles.txt`, one per line; a circle not in that list (or one
-//! that grew) fails this test, and so does a listed circle that no longer exists, so that the
-//! list only ever shrinks. See ARCHITECTURE.md for the layers the imports should follow.
+//! The library's imports follow its layers (ARCHITECTURE.md, "Layers"): every module imports
+//! only from its own layer or the layers below it, and no modules import each other in a loop
+//! (through `crate::`, `super::` and `self::` paths, in `use` declarations or inline, and
+//! through the crate root's re-exports). Files that import each other in a loop cannot be
+//! understood, tested or moved on their own.
 //!
 //! A module's paths to its own children (`grid::Grid` in `cells/mod.rs`) are not counted: a
 //! folder is one room seen from outside; the children's paths to it (`super::`) are.
@@ -243,16 +242,6 @@ fn circles(graph: &BTreeMap<Vec<String>, BTreeSet<Vec<String>>>) -> Vec<BTreeSet
     s.out
 }
 
-fn known() -> Vec<BTreeSet<String>> {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/import_circles.txt");
-    std::fs::read_to_string(path)
-        .unwrap()
-        .lines()
-        .filter(|l| !l.starts_with('#') && !l.trim().is_empty())
-        .map(|l| l.split_whitespace().map(str::to_string).collect())
-        .collect()
-}
-
 #[test]
 fn expand_reads_nested_use_trees() {
     assert_eq!(
@@ -266,49 +255,160 @@ fn expand_reads_nested_use_trees() {
     );
 }
 
-#[test]
-fn no_new_import_circle() {
-    let modules = modules();
+/// What each `pub use` of the crate root names, by the name it is re-exported as: a path
+/// into the root (`crate::World`) is a path into that module.
+fn root_reexports(modules: &BTreeMap<Vec<String>, String>) -> BTreeMap<String, Vec<String>> {
+    let mut out = BTreeMap::new();
+    let root = &modules[&Vec::new()];
+    let mut rest = root.as_str();
+    while let Some(at) = rest.find("pub use ") {
+        let body = &rest[at + "pub use ".len()..];
+        let end = body.find(';').unwrap_or(body.len());
+        for path in expand(&body[..end].replace('\n', " ")) {
+            let name = path.rsplit("::").next().unwrap().to_string();
+            if let Some(t) = target(&[], &format!("crate::{path}"), modules) {
+                out.insert(name, t);
+            }
+        }
+        rest = &body[end..];
+    }
+    out
+}
+
+/// Every module's imports: the modules its code names (not itself, not the root, not its
+/// own children).
+fn import_graph(
+    modules: &BTreeMap<Vec<String>, String>,
+) -> BTreeMap<Vec<String>, BTreeSet<Vec<String>>> {
+    let reexports = root_reexports(modules);
     let mut graph: BTreeMap<Vec<String>, BTreeSet<Vec<String>>> = BTreeMap::new();
-    for (module, code) in &modules {
+    for (module, code) in modules {
         let edges = graph.entry(module.clone()).or_default();
+        if module.is_empty() {
+            continue;
+        }
         for path in named_paths(code) {
-            if let Some(t) = target(module, &path, &modules) {
-                // Paths into the crate root (its re-exports) and into a module's own
-                // children are no edges: a folder's `mod.rs` and the files under it are one
-                // room seen from outside, and the children's imports of it (`super::`) are.
-                if !t.starts_with(module) && !t.is_empty() {
-                    edges.insert(t);
+            let Some(mut t) = target(module, &path, modules) else {
+                continue;
+            };
+            if t.is_empty() {
+                // `crate::Name`: the module the root re-exports `Name` from.
+                let name = path
+                    .trim_start_matches("crate::")
+                    .split("::")
+                    .next()
+                    .unwrap();
+                match reexports.get(name) {
+                    Some(m) => t = m.clone(),
+                    None => continue,
                 }
+            }
+            if !t.starts_with(module) {
+                edges.insert(t);
             }
         }
     }
-    let found = circles(&graph);
-    let known = known();
+    graph
+}
+
+/// The layers of ARCHITECTURE.md's "Layers" block, top first: each line `name: module …`,
+/// a module named by its path (`observables::thermodynamic`).
+fn layers() -> Vec<(String, Vec<Vec<String>>)> {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../ARCHITECTURE.md");
+    let text = std::fs::read_to_string(path).unwrap();
+    let section = text.split("## Layers").nth(1).expect("a Layers section");
+    let block = section.split("```").nth(1).expect("a code block");
+    block
+        .lines()
+        .filter_map(|l| l.split_once(':'))
+        .map(|(name, mods)| {
+            let mods = mods
+                .split_whitespace()
+                .map(|m| m.split("::").map(str::to_string).collect())
+                .collect();
+            (name.trim().to_string(), mods)
+        })
+        .collect()
+}
+
+/// The layer of `module` (0 the top): the layer naming the longest prefix of its path.
+fn layer_of(module: &[String], layers: &[(String, Vec<Vec<String>>)]) -> Option<usize> {
+    layers
+        .iter()
+        .enumerate()
+        .flat_map(|(k, (_, mods))| mods.iter().map(move |m| (k, m)))
+        .filter(|(_, m)| module.starts_with(m))
+        .max_by_key(|(_, m)| m.len())
+        .map(|(k, _)| k)
+}
+
+#[test]
+fn no_import_circle() {
+    let found = circles(&import_graph(&modules()));
     let show = |c: &BTreeSet<String>| c.iter().cloned().collect::<Vec<_>>().join(" ");
-    let mut problems = Vec::new();
-    for circle in &found {
-        if !known.iter().any(|k| circle.is_subset(k)) {
-            problems.push(format!(
-                "a new import circle (or a listed one grown): {}",
-                show(circle)
-            ));
-        }
-    }
-    for k in &known {
-        if !found.iter().any(|c| c == k) {
-            problems.push(format!(
-                "listed in tests/import_circles.txt but not (or no longer whole) in the code: \
-                 {}; write the list again with what remains",
-                show(k)
-            ));
-        }
-    }
-    let now: Vec<String> = found.iter().map(show).collect();
     assert!(
-        problems.is_empty(),
-        "{}\nthe circles now:\n{}",
-        problems.join("\n"),
-        now.join("\n")
+        found.is_empty(),
+        "modules that import each other in a loop:\n{}",
+        found.iter().map(show).collect::<Vec<_>>().join("\n")
     );
+}
+
+#[test]
+fn imports_follow_the_layers() {
+    let modules = modules();
+    let layers = layers();
+    assert!(layers.len() >= 5, "{layers:?}");
+    let name = |m: &[String]| m.join("::");
+    let mut problems = Vec::new();
+    for (module, imports) in import_graph(&modules) {
+        if module.is_empty() {
+            continue;
+        }
+        let Some(here) = layer_of(&module, &layers) else {
+            problems.push(format!("{} is in no layer", name(&module)));
+            continue;
+        };
+        for t in imports {
+            match layer_of(&t, &layers) {
+                Some(there) if there < here => problems.push(format!(
+                    "{} (layer {}) imports {} from the layer above it, {}",
+                    name(&module),
+                    layers[here].0,
+                    name(&t),
+                    layers[there].0
+                )),
+                _ => {}
+            }
+        }
+    }
+    for (layer, mods) in &layers {
+        for m in mods {
+            if !modules.contains_key(m) {
+                problems.push(format!(
+                    "layer {layer} names {}, which is no module",
+                    name(m)
+                ));
+            }
+        }
+    }
+    assert!(problems.is_empty(), "{}", problems.join("\n"));
+}
+
+#[test]
+fn a_loop_and_an_upward_import_are_found() {
+    let m = |s: &str| s.split("::").map(str::to_string).collect::<Vec<_>>();
+    let mut graph = BTreeMap::new();
+    graph.insert(m("a"), BTreeSet::from([m("b")]));
+    graph.insert(m("b"), BTreeSet::from([m("a")]));
+    graph.insert(m("c"), BTreeSet::from([m("a")]));
+    let found = circles(&graph);
+    assert_eq!(found.len(), 1);
+    assert_eq!(found[0], BTreeSet::from(["a".to_string(), "b".to_string()]));
+    let layers = vec![
+        ("top".to_string(), vec![m("c"), m("a::x")]),
+        ("bottom".to_string(), vec![m("a"), m("b")]),
+    ];
+    assert_eq!(layer_of(&m("a::x::y"), &layers), Some(0));
+    assert_eq!(layer_of(&m("a::z"), &layers), Some(1));
+    assert_eq!(layer_of(&m("d"), &layers), None);
 }

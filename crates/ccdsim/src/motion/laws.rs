@@ -1,13 +1,13 @@
 //! The laws that shape motion between events besides each body's velocity: growing radii
-//! ([`crate::growth`]) and uniform gravity ([`crate::gravity`]), alone or together
-//! ([`crate::falling_growth`]).
+//! ([`crate::contact::growth`]) and uniform gravity ([`crate::contact::gravity`]), alone or together
+//! ([`crate::contact::falling_growth`]).
 //!
-//! Every finder passes them to the narrow phase's dispatchers ([`crate::narrow::toi_pair`],
-//! [`crate::narrow::toi_body_wall`], …) as `Option<&Laws<D>>`: `None` in a world with neither,
+//! Every finder passes them to the narrow phase's dispatchers ([`crate::contact::toi_pair`],
+//! [`crate::contact::toi_body_wall`], …) as `Option<&Laws<D>>`: `None` in a world with neither,
 //! where the dispatchers are the fixed-radius straight-line functions, unchanged.
 
 use crate::geom::Vector;
-use crate::growth::GrowthLaw;
+use crate::motion::GrowthLaw;
 
 /// The laws in force in a world.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -23,10 +23,10 @@ pub struct Laws<const D: usize> {
     /// True when bodies have collision groups and masks (see [`crate::collision_filter`]):
     /// finders then skip the pairs [`crate::World::collides`] rejects.
     pub filtered: bool,
-    /// True when bodies may rest on walls (`settings.rest_speed`, see [`crate::resting`]):
+    /// True when bodies may rest on walls (`settings.rest_speed`, see [`crate::contact::resting`]):
     /// each body then has its own acceleration ([`crate::World::acceleration`]) and never
     /// meets the wall it rests on, so finders take the narrow phase's resting forms
-    /// ([`crate::narrow::toi_pair_resting`], [`crate::narrow::toi_body_wall_resting`]).
+    /// ([`crate::world::toi_pair_resting`], [`crate::world::toi_body_wall_resting`]).
     pub resting: bool,
 }
 

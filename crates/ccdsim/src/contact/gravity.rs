@@ -27,9 +27,9 @@
 //! rod (projected on the plane perpendicular to it) the centre's parabola is a parabola still,
 //! so its squared distance from the rod's line is a quartic, and the ball meets the side
 //! where it enters the infinite cylinder around the line with its foot on the rod
-//! ([`crate::rod`]). That quartic may have two entries (the parabola enters the cylinder
+//! ([`crate::contact::rod`]). That quartic may have two entries (the parabola enters the cylinder
 //! beyond an end, leaves it, and comes back over the rod), so each entry is a candidate
-//! ([`crate::accelerated_contact::contacts_accelerating`]); the end points are the same
+//! ([`crate::contact::accelerated_contact::contacts_accelerating`]); the end points are the same
 //! quartic against a point as in 2D. A ball does not rest on a rod: held on top of it, it
 //! would roll off around it, a pendulum's motion that no finder could bound exactly, so
 //! `settings.rest_speed` holds bodies on planes (and 2D segments) only, and a ball on a rod
@@ -39,7 +39,7 @@
 //! stops there with [`crate::Halt::Resting`], the same event for every finder (the TC model,
 //! `settings.tc`, keeps such bounces elastic instead).
 //!
-//! With growing radii too, see [`crate::falling_growth`].
+//! With growing radii too, see [`crate::contact::falling_growth`].
 //!
 //! # What "approaching" means
 //!
@@ -48,89 +48,11 @@
 //! it comes back: the later root, or, if it never leaves the overlap, the time it turns to
 //! approach (the vertex of the parabola).
 
-use crate::accelerated_contact::first_contact_accelerating;
+use crate::contact::accelerated_contact::first_contact_accelerating;
+use crate::contact::narrow::{first_contact, toi_circle_plane};
 use crate::geom::Vector;
-use crate::narrow::{first_contact, toi_circle_plane, Motion};
+use crate::motion::Motion;
 use crate::wall::Wall;
-use serde::{Deserialize, Serialize};
-
-/// The gravity setting of a scene (`settings.gravity` in a scene file): the acceleration
-/// every body undergoes, metres per second squared, with as many components as the scene
-/// has dimensions.
-///
-/// ```json
-/// "settings": { "gravity": [0.0, -9.81] }
-/// ```
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Gravity {
-    components: [f64; 3],
-    len: usize,
-}
-
-impl Gravity {
-    /// Gravity with the given components (2 or 3); `None` for any other count.
-    #[must_use]
-    pub fn new(components: &[f64]) -> Option<Self> {
-        if !(2..=3).contains(&components.len()) {
-            return None;
-        }
-        let mut c = [0.0; 3];
-        c[..components.len()].copy_from_slice(components);
-        Some(Gravity {
-            components: c,
-            len: components.len(),
-        })
-    }
-
-    /// The components as written.
-    #[must_use]
-    pub fn components(&self) -> &[f64] {
-        &self.components[..self.len]
-    }
-
-    /// The acceleration as a vector of a `D`-dimensional world; `None` when the setting has
-    /// another number of components.
-    #[must_use]
-    pub fn vector<const D: usize>(&self) -> Option<Vector<D>> {
-        Vector::from_slice(self.components())
-    }
-}
-
-impl Serialize for Gravity {
-    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
-        self.components().serialize(s)
-    }
-}
-
-impl<'de> Deserialize<'de> for Gravity {
-    fn deserialize<De: serde::Deserializer<'de>>(d: De) -> Result<Self, De::Error> {
-        let v = Vec::<f64>::deserialize(d)?;
-        Gravity::new(&v).ok_or_else(|| {
-            serde::de::Error::custom(format!(
-                "gravity has {} components; it needs one per dimension (2 or 3)",
-                v.len()
-            ))
-        })
-    }
-}
-
-impl<const D: usize> Motion<D> {
-    /// Position at time `t` under the acceleration `g`, metres:
-    /// `pos + vel·dt + g·(½·dt²)` with `dt = t − time`.
-    #[must_use]
-    #[inline]
-    pub fn falling_at(&self, t: f64, g: &Vector<D>) -> Vector<D> {
-        let dt = t - self.time;
-        self.pos + self.vel * dt + *g * (0.5 * dt * dt)
-    }
-
-    /// Velocity at time `t` under the acceleration `g`, metres per second: `vel + g·dt`.
-    #[must_use]
-    #[inline]
-    pub fn falling_velocity(&self, t: f64, g: &Vector<D>) -> Vector<D> {
-        self.vel + *g * (t - self.time)
-    }
-}
 
 /// Time of impact of two balls (radii `ra`, `rb`) falling under the same acceleration `g`,
 /// ball `b` displaced by `shift`: [`first_contact`] of their offset and relative velocity at
@@ -285,9 +207,9 @@ pub(crate) fn face_roots(c: f64, b: f64, a: f64) -> Option<(f64, f64)> {
 /// Time of impact of a ball (radius `r`) falling under `g` with the segment `[a, b]`: in 2D
 /// the first entry into the slab around its line whose foot lies on the segment, in 3D the
 /// first entry into the cylinder around it whose foot lies on the segment (a rod,
-/// [`crate::rod`]), or the first contact with an end point
+/// [`crate::contact::rod`]), or the first contact with an end point
 /// ([`first_contact_accelerating`]), from the ball's reference time. With zero gravity this is
-/// [`toi_circle_segment`](crate::narrow::toi_circle_segment) bit for bit.
+/// [`toi_circle_segment`](crate::contact::narrow::toi_circle_segment) bit for bit.
 #[must_use]
 pub fn toi_circle_segment_falling<const D: usize>(
     m: &Motion<D>,
@@ -300,7 +222,7 @@ pub fn toi_circle_segment_falling<const D: usize>(
 }
 
 /// [`toi_circle_segment_falling`] with the end points `a` and `b` counted only where `ends`
-/// says (see [`crate::narrow::toi_circle_segment_ends`]).
+/// says (see [`crate::contact::narrow::toi_circle_segment_ends`]).
 #[must_use]
 #[inline(always)]
 pub fn toi_circle_segment_falling_ends<const D: usize>(
@@ -312,10 +234,10 @@ pub fn toi_circle_segment_falling_ends<const D: usize>(
     ends: [bool; 2],
 ) -> Option<f64> {
     if *g == Vector::ZERO {
-        return crate::narrow::toi_circle_segment_ends(m, r, a, b, ends);
+        return crate::contact::narrow::toi_circle_segment_ends(m, r, a, b, ends);
     }
     if D != 2 {
-        return crate::rod::toi_circle_rod_falling_ends(m, r, a, b, g, ends);
+        return crate::contact::rod::toi_circle_rod_falling_ends(m, r, a, b, g, ends);
     }
     let u = b - a;
     let l2 = u.norm_sq();
@@ -363,19 +285,7 @@ pub fn toi_circle_segment_falling_ends<const D: usize>(
     let end_b = ends[1]
         .then(|| first_contact_accelerating(m.pos - b, m.vel, *g, r))
         .flatten();
-    crate::gravity::earliest_at(m.time, [interior, end_a, end_b])
-}
-
-/// The earliest of a segment contact's candidate time offsets (seconds, from `time`: its
-/// side and its two end points), as an absolute time, if any is finite then.
-#[inline]
-pub(crate) fn earliest_at(time: f64, offsets: [Option<f64>; 3]) -> Option<f64> {
-    offsets
-        .into_iter()
-        .flatten()
-        .reduce(f64::min)
-        .map(|dt| time + dt)
-        .filter(|t| t.is_finite())
+    crate::contact::rod::earliest_at(m.time, [interior, end_a, end_b])
 }
 
 /// Time of impact of a ball (radius `r`) falling under `g` with a wall of either kind.
@@ -396,7 +306,7 @@ pub fn toi_circle_wall_falling<const D: usize>(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::narrow::toi_circle_segment;
+    use crate::contact::narrow::toi_circle_segment;
 
     const G: Vector<2> = Vector([0.0, -10.0]);
 
@@ -406,16 +316,6 @@ mod tests {
             vel: Vector(v),
             time: t,
         }
-    }
-
-    #[test]
-    fn gravity_setting_reads_two_or_three_components() {
-        let g: Gravity = serde_json::from_str("[0, -9.81]").unwrap();
-        assert_eq!(g.vector::<2>(), Some(Vector([0.0, -9.81])));
-        assert_eq!(g.vector::<3>(), None);
-        assert_eq!(serde_json::to_string(&g).unwrap(), "[0.0,-9.81]");
-        let err = serde_json::from_str::<Gravity>("[1]").unwrap_err();
-        assert!(err.to_string().contains("1 components"), "{err}");
     }
 
     #[test]

@@ -17,10 +17,11 @@
 //! contact distance so that at most one image of a body can touch another. A pure function of
 //! the stored states, like every narrow phase, it lets every finder agree bit for bit.
 
+use crate::contact::growth::toi_circle_circle_periodic_growing;
+use crate::contact::narrow::toi_circle_circle_shifted;
 use crate::geom::Vector;
-use crate::growth::toi_circle_circle_periodic_growing;
-use crate::laws::Laws;
-use crate::narrow::{toi_circle_circle_shifted, Motion};
+use crate::motion::Laws;
+use crate::motion::Motion;
 
 /// Face index of the exit through the lower (`upper = false`, x = 0) or upper (x = L) face of
 /// `axis`.
@@ -194,8 +195,8 @@ pub fn toi_circle_circle_periodic<const D: usize>(
 #[must_use]
 #[inline]
 pub fn toi_bodies_periodic<const D: usize>(
-    a: &crate::world::Body<D>,
-    b: &crate::world::Body<D>,
+    a: &crate::motion::Body<D>,
+    b: &crate::motion::Body<D>,
     size: &Vector<D>,
     laws: Option<&Laws<D>>,
 ) -> Option<f64> {

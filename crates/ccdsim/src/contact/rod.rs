@@ -10,7 +10,7 @@
 //! Seen along the rod (projected on the plane perpendicular to `u = b − a`), the centre still
 //! moves on a parabola, `w⊥ + v⊥·t + ½·g⊥·t²`, so its squared distance from the line is a
 //! quartic in time: the same problem as a point on a parabola against a ball
-//! ([`crate::accelerated_contact`]), on the projected offset, velocity and gravity. Unlike a
+//! ([`crate::contact::accelerated_contact`]), on the projected offset, velocity and gravity. Unlike a
 //! straight path, a parabola can enter the cylinder beyond an end, leave it, and come back
 //! over the rod (a ball thrown up past the end falls back onto it): the quartic has up to
 //! two entries, and every one whose foot lies on the rod is a candidate
@@ -23,7 +23,7 @@
 //!
 //! With `settings.growth` the capsule's radius grows with the ball's, `ρ(t) = ρ + ρ̇·t`: the
 //! side is the quartic `|x⊥(t)|² = ρ(t)²` and each end point `|x(t)|² = ρ(t)²`, solved by the
-//! same isolation ([`crate::accelerated_contact`]), every entry into the growing cylinder with
+//! same isolation ([`crate::contact::accelerated_contact`]), every entry into the growing cylinder with
 //! its foot on the rod a candidate. The end balls still catch what enters beyond an end: when
 //! the foot crosses an end the centre is within `ρ(t)` of the line there, so of the end point
 //! ([`toi_circle_rod_falling_growing`]).
@@ -31,15 +31,15 @@
 //! # Resting
 //!
 //! A ball held on top of a rod would roll off around it, a pendulum's motion, not a parabola:
-//! bodies never rest on rods (see [`crate::resting`]); they bounce with the restitution.
+//! bodies never rest on rods (see [`crate::contact::resting`]); they bounce with the restitution.
 
-use crate::accelerated_contact::{
+use crate::contact::accelerated_contact::{
     contacts_accelerating, contacts_accelerating_growing, first_contact_accelerating,
     first_contact_accelerating_growing,
 };
 use crate::geom::Vector;
-use crate::growth::GrowthLaw;
-use crate::narrow::Motion;
+use crate::motion::GrowthLaw;
+use crate::motion::Motion;
 
 /// Time of impact of a ball (radius `r`, metres; motion `m`) falling under `g` (m/s², not
 /// zero) with the rod from `a` to `b` (metres): the first entry into the cylinder of radius
@@ -73,7 +73,7 @@ pub fn toi_circle_rod_falling_ends<const D: usize>(
 /// grows as the ball's does, `ρ(t) = ρ + ρ̇·(t − t_m)` (`ρ` the radius at the ball's
 /// reference time `t_m`). The side is then the quartic `|x⊥(t)|² = ρ(t)²`, every entry a
 /// candidate, and each end point the quartic `|x(t)|² = ρ(t)²` (see
-/// [`crate::accelerated_contact`]); the end balls still catch whatever enters the cylinder
+/// [`crate::contact::accelerated_contact`]); the end balls still catch whatever enters the cylinder
 /// beyond an end and carries its foot onto the rod, since the ball is within `ρ(t)` of the
 /// end point when its foot crosses it. An absolute time, seconds, or `None`.
 #[must_use]
@@ -126,13 +126,25 @@ fn capsule_contact<const D: usize>(
         .find(|&dt| foot(dt));
     let end_a = ends[0].then(|| end(w, m.vel, *g)).flatten();
     let end_b = ends[1].then(|| end(m.pos - b, m.vel, *g)).flatten();
-    crate::gravity::earliest_at(m.time, [side, end_a, end_b])
+    earliest_at(m.time, [side, end_a, end_b])
+}
+
+/// The earliest of a segment contact's candidate time offsets (seconds, from `time`: its
+/// side and its two end points), as an absolute time, if any is finite then.
+#[inline]
+pub(crate) fn earliest_at(time: f64, offsets: [Option<f64>; 3]) -> Option<f64> {
+    offsets
+        .into_iter()
+        .flatten()
+        .reduce(f64::min)
+        .map(|dt| time + dt)
+        .filter(|t| t.is_finite())
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::gravity::toi_circle_segment_falling;
+    use crate::contact::gravity::toi_circle_segment_falling;
     use crate::wall::{wall_clearance, Wall};
     use proptest::prelude::*;
 

@@ -1,4 +1,4 @@
-//! First contacts of a ball turning about a point ([`crate::pivot`]) with what moves by
+//! First contacts of a ball turning about a point ([`crate::motion::pivot`]) with what moves by
 //! polynomials: a ball falling on a parabola (or flying straight, or at rest), a line.
 //!
 //! A pivot's position is no polynomial of time, so no formula gives these roots. They are
@@ -20,7 +20,7 @@
 //! of the states, so every finder asking gets the same bits.
 
 use crate::geom::Vector;
-use crate::pivot::Pivot;
+use crate::motion::pivot::Pivot;
 use crate::wall::Wall;
 
 /// A point moving by a polynomial of degree at most two: at time `time` it is at `pos` with
@@ -180,7 +180,7 @@ pub fn first_contact_line(
 /// (m/s; zero for a static wall), or `None`. A plane is met on its side; a segment on the
 /// side the centre is on at `lo`, between its ends, or at an end point. Not met: the pivot's
 /// own point, and the inside of a segment that ends there (the ball reaches those only by
-/// landing on them, see [`crate::pivot_end`]).
+/// landing on them, see [`crate::contact::pivot_end`]).
 #[must_use]
 pub fn toi_pivot_wall(
     pivot: &Pivot,

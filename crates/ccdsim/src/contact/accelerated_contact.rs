@@ -1,7 +1,7 @@
 //! First contact of a point moving on a parabola with a ball: a ball under uniform gravity
 //! against a fixed point (a wall segment's end point), or two balls with different
 //! accelerations; and every later one ([`contacts_accelerating`]), for the side of a rod,
-//! whose projected parabola may enter the cylinder around it twice ([`crate::rod`]).
+//! whose projected parabola may enter the cylinder around it twice ([`crate::contact::rod`]).
 //!
 //! # A quartic
 //!
@@ -20,7 +20,7 @@
 //!
 //! # Growing radii
 //!
-//! With growing radii ([`crate::growth`]) the contact distance is linear in time,
+//! With growing radii ([`crate::contact::growth`]) the contact distance is linear in time,
 //! `σ(t) = σ + σ̇·t`, and `f(t) = |x(t)|² − σ(t)²` is still a quartic with the same leading
 //! coefficient: `σ̇` only lowers the coefficients of `t²` and `t` by `σ̇²` and `2σσ̇`, and the
 //! derivative chain isolates its roots as before ([`first_contact_accelerating_growing`]).
@@ -34,15 +34,15 @@
 //! Multiplying by powers of two commutes with every rounding, so a problem scaled by powers
 //! of two in length and time gets the scaled answer bit for bit, and nothing overflows.
 
+use crate::contact::growth::{first_contact_growing, first_exit_growing};
+use crate::contact::narrow::first_contact;
 use crate::geom::Vector;
-use crate::growth::{first_contact_growing, first_exit_growing};
-use crate::narrow::first_contact;
 
 /// Time offset `t ≥ 0`, seconds, at which a point at offset `dp` (metres) from the origin,
 /// moving at relative velocity `dv` (m/s) with constant relative acceleration `acc` (m/s²),
 /// is first within `sigma` (metres) of the origin while approaching it: the first time the
 /// pair is in contact and approaching, as for [`first_contact`] and
-/// [`crate::growth::first_contact_growing`]. `None` when that never happens.
+/// [`crate::contact::growth::first_contact_growing`]. `None` when that never happens.
 ///
 /// With `f(t) = |dp + dv·t + ½·acc·t²|² − σ²`:
 /// - in contact and approaching now (`f(0) ≤ 0`, `dp·dv < 0`): `0`;
@@ -71,7 +71,7 @@ pub fn first_contact_accelerating<const D: usize>(
 /// [`first_contact_accelerating`] for a contact distance that grows linearly in time,
 /// `sigma + sigma_dot·t` (metres; `sigma_dot` ≥ 0, m/s): two growing balls with different
 /// accelerations, or a growing ball falling onto a fixed point (see the module docs). With
-/// `acc` exactly zero it is [`crate::growth::first_contact_growing`] bit for bit; with
+/// `acc` exactly zero it is [`crate::contact::growth::first_contact_growing`] bit for bit; with
 /// `sigma_dot` zero, [`first_contact_accelerating`] bit for bit.
 #[must_use]
 pub fn first_contact_accelerating_growing<const D: usize>(
@@ -106,7 +106,7 @@ pub fn first_exit_accelerating<const D: usize>(
 
 /// [`first_exit_accelerating`] from a ball whose radius grows linearly in time,
 /// `sigma + sigma_dot·t` (metres; `sigma_dot` ≥ 0, m/s): a growing body leaving a sensor
-/// under gravity. With `acc` exactly zero it is [`crate::growth::first_exit_growing`] bit
+/// under gravity. With `acc` exactly zero it is [`crate::contact::growth::first_exit_growing`] bit
 /// for bit; with `sigma_dot` zero, [`first_exit_accelerating`] bit for bit.
 #[must_use]
 pub fn first_exit_accelerating_growing<const D: usize>(
@@ -163,7 +163,7 @@ pub fn first_exit<const D: usize>(dp: Vector<D>, dv: Vector<D>, sigma: f64) -> O
 /// for rounding at a double root of `f'`. With `acc` exactly zero the path is straight and
 /// enters once: [`first_contact`]'s answer alone.
 ///
-/// What the side of a rod needs under gravity ([`crate::gravity`]): the ball meets the rod's
+/// What the side of a rod needs under gravity ([`crate::contact::gravity`]): the ball meets the rod's
 /// side at an entry into the infinite cylinder around its line whose foot lies on the rod, and
 /// a parabola may enter the cylinder beyond an end, leave it, and come back over the rod.
 #[must_use]
@@ -178,8 +178,8 @@ pub fn contacts_accelerating<const D: usize>(
 
 /// [`contacts_accelerating`] against a contact distance that grows linearly in time,
 /// `sigma + sigma_dot·t` (metres; `sigma_dot` ≥ 0, m/s): the side of a rod met by a growing
-/// ball under gravity ([`crate::rod`]). With `acc` exactly zero the path is straight and
-/// enters once: [`crate::growth::first_contact_growing`]'s answer alone; with `sigma_dot`
+/// ball under gravity ([`crate::contact::rod`]). With `acc` exactly zero the path is straight and
+/// enters once: [`crate::contact::growth::first_contact_growing`]'s answer alone; with `sigma_dot`
 /// zero, [`contacts_accelerating`] bit for bit; the first is always
 /// [`first_contact_accelerating_growing`]'s answer bit for bit.
 #[must_use]
