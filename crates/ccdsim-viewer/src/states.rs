@@ -76,7 +76,7 @@ impl SlotTable {
 /// filled are not known here: [`BodyStates::len`] counts the slots up to the last one used.
 ///
 /// In a run where bodies rest on walls (the scene's `settings.rest_speed`, run files of format
-/// version 11, or 12 when they rest on 2D segments too, see [`ccdsim::resting`]), each body
+/// version 11, or 12 when they rest on 2D segments too, see [`ccdsim::contact::resting`]), each body
 /// also has a *support*: the static plane or segment it rests on, if any
 /// ([`BodyStates::support`]). A resting body slides along its wall with the acceleration
 /// [`ccdsim::contact::resting::slide_acceleration`] gives instead of `g`
@@ -84,10 +84,10 @@ impl SlotTable {
 /// flagged for its body puts it on that wall, a body event flagged for one of its bodies keeps
 /// that body on the wall it rested on, and any record naming a body without its flag lifts it
 /// off (it falls under `g` again). So a body reaching the end of the segment it slides on
-/// (format 12, see [`ccdsim::ledge`]) flies off when that wall event has no flag, and rests
+/// (format 12, see [`ccdsim::contact::ledge`]) flies off when that wall event has no flag, and rests
 /// on the segment going straight on when the event is flagged and names that one.
 ///
-/// In such a run with 2D segments (format version 13, see [`ccdsim::pivot`]), a body too slow
+/// In such a run with 2D segments (format version 13, see [`ccdsim::motion::pivot`]), a body too slow
 /// to fly off a segment's end rolls over it: a wall event of a body with the segment it slid
 /// on, flagged as turning (`pivots[0]`), starts a *turn* about the end point of that segment
 /// it reached ([`ccdsim::contact::ledge::end_reached`]), from the record's position and velocity
@@ -97,7 +97,7 @@ impl SlotTable {
 /// it, as the simulation's [`ccdsim::World::gravity_of`]). That next record ends the turn and
 /// gives the body its new state (released and falling, or resting on a segment).
 ///
-/// The moving walls of a run (a scene's `moving_walls`, see [`ccdsim::moving_wall`]) are kept
+/// The moving walls of a run (a scene's `moving_walls`, see [`ccdsim::world::time_of_impact`]) are kept
 /// here too, since the same records move them: moving wall `k` is its scene geometry
 /// displaced by [`BodyStates::wall_motion`]`(k)`, which each of its edit records
 /// ([`edit_code::WALL_MOTION`]) restates ([`BodyStates::moving_wall_at`]).
@@ -487,7 +487,7 @@ impl<const D: usize> BodyStates<D> {
     }
 
     /// The turn of the body in slot `i` about a segment's end point, if it turns (see
-    /// [`ccdsim::pivot`]): started by a wall event flagged as turning, from that event's
+    /// [`ccdsim::motion::pivot`]): started by a wall event flagged as turning, from that event's
     /// position and velocity (its stored state, [`BodyStates::motion`]), about the end point
     /// of the event's segment it reached; it lasts until the next record naming the body.
     #[must_use]

@@ -29,7 +29,7 @@
 //! acceleration at the snapshot.
 //!
 //! A wall event whose rest flags have bit 2 ([`PIVOT_A`], runs with 2D segments bodies rest
-//! on, format version 13, see [`ccdsim::pivot`]) starts a turn of body `a` about the end
+//! on, format version 13, see [`ccdsim::motion::pivot`]) starts a turn of body `a` about the end
 //! point of segment `b` that it reached (of the segment's ends `a`, `b`, the end `b` when
 //! `(p − a)·(b − a) ≥ ½|b − a|²` for the event's position `p`, else `a`): with `up = −g/|g|`,
 //! `left` its quarter turn counter-clockwise, and the body at distance `r` from the point `e`,
