@@ -2,7 +2,7 @@
 //! rest on floors and inclines and slide along them, the same with every finder; run files
 //! mark it, `verify` checks it and rejects forged rests; the scene rules.
 
-mod replay;
+use crate::replay;
 
 use ccdsim::discrete::DiscreteStepper;
 use ccdsim::gravity::Gravity;

@@ -1,6 +1,6 @@
 //! Live edits of a running simulation: `set_position` (teleports) next to `set_velocity`.
 
-mod replay;
+use crate::replay;
 
 use ccdsim::generate::box_walls;
 use ccdsim::{BodySpec, Scene, Simulation, Vector};

@@ -4,7 +4,7 @@
 //! fly clear (coming off it, landing on the next slope, or swinging back); the same with
 //! every finder, recorded and verified, and forged runs refused.
 
-mod replay;
+use crate::replay;
 
 use ccdsim::gravity::Gravity;
 use ccdsim::record::RunWriter;

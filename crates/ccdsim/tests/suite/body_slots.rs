@@ -1,7 +1,7 @@
 //! Bodies added to and removed from a running simulation: stable slots, refusals, sensors,
 //! recorded runs that `verify` replays, and forged records it rejects.
 
-mod replay;
+use crate::replay;
 
 use ccdsim::edit::Edit;
 use ccdsim::generate::box_walls;

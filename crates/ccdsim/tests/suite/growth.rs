@@ -10,7 +10,7 @@ use ccdsim::verify::VerifyReport;
 use ccdsim::{BodySpec, EventKind, MovingWall, Scene, SceneError, Simulation, Vector, Wall};
 use replay::{records, replay};
 
-mod replay;
+use crate::replay;
 
 fn growing<const D: usize>(n: usize, periodic: bool, rate: f64) -> Scene<D> {
     let mut scene = gas::<D>(&GasConfig {

@@ -2,13 +2,13 @@
 //! --example …`): each plays to its end without an error, and the run file it records
 //! passes `verify`.
 
-#[path = "../examples/air_hockey.rs"]
+#[path = "../../examples/air_hockey.rs"]
 #[allow(dead_code)]
 mod air_hockey;
-#[path = "../examples/galton.rs"]
+#[path = "../../examples/galton.rs"]
 #[allow(dead_code)]
 mod galton;
-#[path = "../examples/pinball.rs"]
+#[path = "../../examples/pinball.rs"]
 #[allow(dead_code)]
 mod pinball;
 

@@ -8,7 +8,7 @@ use ccdsim::verify::Verifier;
 use ccdsim::{Collision, EventKind, Scene, SceneError, Simulation, FINDER_NAMES};
 use replay::records;
 
-mod replay;
+use crate::replay;
 
 fn thermostatted<const D: usize>(n: usize, periodic: bool, kt: f64, rate: f64) -> Scene<D> {
     let mut scene = gas::<D>(&GasConfig {

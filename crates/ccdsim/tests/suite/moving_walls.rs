@@ -2,7 +2,7 @@
 //! them, recorded runs that `verify` replays and forged ones it rejects, and the scene
 //! rules.
 
-mod replay;
+use crate::replay;
 
 use ccdsim::discrete::DiscreteStepper;
 use ccdsim::generate::box_walls;

@@ -12,7 +12,7 @@ use ccdsim::{BodySpec, Collision, EventKind, Scene, Simulation, Vector, Wall};
 use replay::replay;
 use std::io::Cursor;
 
-mod replay;
+use crate::replay;
 
 const SEEDS: [u64; 3] = [5, 17, 29];
 

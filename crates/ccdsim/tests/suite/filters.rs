@@ -1,7 +1,7 @@
 //! Collision groups and masks (`bodies[].group`, `bodies[].mask`): bodies whose filters keep
 //! them apart pass through each other; walls still stop them.
 
-mod replay;
+use crate::replay;
 
 use ccdsim::generate::box_walls;
 use ccdsim::record::{RunWriter, VERSION_FILTERS};
