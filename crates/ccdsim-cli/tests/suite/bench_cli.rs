@@ -1,6 +1,6 @@
 //! `ccdsim gen thesis` and `ccdsim bench` end to end, on sizes small enough for a test.
 
-mod common;
+use crate::common;
 
 use common::{ccdsim, run_ok};
 

@@ -1,6 +1,6 @@
 //! The `ccdsim` binary end to end: bad input, summaries, run files, interruption.
 
-mod common;
+use crate::common;
 
 use common::{ccdsim, run_ok};
 use std::path::Path;

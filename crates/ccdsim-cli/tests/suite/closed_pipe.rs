@@ -1,7 +1,7 @@
 //! A reader that stops reading (`ccdsim run --json | head -c 100`) ends the command quietly,
 //! as Unix tools do: no panic, no message, no failure status.
 
-mod common;
+use crate::common;
 
 use common::{ccdsim, run_ok};
 use std::process::{Command, Stdio};

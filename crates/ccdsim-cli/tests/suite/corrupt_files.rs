@@ -14,7 +14,7 @@
 //! `cargo test` tries [`DEFAULT_FILES`] files (a few seconds); set `CCDSIM_FUZZ_FILES=10000`
 //! (and optionally `CCDSIM_FUZZ_SEED`) for a long run, which prints its figures.
 
-mod common;
+use crate::common;
 
 use ccdsim::record::{export_jsonl, open_run, record_len, AnyRunReader, RunReader, RunRecord};
 use ccdsim::record::{RunWriter, PREAMBLE_LEN};

@@ -2,7 +2,7 @@
 //! (`ccdsim::observables::EnergyBalance`), for the same run: elastic or not, under gravity or
 //! not.
 
-mod common;
+use crate::common;
 
 use common::{ccdsim, run_ok};
 

@@ -1,7 +1,7 @@
 //! `ccdsim bench gas`, `gen gas --periodic --lattice --temperature` and the observables of
 //! `run --json`, end to end.
 
-mod common;
+use crate::common;
 
 use common::{ccdsim, run_ok};
 use std::process::Output;

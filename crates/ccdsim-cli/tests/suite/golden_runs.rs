@@ -7,9 +7,9 @@
 //! Each case runs with `cells`, `bvh` and `sedgewick` (and the all-pairs oracle when it is
 //! small), and every finder must give the recorded file. After a change that is *meant* to
 //! alter runs, record the corpus again with `CCDSIM_GOLDEN_WRITE=1 cargo test -p ccdsim-cli
-//! --test golden_runs` and say why in the commit.
+//! --test suite -- golden_runs::` and say why in the commit.
 
-mod common;
+use crate::common;
 
 use common::{ccdsim, run_ok, scratch_dir};
 use sha2::{Digest, Sha256};
@@ -259,8 +259,9 @@ fn runs_match_the_recorded_corpus() {
     let outputs = outputs(&dir);
     if std::env::var_os("CCDSIM_GOLDEN_WRITE").is_some() {
         let mut text = String::from(
-            "# Golden outputs of tests/golden_runs.rs: name, SHA-256, length in bytes.\n\
-             # Written by `CCDSIM_GOLDEN_WRITE=1 cargo test -p ccdsim-cli --test golden_runs`.\n",
+            "# Golden outputs of tests/suite/golden_runs.rs: name, SHA-256, length in bytes.\n\
+             # Written by `CCDSIM_GOLDEN_WRITE=1 cargo test -p ccdsim-cli --test suite -- \
+             golden_runs::`.\n",
         );
         let mut seen = BTreeMap::new();
         for (name, finder, shown, bytes) in &outputs {

@@ -1,7 +1,7 @@
 //! Inputs that used to be taken silently or handled wrongly (issue 20): the default finder,
 //! times before the scene's start, and scripts that assumed `./target`.
 
-mod common;
+use crate::common;
 
 use common::{ccdsim, run_ok};
 use std::path::Path;

@@ -1,6 +1,6 @@
 //! `ccdsim pack`: compression to a jammed packing, end to end.
 
-mod common;
+use crate::common;
 
 use common::{ccdsim, run_ok};
 

@@ -2,7 +2,7 @@
 //! the command prints, wall-clock figures aside: numbers as people write them (8.5, 2.0125,
 //! 3.2e-14), one formatting for every summary.
 
-mod common;
+use crate::common;
 
 use common::{ccdsim, run_ok};
 use std::path::Path;

@@ -1,6 +1,6 @@
 //! A Galton board through the command line: `gen pegs --bins`, `run --sensor-log`.
 
-mod common;
+use crate::common;
 
 use common::{ccdsim, run_ok, scratch_dir};
 

@@ -1,6 +1,6 @@
 //! A thermostatted scene through the command line: run, record, verify, export.
 
-mod common;
+use crate::common;
 
 use common::{ccdsim, run_ok, scratch_dir};
 

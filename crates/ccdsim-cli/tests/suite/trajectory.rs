@@ -1,7 +1,7 @@
 //! `ccdsim run --frames DT --trajectory F`: frames at fixed times, clear refusals, no partial
 //! output. (The Python suite reads the files back with ASE and the gsd package.)
 
-mod common;
+use crate::common;
 
 use common::{ccdsim, run_ok, scratch_dir};
 

@@ -1,7 +1,7 @@
 //! `ccdsim view` and `ccdsim render` as a user runs them: thin commands over ccdsim-viewer.
 
+use crate::common;
 use std::io::{BufRead, BufReader, Read, Write};
-mod common;
 
 use common::ccdsim;
 use std::path::{Path, PathBuf};
