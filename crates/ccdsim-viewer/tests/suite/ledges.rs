@@ -8,7 +8,7 @@
 //! every ball, and rendered frames draw the ball on the shelf, turning about its end on its
 //! circle, and falling past it.
 
-mod common;
+use crate::common;
 
 use ccdsim::{Aabb, Vector};
 use ccdsim_viewer::render::colour::{self, Rgb};

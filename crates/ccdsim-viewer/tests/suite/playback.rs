@@ -1,6 +1,6 @@
 //! Playback answers exactly what the simulation did, from keyframes and short replays.
 
-mod common;
+use crate::common;
 
 use ccdsim::generate::{gas, rack, GasConfig, RackConfig};
 use ccdsim::{Scene, Simulation};

@@ -1,6 +1,6 @@
 //! Headless rendering: bodies land on the pixels they should, GIFs have the frames asked for.
 
-mod common;
+use crate::common;
 
 use ccdsim::generate::box_walls;
 use ccdsim::{BodySpec, Scene, Vector};

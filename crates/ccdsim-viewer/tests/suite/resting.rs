@@ -2,7 +2,7 @@
 //! version 11): playback, keyframes, bounds, the API's answers and rendered frames follow each
 //! body's support as the records' flags give it, on a recorded run (`tests/common/resting.rs`).
 
-mod common;
+use crate::common;
 
 use ccdsim::resting::slide_acceleration;
 use ccdsim::{EventKind, Vector};

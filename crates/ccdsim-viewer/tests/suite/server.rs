@@ -1,6 +1,6 @@
 //! The viewer's HTTP API on 127.0.0.1: the page, the run's description and its binary data.
 
-mod common;
+use crate::common;
 
 use ccdsim::generate::{rack, RackConfig};
 use ccdsim_viewer::wire::STATE_HEADER;
