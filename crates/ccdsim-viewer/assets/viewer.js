@@ -191,7 +191,7 @@
   }
 
   // The turn of body i about `point` from time t0, where it was at `pos` moving at `vel`: its
-  // angle from up (−g, counter-clockwise towards `left`) and rate then, as ccdsim::pivot's
+  // angle from up (−g, counter-clockwise towards `left`) and rate then, as ccdsim::motion::pivot's
   // Pivot::new takes them (the ball at its radius from the point); null where Pivot::new gives
   // no turn (no gravity, no radius), as the server then has none.
   function makeTurn(i, point, t0, pos, vel) {
@@ -237,7 +237,7 @@
   const turnSpeed = (u, t) => u.r * Math.abs(turnAt(u, t).rate);
 
   // The end point of segment w (a static wall) that a body at p reached: as
-  // ccdsim::ledge::end_reached, the end nearer the foot of p.
+  // ccdsim::contact::ledge::end_reached, the end nearer the foot of p.
   function endReached(w, p) {
     const u = [w.b[0] - w.a[0], w.b[1] - w.a[1]];
     const along = (p[0] - w.a[0]) * u[0] + (p[1] - w.a[1]) * u[1];

@@ -1,5 +1,5 @@
 // The viewer on a run where balls roll over the ends of shelves (format version 13, see
-// ccdsim::pivot), recorded by `ccdsim run` from a scene written here: ball 0 creeps off the
+// ccdsim::motion::pivot), recorded by `ccdsim run` from a scene written here: ball 0 creeps off the
 // end of a shelf at 0.1 m/s and turns about its end point for almost half a second before it
 // comes off and falls; ball 1 reaches the end of another shelf at 1 m/s and turns for a
 // shorter while. While a ball turns, the page must draw it on its circle about the end point

@@ -20,8 +20,11 @@ if [ "${1:-}" = "--which-bin" ]; then
   echo "$bin"
   exit 0
 fi
-cargo build --locked -p ccdsim-cli
-cargo build --locked -p ccdsim-viewer --example slot_run --example wall_run --example rest_run
+# The test profile (optimised, with debug assertions; it writes to the same directory as the
+# dev profile) and the workspace's feature set: after `cargo test --workspace`, as in
+# scripts/test, these are the binaries that command already built, and nothing compiles again.
+cargo build --locked --profile test --workspace --bin ccdsim \
+  --example slot_run --example wall_run --example rest_run
 slot_run="$(dirname "$bin")/examples/slot_run"
 wall_run="$(dirname "$bin")/examples/wall_run"
 rest_run="$(dirname "$bin")/examples/rest_run"

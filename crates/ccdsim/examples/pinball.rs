@@ -131,7 +131,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     play(std::env::args().nth(1).as_deref())
 }
 
-/// Plays the game, recording it to the run file `out` if given (`tests/examples.rs` runs it
+/// Plays the game, recording it to the run file `out` if given (`tests/suite/examples.rs` runs it
 /// too).
 pub fn play(out: Option<&str>) -> Result<(), Box<dyn std::error::Error>> {
     let scene = table();

@@ -1,6 +1,6 @@
 //! Recorded runs where bodies rest on 2D segments, go on along a shelf drawn in pieces, fly
-//! off a segment's end (see `ccdsim::ledge`) or, too slow for that, roll over it, turning
-//! about its end point (see `ccdsim::pivot`), with the simulation's own states at frames and
+//! off a segment's end (see `ccdsim::contact::ledge`) or, too slow for that, roll over it, turning
+//! about its end point (see `ccdsim::motion::pivot`), with the simulation's own states at frames and
 //! between each slide-off or roll-over and the event after it, to check playback against.
 //! Scenes with segments bodies rest on are written in format version 13
 //! (`ccdsim::record::VERSION_PIVOTS`), whether or not a body turns in them.

@@ -1,0 +1,102 @@
+//! `ccdsim gen thesis` and `ccdsim bench` end to end, on sizes small enough for a test.
+
+use crate::common;
+
+use common::{ccdsim, run_ok};
+
+/// An output directory that does not exist yet: the commands must create it.
+fn tmp_dir(name: &str) -> common::ScratchFile {
+    common::scratch_file(&format!("bench-cli-{name}"), "out")
+}
+
+#[test]
+fn gen_thesis_writes_a_valid_scene_of_either_dimension() {
+    let out = run_ok(ccdsim().args(["gen", "thesis", "--n", "50", "--seed", "3"]));
+    let scene = ccdsim::AnyScene::from_json(&String::from_utf8(out.stdout).unwrap()).unwrap();
+    let ccdsim::AnyScene::D2(s) = scene else {
+        panic!("expected a 2D scene")
+    };
+    assert_eq!((s.bodies.len(), s.walls.len()), (50, 4));
+    s.validate().unwrap();
+    let out = run_ok(ccdsim().args(["gen", "thesis", "--n", "20", "--dim", "3"]));
+    let scene = ccdsim::AnyScene::from_json(&String::from_utf8(out.stdout).unwrap()).unwrap();
+    let ccdsim::AnyScene::D3(s) = scene else {
+        panic!("expected a 3D scene")
+    };
+    assert_eq!((s.bodies.len(), s.walls.len()), (20, 6));
+}
+
+#[test]
+fn bench_thesis_prints_the_table_and_writes_csv_json_and_plots() {
+    let dir = tmp_dir("thesis");
+    let out = run_ok(
+        ccdsim()
+            .args([
+                "bench", "thesis", "--sizes", "8,16,32", "--runs", "2", "--quiet",
+            ])
+            .args(["--finders", "all-pairs,sedgewick", "--out"])
+            .arg(&dir),
+    );
+    let text = String::from_utf8(out.stdout).unwrap();
+    assert!(
+        text.contains("all-pairs s") && text.contains("sedgewick s"),
+        "{text}"
+    );
+    assert!(
+        text.contains("213.2"),
+        "the thesis's counts are shown: {text}"
+    );
+    let csv = std::fs::read_to_string(dir.join("thesis.csv")).unwrap();
+    assert_eq!(csv.lines().count(), 1 + 3 * 2);
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("thesis.json")).unwrap()).unwrap();
+    assert_eq!(json["cells"].as_array().unwrap().len(), 6);
+    let png = std::fs::read(dir.join("thesis.png")).unwrap();
+    assert_eq!(&png[..4], b"\x89PNG");
+    let svg = std::fs::read_to_string(dir.join("thesis.svg")).unwrap();
+    assert!(svg.contains("<svg") && svg.contains("sedgewick"));
+}
+
+#[test]
+fn bench_discrete_lists_the_exact_row_first() {
+    let dir = tmp_dir("discrete");
+    let out = run_ok(
+        ccdsim()
+            .args([
+                "bench", "discrete", "--n", "64", "--dt", "0.01,0.5", "--runs", "1",
+            ])
+            .args([
+                "--duration",
+                "1",
+                "--finder",
+                "sedgewick",
+                "--quiet",
+                "--out",
+            ])
+            .arg(&dir),
+    );
+    let text = String::from_utf8(out.stdout).unwrap();
+    let rows: Vec<&str> = text
+        .lines()
+        .filter(|l| l.starts_with("continuous") || l.starts_with("discrete"))
+        .collect();
+    assert_eq!(rows.len(), 3, "{text}");
+    assert!(rows[0].starts_with("continuous (sedgewick)"), "{text}");
+    assert!(rows[1].starts_with("discrete (dt = 0.01)"), "{text}");
+    assert!(rows[2].starts_with("discrete (dt = 0.5)"), "{text}");
+    let csv = std::fs::read_to_string(dir.join("discrete.csv")).unwrap();
+    assert_eq!(csv.lines().count(), 4);
+}
+
+#[test]
+fn bench_refuses_bad_arguments() {
+    for args in [
+        vec!["bench", "thesis", "--finders", "nope", "--sizes", "8"],
+        vec!["bench", "thesis", "--sizes", "16,8"],
+        vec!["bench", "discrete", "--dt", "0"],
+    ] {
+        let out = ccdsim().args(&args).arg("--quiet").output().unwrap();
+        assert_eq!(out.status.code(), Some(2), "{args:?}");
+        assert_eq!(String::from_utf8(out.stderr).unwrap().lines().count(), 1);
+    }
+}

@@ -1,0 +1,144 @@
+//! `ccdsim bench gas`, `gen gas --periodic --lattice --temperature` and the observables of
+//! `run --json`, end to end.
+
+use crate::common;
+
+use common::{ccdsim, run_ok};
+use std::process::Output;
+
+fn tmp(name: &str) -> common::ScratchFile {
+    common::scratch_file("gas", name)
+}
+
+fn json(out: &Output) -> serde_json::Value {
+    serde_json::from_slice(&out.stdout).unwrap()
+}
+
+#[test]
+fn bench_gas_reports_speed_memory_and_the_equation_of_state() {
+    let dir = tmp("bench");
+    let out = run_ok(ccdsim().args([
+        "bench",
+        "gas",
+        "--n",
+        "400",
+        "--packing",
+        "0.3",
+        "--collisions",
+        "60000",
+        "--json",
+        "-q",
+        "--out",
+        dir.to_str().unwrap(),
+    ]));
+    let v = json(&out);
+    assert_eq!(v["collisions"], 60000);
+    assert_eq!(v["dim"], 2);
+    assert!(v["collisions_per_second"].as_f64().unwrap() > 0.0);
+    let z = v["compressibility"].as_f64().unwrap();
+    let eos = v["compressibility_eos"].as_f64().unwrap();
+    assert!((z / eos - 1.0).abs() < 0.05, "Z = {z}, EOS {eos}");
+    assert!(v["compressibility_error"].as_f64().unwrap() > 0.0);
+    if cfg!(target_os = "linux") {
+        assert!(v["bytes_per_body"].as_f64().unwrap() > 0.0);
+    }
+    assert!(dir.join("gas.json").exists());
+    let out = run_ok(ccdsim().args([
+        "bench",
+        "gas",
+        "--dim",
+        "3",
+        "--n",
+        "256",
+        "--packing",
+        "0.3",
+        "--collisions",
+        "20000",
+        "-q",
+        "--out",
+        dir.to_str().unwrap(),
+    ]));
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(text.contains("Carnahan-Starling"), "{text}");
+    assert!(text.contains("collisions/s"), "{text}");
+}
+
+#[test]
+fn periodic_lattice_gas_runs_identically_with_every_finder() {
+    let scene = tmp("periodic.json");
+    let gen = run_ok(ccdsim().args([
+        "gen",
+        "gas",
+        "--n",
+        "300",
+        "--packing",
+        "0.5",
+        "--periodic",
+        "--lattice",
+        "--temperature",
+        "1",
+    ]));
+    std::fs::write(&scene, &gen.stdout).unwrap();
+    let text = String::from_utf8_lossy(&gen.stdout);
+    assert!(text.contains("\"periodic\""), "{text}");
+    let mut files = Vec::new();
+    for finder in ["cells", "all-pairs", "bvh", "sedgewick"] {
+        let rec = tmp(&format!("periodic-{finder}.ccd"));
+        let out = run_ok(ccdsim().args([
+            "run",
+            scene.to_str().unwrap(),
+            "--finder",
+            finder,
+            "--events",
+            "3000",
+            "--record",
+            rec.to_str().unwrap(),
+            "--json",
+            "-q",
+        ]));
+        let v = json(&out);
+        assert_eq!(v["events"], 3000);
+        assert!((v["temperature"].as_f64().unwrap() - 1.0).abs() < 1e-9);
+        assert!(v["collision_rate"].as_f64().unwrap() > 0.0);
+        assert!(v["pressure"].as_f64().unwrap() > 0.0);
+        assert!(v["compressibility"].as_f64().unwrap() > 1.0);
+        if finder == "cells" {
+            // Internal work is reported apart from events: 3000 events, and the grid's
+            // crossings and rescans counted on their own.
+            let counters = v["finder_counters"].as_object().unwrap();
+            assert!(counters["crossings"].as_u64().unwrap() > 0, "{counters:?}");
+            assert!(
+                counters["recomputes"].as_u64().unwrap() >= 3000,
+                "{counters:?}"
+            );
+        }
+        files.push(std::fs::read(&rec).unwrap());
+        run_ok(ccdsim().args(["verify", rec.to_str().unwrap()]));
+    }
+    for (k, file) in files.iter().enumerate().skip(1) {
+        assert!(*file == files[0], "run file {k} differs from cells'");
+    }
+}
+
+#[test]
+fn open_scene_has_no_pressure() {
+    let scene = tmp("two.json");
+    std::fs::write(
+        &scene,
+        r#"{"dim": 2, "bodies": [{"pos": [0, 0], "vel": [1, 0], "radius": 0.5}, {"pos": [3, 0], "vel": [-1, 0], "radius": 0.5}]}"#,
+    )
+    .unwrap();
+    let v = json(&run_ok(ccdsim().args([
+        "run",
+        scene.to_str().unwrap(),
+        "--finder",
+        "cells",
+        "--until",
+        "5",
+        "--json",
+        "-q",
+    ])));
+    assert_eq!(v["body_collisions"], 1);
+    assert!(v["pressure"].is_null() && v["compressibility"].is_null());
+    assert!(v["temperature"].as_f64().unwrap() > 0.0);
+}
