@@ -37,7 +37,7 @@
 //! [`crate::contact::narrow`]'s dispatchers), so their events agree bit for bit.
 
 use crate::contact::accelerated_contact::first_contact_accelerating_growing;
-use crate::contact::gravity::{crossing, first_entry};
+use crate::contact::gravity::first_entry;
 use crate::contact::growth::first_contact_growing;
 use crate::geom::Vector;
 use crate::motion::GrowthLaw;
@@ -133,49 +133,9 @@ pub fn toi_circle_segment_falling_growing<const D: usize>(
         return crate::contact::rod::toi_circle_rod_falling_growing(m, r, a, b, g, law);
     }
     let (radius, speed) = (law.radius_at(r, m.time), law.speed(r));
-    let u = b - a;
-    let l2 = u.norm_sq();
-    let w = m.pos - a;
-    let len = l2.sqrt();
-    let mut n = Vector::<D>::ZERO;
-    n[0] = -u[1] / len;
-    n[1] = u[0] / len;
-    // The signed distance from the line, h(t) = h0 + hv·t + ha·t², against the half-width
-    // radius + speed·t.
-    let (h0, hv, ha) = (w.dot(n), m.vel.dot(n), 0.5 * g.dot(n));
-    let foot = |dt: f64| {
-        let s = (w + m.vel * dt + *g * (0.5 * dt * dt)).dot(u) / l2;
-        (0.0..=1.0).contains(&s)
-    };
-    // The gap on the ball's side, s·h(t) − (radius + speed·t) = gc + gb·t + ga·t².
-    let side = if h0 >= 0.0 { 1.0 } else { -1.0 };
-    let (gc, gb, ga) = (side * h0 - radius, side * hv - speed, side * ha);
-    let inside = gc <= 0.0;
-    let approaching = gb < 0.0;
-    // Every way into contact with the line, kept if its foot lies on the segment: touching
-    // it now while approaching; each entry into the slab (falling through +r(t), rising
-    // through −r(t)); and, in the slab and not approaching, the time the gap turns to
-    // shrink if the ball is still in the slab then.
-    let mut candidates = [
-        (inside && approaching).then_some(0.0),
-        crossing(h0 - radius, hv - speed, ha, 0.0, true),
-        crossing(h0 + radius, hv + speed, ha, 0.0, false),
-        None,
-    ];
-    if inside && !approaching && ga < 0.0 {
-        let vertex = gb / (-2.0 * ga);
-        if vertex >= 0.0 && gc + gb * vertex + ga * vertex * vertex <= 0.0 {
-            candidates[3] = Some(vertex);
-        }
-    }
-    let interior = candidates
-        .into_iter()
-        .flatten()
-        .filter(|&dt| dt >= 0.0 && dt.is_finite() && foot(dt))
-        .reduce(f64::min);
-    let end_a = first_contact_accelerating_growing(w, m.vel, *g, radius, speed);
-    let end_b = first_contact_accelerating_growing(m.pos - b, m.vel, *g, radius, speed);
-    crate::contact::rod::earliest_at(m.time, [interior, end_a, end_b])
+    crate::contact::falling_segment::toi_circle_segment_on_parabola(
+        m, radius, speed, a, b, g, [true; 2],
+    )
 }
 
 /// Time of impact (absolute, seconds) of a growing ball (stored radius `r`) falling under `g`

@@ -160,50 +160,6 @@ pub fn toi_circle_plane_falling<const D: usize>(
     first_entry(gap, vn, 0.5 * gn).map(|dt| m.time + dt)
 }
 
-/// The roots of `h(t) = k`, `h(t) = c + b·t + a·t²`, at which `h` falls through `k`
-/// (`falling`) or rises through it: at most one each for a proper parabola, taken in the
-/// cancellation-free forms; tangent touches (a zero discriminant) are no crossing.
-pub(crate) fn crossing(c: f64, b: f64, a: f64, k: f64, falling: bool) -> Option<f64> {
-    let c = c - k;
-    if a == 0.0 {
-        return ((b < 0.0) == falling && b != 0.0).then(|| -c / b);
-    }
-    roots(c, b, a).map(|(falls, rises)| if falling { falls } else { rises })
-}
-
-/// The roots of `c + b·t + a·t² = 0` (`a ≠ 0`) as `(falling, rising)`, in the
-/// cancellation-free forms: the falling root is `(−b − s)/2a` and the rising one `(−b + s)/2a`
-/// with `s = √(b² − 4ac)`, whatever the sign of `a`. `None` unless the discriminant is
-/// positive (a tangent touch is no crossing).
-fn roots(c: f64, b: f64, a: f64) -> Option<(f64, f64)> {
-    let disc = b * b - 4.0 * a * c;
-    if disc.is_nan() || disc <= 0.0 {
-        return None;
-    }
-    let s = disc.sqrt();
-    let q = -0.5 * (b + if b >= 0.0 { s } else { -s });
-    Some(if b >= 0.0 {
-        (q / a, c / q)
-    } else {
-        (c / q, q / a)
-    })
-}
-
-/// The two roots of `c + b·t + a·t² = 0` (`a ≠ 0`) as `(falling, rising)`: where the
-/// quadratic falls through zero and where it rises through it, in the cancellation-free
-/// forms; `None` when it does not cross zero, or when rounding left the two roots equal or in
-/// the wrong order (`falling < rising` when `a > 0`, the reverse when `a < 0`): a graze.
-#[must_use]
-pub(crate) fn face_roots(c: f64, b: f64, a: f64) -> Option<(f64, f64)> {
-    roots(c, b, a).filter(|&(falls, rises)| {
-        if a > 0.0 {
-            falls < rises
-        } else {
-            rises < falls
-        }
-    })
-}
-
 /// Time of impact of a ball (radius `r`) falling under `g` with the segment `[a, b]`: in 2D
 /// the first entry into the slab around its line whose foot lies on the segment, in 3D the
 /// first entry into the cylinder around it whose foot lies on the segment (a rod,
@@ -239,53 +195,7 @@ pub fn toi_circle_segment_falling_ends<const D: usize>(
     if D != 2 {
         return crate::contact::rod::toi_circle_rod_falling_ends(m, r, a, b, g, ends);
     }
-    let u = b - a;
-    let l2 = u.norm_sq();
-    let w = m.pos - a;
-    // The signed distance from the line, along the unit normal n: h(t) = h0 + hv·t + ha·t².
-    let len = l2.sqrt();
-    let mut n = Vector::<D>::ZERO;
-    n[0] = -u[1] / len;
-    n[1] = u[0] / len;
-    let (h0, hv, ha) = (w.dot(n), m.vel.dot(n), 0.5 * g.dot(n));
-    let foot = |dt: f64| {
-        let s = (w + m.vel * dt + *g * (0.5 * dt * dt)).dot(u) / l2;
-        (0.0..=1.0).contains(&s)
-    };
-    let inside = h0.abs() <= r;
-    // By signs: the product of a tiny speed and a short distance may underflow to zero.
-    let approaching = (h0 < 0.0 && hv > 0.0) || (h0 > 0.0 && hv < 0.0);
-    // Every way into contact with the line is a candidate, kept if its foot lies on the
-    // segment: touching it now while approaching; each entry into the slab (falling through
-    // +r, rising through −r), which may follow a stay in the slab beyond an end; and, in the
-    // slab and not approaching, the vertex if the ball turns back before leaving it.
-    let mut candidates = [
-        (inside && approaching).then_some(0.0),
-        crossing(h0, hv, ha, r, true),
-        crossing(h0, hv, ha, -r, false),
-        None,
-    ];
-    if inside && !approaching && ha != 0.0 {
-        let vertex = hv / (-2.0 * ha);
-        let h_vertex = h0 + hv * vertex + ha * vertex * vertex;
-        let turns_inward = (h0 >= 0.0) == (ha < 0.0);
-        // At rest in contact (`hv = 0`) and pressed inward, the vertex is now.
-        if vertex >= 0.0 && h_vertex.abs() <= r && turns_inward {
-            candidates[3] = Some(vertex);
-        }
-    }
-    let interior = candidates
-        .into_iter()
-        .flatten()
-        .filter(|&dt| dt >= 0.0 && dt.is_finite() && foot(dt))
-        .reduce(f64::min);
-    let end_a = ends[0]
-        .then(|| first_contact_accelerating(w, m.vel, *g, r))
-        .flatten();
-    let end_b = ends[1]
-        .then(|| first_contact_accelerating(m.pos - b, m.vel, *g, r))
-        .flatten();
-    crate::contact::rod::earliest_at(m.time, [interior, end_a, end_b])
+    crate::contact::falling_segment::toi_circle_segment_on_parabola(m, r, 0.0, a, b, g, ends)
 }
 
 /// Time of impact of a ball (radius `r`) falling under `g` with a wall of either kind.

@@ -22,6 +22,7 @@
 
 pub mod accelerated_contact;
 pub mod falling_growth;
+mod falling_segment;
 pub mod gravity;
 pub mod growth;
 pub mod ledge;
@@ -30,6 +31,7 @@ pub(crate) mod narrow_lanes;
 pub mod periodic;
 pub mod pivot_contact;
 pub mod pivot_end;
+pub(crate) mod quadratic;
 pub mod resting;
 pub mod rod;
 pub mod sensor_crossing;

@@ -852,7 +852,7 @@ impl<const D: usize> Grid<D> {
                 // good at the later one; or opens towards it: the body leaves at the earlier
                 // root and comes back at the later one.
                 let leaves_for_good = if up { a > 0.0 } else { a < 0.0 };
-                match crate::contact::gravity::face_roots(x - bound, v, a) {
+                match crate::contact::quadratic::face_roots(x - bound, v, a) {
                     Some((falls, rises)) => {
                         let t = m.time + if up { rises } else { falls };
                         if !t.is_finite() {
