@@ -1,5 +1,7 @@
-//! Four pairs' times of impact at once: [`toi_circle_circle`] and
-//! [`toi_circle_circle_shifted`] evaluated in the four lanes of one register, bit for bit.
+//! Four pairs' times of impact at once:
+//! [`toi_circle_circle`](crate::contact::narrow::toi_circle_circle) and
+//! [`toi_circle_circle_shifted`](crate::contact::narrow::toi_circle_circle_shifted) evaluated in
+//! the four lanes of one register, bit for bit.
 //!
 //! The lanes are `wide::f64x4`: one AVX register (`ymm`) where the build targets AVX (the
 //! default `x86-64-v3`), a pair of SSE2 registers on plain x86-64, plain `f64`s where a
@@ -69,7 +71,7 @@ pub(crate) struct PairArgs<'a, const D: usize> {
     pub rb: f64,
     /// Displacement of the second ball's image, metres (ignored unless `SHIFTED`).
     pub shift: &'a Vector<D>,
-    /// The world's laws, if any is in force (see [`crate::motion::laws`]).
+    /// The world's laws, if any is in force (see [`crate::motion::Laws`]).
     pub laws: Option<&'a Laws<D>>,
 }
 
@@ -344,15 +346,15 @@ pub(crate) fn toi_sides<const D: usize, const SHIFTED: bool>(
 }
 
 /// The times of impact of four pairs of growing balls: in each lane
-/// [`toi_circle_circle_growing`](crate::contact::growth::toi_circle_circle_growing)'s result bit for
-/// bit, by the same operations in the same order (the contact distance `(r_a + r_b)·(1 + Γ·(T
-/// − t₀))` and its speed `(r_a + r_b)·Γ`, then `B = dp·dv − σσ̇`, `C = |dp|² − σ²`, `A = |dv|² −
+/// [`toi_circle_circle_growing`](crate::contact::growth::toi_circle_circle_growing)'s result bit
+/// for bit, by the same operations in the same order (the contact distance `(r_a + r_b)·(1 + Γ·(T −
+/// t₀))` and its speed `(r_a + r_b)·Γ`, then `B = dp·dv − σσ̇`, `C = |dp|² − σ²`, `A = |dv|² −
 /// σ̇²`, `T + C / (−B + √(B² − AC))`). Unshifted lanes skip the scalar function's `+ 0` shift,
-/// which changes at most the sign of a zero component of `dp`, which neither `B` (a zero
-/// product only matters when every term is zero, and `σσ̇ > 0` is subtracted) nor the squares
-/// can see. A lane is used when the scalar function takes the same path: the pair is apart
-/// (`C > 0`) and misses (`disc < 0`, or `−B + √disc ≤ 0`) or hits at a finite time; every other
-/// lane (an overlap, an infinite time, a NaN) is left to the scalar function.
+/// which changes at most the sign of a zero component of `dp`, which neither `B` (a zero product
+/// only matters when every term is zero, and `σσ̇ > 0` is subtracted) nor the squares can see. A
+/// lane is used when the scalar function takes the same path: the pair is apart (`C > 0`) and
+/// misses (`disc < 0`, or `−B + √disc ≤ 0`) or hits at a finite time; every other lane (an overlap,
+/// an infinite time, a NaN) is left to the scalar function.
 #[inline(always)]
 pub(crate) fn toi_sides_growing<const D: usize, const SHIFTED: bool>(
     sa: &Side<D>,

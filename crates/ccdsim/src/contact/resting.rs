@@ -34,10 +34,10 @@
 //! Two exceptions keep it on its wall. A collision that leaves its velocity as it was (the
 //! pair was already parting) changes nothing. And a body **pressed into its wall** by a
 //! body that hits it (a ball landing on a resting one) is held by the wall, which takes the
-//! normal part of the push ([`crate::resolve::pressed_impulse`]): the resting body moves along the wall
-//! only, and the pair's normal speed is reversed times the restitution as in a free
-//! collision. Without this, the resting body would pass a share of the push to its wall in
-//! an endless sequence of collisions at one instant.
+//! normal part of the push (`pressed_impulse` in the engine's `resolve` step): the resting
+//! body moves along the wall only, and the pair's normal speed is reversed times the
+//! restitution as in a free collision. Without this, the resting body would pass a share of
+//! the push to its wall in an endless sequence of collisions at one instant.
 //!
 //! **Bodies on bodies.** A ball whose bounces on a resting one die away (or a ball sliding
 //! down an incline against one resting on the floor) ends touching it without normal speed

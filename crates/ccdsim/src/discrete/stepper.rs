@@ -54,8 +54,8 @@ pub struct StepReport {
 /// Each [`DiscreteStepper::step`] moves every body in a straight line for `dt`, builds an
 /// [`OverlapTree`] over the bodies' boxes, and for every overlapping pair (in index order)
 /// pushes the two apart along the line of centres, inversely to their masses, then applies
-/// [`resolve_body_body`]'s impulse; then every body in contact with a wall (see
-/// [`wall_push_out`]) is pushed out and given [`resolve_body_wall`]'s impulse.
+/// the simulation's body–body impulse; then every body in contact with a wall (see
+/// [`wall_push_out`]) is pushed out and given the simulation's body–wall impulse.
 ///
 /// With miss counting on, each step also asks the exact swept test — the continuous
 /// simulation's own [`toi_circle_circle`] and [`toi_circle_wall`] on the states at the start of

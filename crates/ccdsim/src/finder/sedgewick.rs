@@ -19,9 +19,9 @@
 //! the oracle's minimum, ties included.
 //!
 //! In a periodic world ([`crate::contact::periodic`]) pairs are predicted by the oracle's periodic
-//! function [`toi_circle_circle_periodic`], and each body's exit from the box is predicted
-//! with its walls, named like the oracle names it (wall `walls.len() + face`): it depends on
-//! the body's state alone, like a wall event.
+//! function [`toi_circle_circle_periodic`](crate::contact::periodic::toi_circle_circle_periodic),
+//! and each body's exit from the box is predicted with its walls, named like the oracle names it
+//! (wall `walls.len() + face`): it depends on the body's state alone, like a wall event.
 
 use super::{finite_event, Finder, FinderError, FinderMemory};
 use crate::contact::periodic::{toi_bodies_periodic, toi_box_exit};

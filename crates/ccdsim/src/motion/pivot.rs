@@ -18,8 +18,7 @@
 //! regimes:
 //!
 //! - `c > 0`: the ball goes over the top. `√k·t = G(θ)` up to a constant, with
-//!   `G(θ) = s·R_F(c(1 − s²), c + s², c)` (Carlson's `R_F`, [`crate::elliptic`]), odd and
-//!   increasing.
+//!   `G(θ) = s·R_F(c(1 − s²), c + s², c)` (Carlson's `R_F`), odd and increasing.
 //! - `c < 0`: it cannot reach the top. It turns where `s² = −c` and comes back; with
 //!   `m = 1 + c`, the time from the turn to `s` is `F(φ | m)/√k` where
 //!   `sin²φ = (s² + c)/(m s²)` (the complement of the Legendre form, so that no difference

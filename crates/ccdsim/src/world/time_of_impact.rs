@@ -34,7 +34,7 @@
 //! includes what the growth adds.
 //!
 //! Moving walls are not seen by the finders: the simulation keeps, per body, its next
-//! contact with a moving wall in a priority queue ([`crate::moving_wall_tracker`]), as it
+//! contact with a moving wall in a priority queue (the moving-wall tracker), as it
 //! does for sensors, and takes whichever of the finder's event and the queue's comes first
 //! under the events' total order. Both are the same whatever the finder, so every finder
 //! still gives the all-pairs oracle's events bit for bit.

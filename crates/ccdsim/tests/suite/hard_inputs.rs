@@ -2,11 +2,11 @@
 //! largest time, and times or coordinates too large to resolve a body. Every finder must
 //! give the oracle's events and stop at the same place for the same reason.
 
-use ccdsim::halt::{Halt, Partner};
 use ccdsim::{
     make_finder, BodySpec, Collision, FinderOptions, Scene, SceneError, Settings, Simulation,
     Vector, Wall, FINDER_NAMES,
 };
+use ccdsim::{Halt, Partner};
 
 /// Every finder's collisions over at most `events` events, and where each stopped.
 fn run_every_finder<const D: usize>(
@@ -292,7 +292,7 @@ fn runs_stop_where_time_no_longer_resolves_the_bodies() {
     let Some(Halt::Resolution { time, body, error }) = sim.halt() else {
         panic!("expected a resolution halt, got {:?}", sim.halt());
     };
-    assert!(error > ccdsim::resolution::RESOLUTION_LIMIT * scene.bodies[body].radius);
+    assert!(error > ccdsim::RESOLUTION_LIMIT * scene.bodies[body].radius);
     assert!(time > 1e3 && time < 1e9, "{time}");
     assert!(sim.time() < time, "the unresolved event is not resolved");
     let events = sim.stats().events;

@@ -30,19 +30,21 @@ struct Check<'a, const D: usize> {
 
 impl<const D: usize> SweptTree<D> {
     /// Runs Algorithm 3 from the root: every body pair whose leaf boxes overlap is given to
-    /// [`toi_circle_circle`], and the earliest resulting event with time ≤ `horizon` is kept
-    /// (ties by the event order).
+    /// [`toi_circle_circle`](crate::contact::narrow::toi_circle_circle), and the earliest resulting
+    /// event with time ≤ `horizon` is kept (ties by the event order).
     ///
     /// If the leaf boxes are [`swept_box`](super::tree::swept_box)es for `[now, horizon]`, a
     /// pair whose computed time of impact lies in that interval always reaches the narrow
     /// phase, so `best` is the minimum over *all* pairs with time ≤ `horizon`.
     ///
     /// In a periodic world (`world.periodic()`), pairs are evaluated by the oracle's periodic
-    /// narrow phase [`toi_circle_circle_periodic`], and the tree is also checked against
-    /// each of its images shifted by [`SweptTree::shifts`] (half of the non-zero shifts
-    /// `k·L`, see [`half_image_shifts`]): a pair touching through image `k` of its second
-    /// body has overlapping boxes once that body's box is shifted by `k·L`, or the first
-    /// body's by `−k·L`, and one of the two shifts is in the half.
+    /// narrow phase
+    /// [`toi_circle_circle_periodic`](crate::contact::periodic::toi_circle_circle_periodic), and
+    /// the tree is also checked against each of its images shifted by [`SweptTree::shifts`] (half
+    /// of the non-zero shifts `k·L`, see [`half_image_shifts`](super::tree::half_image_shifts)): a
+    /// pair touching through image `k` of its second body has overlapping boxes once that body's
+    /// box is shifted by `k·L`, or the first body's by `−k·L`, and one of the two shifts is in the
+    /// half.
     pub fn earliest_body_event(&self, world: &World<D>) -> Traversal {
         let mut c = Check {
             tree: self,

@@ -1,6 +1,7 @@
 //! Interior scans of crossing mode, four pairs at a time: the candidates of a block of cells
 //! are gathered from the cells' slots without a branch per cell, then evaluated by the
-//! four-lane kernel [`toi_sides`](crate::contact::narrow_lanes::toi_sides), each lane with its pair's balls in the oracle's order.
+//! four-lane kernel [`crate::contact::narrow_lanes::toi_sides`], each lane with its pair's balls in
+//! the oracle's order.
 //!
 //! *Gathering.* Each cell's record is copied whole (its [`CELL_SLOTS`] slots) to the end of a
 //! buffer, and the end advances by the number of used slots: the unused slots' copies are

@@ -60,8 +60,8 @@ impl<const D: usize> Cached<D> {
 }
 
 impl<const D: usize> Cells<D> {
-    /// True where bodies rest on walls (see [`crate::contact::resting`]): pairs then take each body's
-    /// own acceleration, body by body (the four-lane kernel knows one acceleration only).
+    /// True where bodies rest on walls (see [`crate::contact::resting`]): pairs then take each
+    /// body's own acceleration, body by body (the four-lane kernel knows one acceleration only).
     #[inline(always)]
     pub(super) fn resting(&self) -> bool {
         self.laws.is_some_and(|l| l.resting)
@@ -99,11 +99,12 @@ impl<const D: usize> Cells<D> {
     /// function on the oracle's arguments, lower index first.
     ///
     /// Times come from the oracle's narrow phase with the oracle's arguments, lower index
-    /// first: [`toi_circle_circle`] in open worlds, [`toi_circle_circle_shifted`] in periodic
+    /// first: [`toi_circle_circle`](crate::contact::narrow::toi_circle_circle) in open worlds,
+    /// [`toi_circle_circle_shifted`](crate::contact::narrow::toi_circle_circle_shifted) in periodic
     /// ones (`PERIODIC`, through [`toi_bodies_shifted`], which passes kinematic pairs by), the
-    /// shift negated when the partner comes first (`0 − s` keeps zero
-    /// components +0 where `−s` would make them −0). The order is chosen by selecting
-    /// references, not by branching on data. `law` is the world's growth law, if radii grow.
+    /// shift negated when the partner comes first (`0 − s` keeps zero components +0 where `−s`
+    /// would make them −0). The order is chosen by selecting references, not by branching on data.
+    /// `law` is the world's growth law, if radii grow.
     #[inline(always)]
     #[allow(clippy::too_many_arguments)]
     pub(super) fn offer_body<const PERIODIC: bool>(

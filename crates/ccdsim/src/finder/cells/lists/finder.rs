@@ -82,10 +82,11 @@ impl<const D: usize> Cells<D> {
     /// Offers body `p` the pairs of the list entries `entries`, of which the first `above`
     /// have a higher body index than `p`'s (`p` goes first in their pairs, the partner in
     /// the others'). The entries go four at a time, in list order, through the lane kernel
-    /// ([`toi_sides`](crate::contact::narrow_lanes::toi_sides), each lane the scalar function's times bit for bit): `p` is put in
-    /// all lanes once; a quad of one part has `p` on one side, the quad where the parts meet
-    /// selects each lane's sides by its part, and the last quad is padded with copies of the
-    /// last entry, whose lanes are dropped (no time, never handed to the scalar function).
+    /// ([`crate::contact::narrow_lanes::toi_sides`], each lane the scalar function's times bit for
+    /// bit): `p` is put in all lanes once; a quad of one part has `p` on one side, the quad where
+    /// the parts meet selects each lane's sides by its part, and the last quad is padded with
+    /// copies of the last entry, whose lanes are dropped (no time, never handed to the scalar
+    /// function).
     #[inline(always)]
     fn scan_quads<const PERIODIC: bool, const GROW: bool>(
         &self,
