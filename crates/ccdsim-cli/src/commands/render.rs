@@ -54,6 +54,9 @@ pub struct Args {
     /// 3D camera: tilt, degrees.
     #[arg(long, default_value_t = 25.0)]
     pitch: f64,
+    /// Leave out the simulated time drawn in each frame's top-left corner.
+    #[arg(long)]
+    no_time_label: bool,
     #[command(flatten)]
     finder_options: FinderArgs,
 }
@@ -73,6 +76,7 @@ pub fn run(args: Args) -> Result<ExitCode> {
         finder_options: args.finder_options.options()?,
         yaw_deg: args.yaw,
         pitch_deg: args.pitch,
+        time_label: !args.no_time_label,
         ..RenderOptions::default()
     };
     if let (Some(at), Some(out)) = (args.at, &args.out) {

@@ -1,5 +1,5 @@
-//! Drawing one frame with tiny-skia: walls, the finder's boxes, bodies, collision flashes and
-//! a progress bar.
+//! Drawing one frame with tiny-skia: walls, the finder's boxes, bodies, collision flashes, a
+//! progress bar and the time.
 
 use super::camera::Camera;
 use super::colour::{self, ColourBy, Rgb, BUCKETS};
@@ -27,6 +27,8 @@ pub struct FrameInput<'a, const D: usize> {
     pub progress: Option<f64>,
     /// The run's bounds (3D runs draw them as a wire box).
     pub bounds: Aabb<D>,
+    /// Draw the frame's simulated time in its top-left corner (`t = 1.250 s`).
+    pub time_label: bool,
 }
 
 fn paint(c: Rgb, alpha: u8) -> Paint<'static> {
@@ -63,6 +65,9 @@ pub fn draw_frame<const D: usize>(cam: &Camera, f: &FrameInput<'_, D>) -> Pixmap
                 None,
             );
         }
+    }
+    if f.time_label {
+        super::time_label::draw_time_label(&mut pm, f.snap.time);
     }
     pm
 }

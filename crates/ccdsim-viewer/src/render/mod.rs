@@ -5,6 +5,7 @@ pub mod colour;
 mod draw;
 mod gif_out;
 mod palette;
+mod time_label;
 
 pub use camera::Camera;
 pub use colour::ColourBy;
@@ -38,6 +39,8 @@ pub struct RenderOptions {
     pub pitch_deg: f64,
     /// Keyframe density of the playback index.
     pub keyframes: KeyframeOptions,
+    /// Draw each frame's simulated time in its top-left corner (`t = 1.250 s`); on by default.
+    pub time_label: bool,
 }
 
 impl Default for RenderOptions {
@@ -52,6 +55,7 @@ impl Default for RenderOptions {
             yaw_deg: 35.0,
             pitch_deg: 25.0,
             keyframes: KeyframeOptions::default(),
+            time_label: true,
         }
     }
 }
@@ -170,6 +174,7 @@ pub(crate) fn frame_input<'a, const D: usize>(
         flash_window,
         progress: (span > 0.0).then(|| (snap.time - p.start_time()) / span),
         bounds: p.extent().bounds,
+        time_label: o.time_label,
     }
 }
 
