@@ -5,20 +5,7 @@ use super::*;
 
 /// [`check_all`], and the oracle's run file passes verify.
 fn check_all_verified<const D: usize>(label: &str, scene: &Scene<D>, max_events: u64) {
-    let oracle = reference(label, scene, max_events, Drive::Events);
-    for name in finders() {
-        let options = FinderOptions::default();
-        check_run(
-            label,
-            scene,
-            name,
-            &options,
-            max_events,
-            Drive::Events,
-            &oracle,
-        );
-    }
-    verifies(label, scene, &oracle);
+    verifies(label, scene, &check_all_run(label, scene, max_events));
 }
 
 /// `scene` (a 3D gas in a walled box) with rods (segment walls) across it: level ones along

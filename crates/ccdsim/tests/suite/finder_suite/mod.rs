@@ -616,6 +616,11 @@ fn check_run<const D: usize>(
 
 /// Runs `scene` through every finder under test with default options.
 fn check_all<const D: usize>(label: &str, scene: &Scene<D>, max_events: u64) -> u64 {
+    check_all_run(label, scene, max_events).events
+}
+
+/// [`check_all`], returning the oracle's run.
+fn check_all_run<const D: usize>(label: &str, scene: &Scene<D>, max_events: u64) -> Recorded {
     let oracle = reference(label, scene, max_events, Drive::Events);
     for name in finders() {
         let options = FinderOptions::default();
@@ -629,7 +634,7 @@ fn check_all<const D: usize>(label: &str, scene: &Scene<D>, max_events: u64) -> 
             &oracle,
         );
     }
-    oracle.events
+    oracle
 }
 
 /// A gas (open with walls, or `periodic`); when random placement cannot reach `packing`
