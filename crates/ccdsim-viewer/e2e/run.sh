@@ -20,9 +20,10 @@ if [ "${1:-}" = "--which-bin" ]; then
   echo "$bin"
   exit 0
 fi
-# The test profile (optimised, with debug assertions; it writes to the same directory as the
-# dev profile) and the workspace's feature set: after `cargo test --workspace`, as in
-# scripts/test, these are the binaries that command already built, and nothing compiles again.
+# The test profile (the dev profile: optimised, with debug assertions; see Cargo.toml) and
+# the workspace's feature set: after `cargo test --workspace --tests`, as in
+# scripts/test, the binary is the one that command already built, and only the examples
+# compile here.
 cargo build --locked --profile test --workspace --bin ccdsim \
   --example slot_run --example wall_run --example rest_run
 slot_run="$(dirname "$bin")/examples/slot_run"

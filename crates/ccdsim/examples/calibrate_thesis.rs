@@ -67,7 +67,8 @@ fn main() {
     }
 }
 
-fn count<const D: usize>(scene: &Scene<D>) -> (u64, u64) {
+/// The body–body and body–wall collision counts of `scene` over the thesis's 5 simulated seconds.
+pub fn count<const D: usize>(scene: &Scene<D>) -> (u64, u64) {
     let mut sim = Simulation::new(scene, "sedgewick").unwrap();
     sim.run_until(THESIS_DURATION);
     if std::env::var_os("SHOW_MEMORY").is_some() {

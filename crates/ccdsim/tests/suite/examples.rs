@@ -1,10 +1,15 @@
 //! The game examples the README and docs/game-api.md run (`cargo run --release -p ccdsim
 //! --example …`): each plays to its end without an error, and the run file it records
-//! passes `verify`.
+//! passes `verify`. The examples are compiled here, as modules of this test binary, rather than
+//! as binaries of their own: `scripts/test` builds test targets only, and each example alone
+//! would compile the simulation's generic code once more (about 25 s each on two cores).
 
 #[path = "../../examples/air_hockey.rs"]
 #[allow(dead_code)]
 mod air_hockey;
+#[path = "../../examples/calibrate_thesis.rs"]
+#[allow(dead_code)]
+mod calibrate_thesis;
 #[path = "../../examples/galton.rs"]
 #[allow(dead_code)]
 mod galton;
@@ -57,4 +62,20 @@ fn pinball_plays_and_its_run_verifies() {
     // none of them, and no table encloses it (a scene refused as "outside the table" from
     // 9bf964a until table_edges).
     assert!(plays_and_verifies("pinball", pinball::play) > 50);
+}
+
+#[test]
+fn the_thesis_calibration_counts_collisions_of_a_small_scene() {
+    use ccdsim::generate::{thesis, ThesisConfig};
+    let scene = thesis::<2>(&ThesisConfig {
+        n: 16,
+        seed: 1,
+        ..ThesisConfig::default()
+    })
+    .unwrap();
+    let (body, wall) = calibrate_thesis::count(&scene);
+    assert!(
+        body > 0 && wall > 0,
+        "{body} body and {wall} wall collisions"
+    );
 }
