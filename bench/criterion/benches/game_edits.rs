@@ -7,7 +7,8 @@
 //! - `step_moving` and `step_static`: one `step_event` with the paddle moving, and in the same
 //!   gas without moving walls: the moving walls' queue costs O(walls + log n) per event.
 //!
-//! `cargo bench -p ccdsim-criterion --bench game_edits -- --warm-up-time 1 --measurement-time 3`
+//! From the repository's root: `cargo bench --manifest-path bench/criterion/Cargo.toml
+//! --bench game_edits -- --warm-up-time 1 --measurement-time 3`
 
 use ccdsim::generate::{gas, GasConfig};
 use ccdsim::{BodySpec, MovingWall, Scene, Simulation, Vector, Wall};

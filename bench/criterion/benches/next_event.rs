@@ -5,7 +5,8 @@
 //! plus its O(1) resolution, so the state evolves as in a real run and the `bvh`'s adaptive Δ
 //! is what a run would have. Compare medians across finders at the same n.
 //!
-//! `cargo bench -p ccdsim-criterion --bench next_event -- --warm-up-time 1 --measurement-time 3`
+//! From the repository's root: `cargo bench --manifest-path bench/criterion/Cargo.toml
+//! --bench next_event -- --warm-up-time 1 --measurement-time 3`
 
 use ccdsim::generate::{gas, GasConfig};
 use ccdsim::Simulation;

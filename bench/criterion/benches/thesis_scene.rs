@@ -3,7 +3,8 @@
 //! finder) and the cost of setting a finder up for a fresh scene (the BVH's build, the queue's
 //! first fill). `next_event.rs` compares all-pairs and bvh on gases up to n = 4096.
 //!
-//! `cargo bench -p ccdsim-criterion --bench thesis_scene`
+//! From the repository's root: `cargo bench --manifest-path bench/criterion/Cargo.toml
+//! --bench thesis_scene`
 
 use ccdsim::generate::{thesis, ThesisConfig};
 use ccdsim::{Simulation, FINDER_NAMES};
