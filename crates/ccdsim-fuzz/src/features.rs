@@ -5,7 +5,7 @@ use crate::case::{Case, EditOp, Schedule};
 use serde_json::Value;
 
 /// Every feature name [`features`] can report, in the order the coverage table prints them.
-pub const FEATURES: [&str; 27] = [
+pub const FEATURES: [&str; 29] = [
     "3D",
     "periodic",
     "segment walls",
@@ -23,6 +23,8 @@ pub const FEATURES: [&str; 27] = [
     "per-body restitution",
     "collision groups",
     "heavy bodies",
+    "rough bodies",
+    "spinning bodies",
     "bodies at rest",
     "bodies touching",
     "body on a lattice face",
@@ -99,6 +101,17 @@ pub fn features(case: &Case) -> Vec<&'static str> {
         "collision groups",
     );
     add(bodies.iter().any(|b| !b["mass"].is_null()), "heavy bodies");
+    add(
+        !settings["tangential_restitution"].is_null()
+            || bodies
+                .iter()
+                .any(|b| !b["tangential_restitution"].is_null()),
+        "rough bodies",
+    );
+    add(
+        bodies.iter().any(|b| !b["spin"].is_null()),
+        "spinning bodies",
+    );
     add(bodies.iter().any(|b| !nonzero(&b["vel"])), "bodies at rest");
     let placed: Vec<(Vec<f64>, f64)> = bodies
         .iter()

@@ -48,7 +48,8 @@ pub struct BodyGene {
     pub placement: u8,
     /// Velocity along one axis only (the axis `vel[2] % D`).
     pub axis_aligned: bool,
-    /// 0–7: plain; 8: kinematic; 9: own restitution; 10: a collision filter; 11: heavy.
+    /// 0–7: plain; 8: kinematic; 9: own restitution; 10: a collision filter; 11: heavy;
+    /// 12: spinning; 13: its own inertia factor and tangential restitution (rough).
     pub extra: u8,
 }
 
@@ -83,6 +84,9 @@ pub struct Genome {
     growth: u8,
     thermostat: u8,
     start: u8,
+    /// 0: smooth; 1–3: rough bodies, tangential restitution 0.5, 1 or −0.5 (not with
+    /// resting contacts).
+    rough: u8,
     bodies: Vec<BodyGene>,
     /// Interior walls: end points on the lattice.
     walls: Vec<([u16; 3], [u16; 3])>,
@@ -102,7 +106,7 @@ fn body_gene() -> impl Strategy<Value = BodyGene> {
         0u8..6,
         0u8..8,
         any::<bool>(),
-        0u8..12,
+        0u8..14,
     )
         .prop_map(
             |(pos, vel, radius, placement, axis_aligned, extra)| BodyGene {
@@ -149,6 +153,7 @@ pub fn genome(max_bodies: usize) -> impl Strategy<Value = Genome> {
         prop_oneof![4 => Just(0u8), 1 => 1u8..3],
         prop_oneof![6 => Just(0u8), 1 => Just(1u8)],
         0u8..4,
+        prop_oneof![2 => Just(0u8), 1 => 1u8..4],
     );
     let contents = (
         prop::collection::vec(body_gene(), 0..=max_bodies),
@@ -176,6 +181,7 @@ pub fn genome(max_bodies: usize) -> impl Strategy<Value = Genome> {
                 growth,
                 thermostat,
                 start,
+                rough,
             ),
             (bodies, walls, sensors, moving_walls, schedule, every, edits, max_events, duration),
         )| Genome {
@@ -190,6 +196,7 @@ pub fn genome(max_bodies: usize) -> impl Strategy<Value = Genome> {
             growth,
             thermostat,
             start,
+            rough,
             bodies,
             walls,
             sensors,
@@ -297,6 +304,10 @@ impl<'a, const D: usize> Builder<'a, D> {
             }
         }
         s.tc = [None, Some(1e-3), Some(0.05)][g.tc as usize % 3];
+        if s.rest_speed.is_none() {
+            s.tangential_restitution =
+                [None, Some(0.5), Some(1.0), Some(-0.5)][g.rough as usize % 4];
+        }
         if g.growth != 0 && g.moving_walls.is_empty() {
             s.growth = Some(ccdsim::Growth {
                 rate: [0.0, 0.05, 0.5][g.growth as usize % 3],
@@ -439,6 +450,15 @@ impl<'a, const D: usize> Builder<'a, D> {
                 (spec.group, spec.mask) = (Some(group), Some(mask));
             }
             11 => spec.mass = Some(8.0),
+            // Rough bodies do not rest on walls.
+            12 if self.settings().rest_speed.is_none() => {
+                let w = std::array::from_fn(|d| SPEEDS[b.vel[(d + 1) % 3] as usize % 12]);
+                spec.spin = Some(ccdsim::Spin::of::<D>(Vector(w)));
+            }
+            13 if self.settings().rest_speed.is_none() => {
+                spec.inertia = Some(0.25);
+                spec.tangential_restitution = Some(0.0);
+            }
             _ => {}
         }
         Some(spec)

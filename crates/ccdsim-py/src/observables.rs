@@ -97,6 +97,7 @@ fn rdf<'py>(
                 velocities: Vec::new(),
                 radii: vec![0.0; n],
                 masses: Vec::new(),
+                spins: None,
             };
             g.add(&frame).map_err(value_error)?;
         }

@@ -51,7 +51,7 @@ pub use event::{Event, EventKind};
 pub use finder::{make_finder, AllPairs, Finder, FinderError, FinderOptions, FINDER_NAMES};
 pub use geom::{Aabb, Vector};
 pub use halt::{Halt, Partner};
-pub use motion::{Body, Gravity, Growth, GrowthLaw, Laws, Motion, MovingWall, WallMotion};
+pub use motion::{Body, Gravity, Growth, GrowthLaw, Laws, Motion, MovingWall, Spin, WallMotion};
 pub use observables::Observables;
 pub use resolution::RESOLUTION_LIMIT;
 pub use scene::{AnyScene, BodySpec, Scene, SceneError, Settings};

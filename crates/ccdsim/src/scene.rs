@@ -50,6 +50,20 @@ pub struct BodySpec<const D: usize> {
     /// collide only when each one's `group` meets the other's `mask`; walls always collide.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub mask: Option<u32>,
+    /// Angular velocity at the start, radians per second: one number in 2D (about the axis
+    /// out of the plane), three components in 3D; defaults to zero. Only collisions of rough
+    /// bodies change it ([`Settings::tangential_restitution`]).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub spin: Option<crate::motion::Spin>,
+    /// Moment-of-inertia factor `q` in `(0, 1]`: the body's moment of inertia is `q·m·r²`;
+    /// defaults to a uniform body's (1/2 for a disc, 2/5 for a sphere).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub inertia: Option<f64>,
+    /// This body's tangential restitution `β` in `[−1, 1]`; defaults to
+    /// `settings.tangential_restitution`. A pair collides with the mean of its two bodies'
+    /// values, a body and a wall with the body's.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub tangential_restitution: Option<f64>,
 }
 
 impl<const D: usize> BodySpec<D> {
@@ -66,7 +80,16 @@ impl<const D: usize> BodySpec<D> {
             kinematic: false,
             group: None,
             mask: None,
+            spin: None,
+            inertia: None,
+            tangential_restitution: None,
         }
+    }
+
+    /// True when the body sets a spin, an inertia factor or a tangential restitution.
+    #[must_use]
+    pub fn is_rotational(&self) -> bool {
+        self.spin.is_some() || self.inertia.is_some() || self.tangential_restitution.is_some()
     }
 
     /// This body's collision filter (its `group` and `mask`, defaults filled in).
@@ -105,6 +128,39 @@ impl<const D: usize> BodySpec<D> {
                     message: format!("{e} is outside [0, 1]"),
                 });
             }
+        }
+        if let Some(beta) = self.tangential_restitution {
+            check_tangential_restitution(&f("tangential_restitution"), beta)?;
+        }
+        if let Some(q) = self.inertia {
+            if !q.is_finite() {
+                return Err(SceneError::NonFinite(f("inertia")));
+            }
+            if !(q > 0.0 && q <= 1.0) {
+                return Err(SceneError::Field {
+                    path: f("inertia"),
+                    message: format!(
+                        "{q} is outside (0, 1]: the moment of inertia q·m·r² of a body of \
+                         radius r is at most m·r²"
+                    ),
+                });
+            }
+        }
+        if let Some(spin) = self.spin {
+            if !spin.fits::<D>() {
+                return Err(SceneError::Field {
+                    path: f("spin"),
+                    message: if D == 2 {
+                        "a disc's spin is one number (about the axis out of the plane)".into()
+                    } else {
+                        "a sphere's spin is an array of three numbers".into()
+                    },
+                });
+            }
+            if !spin.vector().is_finite() {
+                return Err(SceneError::NonFinite(f("spin")));
+            }
+            check_magnitudes(|| f("spin"), &spin.vector().0)?;
         }
         if self.kinematic {
             let refuse = |why: &str| {
@@ -175,6 +231,13 @@ pub struct Settings {
     /// comes to rest on it and slides along it (see [`crate::contact::resting`]).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub rest_speed: Option<f64>,
+    /// Tangential restitution `β` in `[−1, 1]` of every collision (rough spheres): a
+    /// collision turns the tangential velocity of the contact points `g_t` into `−β·g_t`,
+    /// trading translational for rotational energy; −1 is smooth (spins never change), 1
+    /// perfectly rough. Setting it, or any body's `spin`, `inertia` or
+    /// `tangential_restitution`, makes the world keep each body's angular velocity.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub tangential_restitution: Option<f64>,
 }
 
 fn one() -> f64 {
@@ -190,6 +253,7 @@ impl Default for Settings {
             gravity: None,
             tc: None,
             rest_speed: None,
+            tangential_restitution: None,
         }
     }
 }
@@ -459,6 +523,17 @@ impl<const D: usize> Scene<D> {
             }
         }
         self.validate_rest_speed()?;
+        if let Some(beta) = self.settings.tangential_restitution {
+            check_tangential_restitution("settings.tangential_restitution", beta)?;
+        }
+        if self.is_rotational() && self.settings.rest_speed.is_some() {
+            return Err(SceneError::Unsupported {
+                field: "settings.rest_speed".into(),
+                why: "bodies resting on walls do not spin: leave rest_speed out of a scene \
+                      of rough bodies (tangential_restitution, spin, inertia)"
+                    .into(),
+            });
+        }
         if !self.start_time.is_finite() {
             return Err(SceneError::NonFinite("start_time".into()));
         }
@@ -562,6 +637,15 @@ impl<const D: usize> Scene<D> {
             );
         }
         Ok(())
+    }
+
+    /// True when the world keeps each body's angular velocity: the scene sets
+    /// `settings.tangential_restitution` or a body sets its `spin`, `inertia` or
+    /// `tangential_restitution` (see [`crate::motion::spin`]).
+    #[must_use]
+    pub fn is_rotational(&self) -> bool {
+        self.settings.tangential_restitution.is_some()
+            || self.bodies.iter().any(BodySpec::is_rotational)
     }
 
     /// `settings.rest_speed`: positive and finite, under gravity, with fixed radii.
@@ -919,6 +1003,20 @@ pub const MAX_MAGNITUDE: f64 = 1e100;
 /// The smallest radius and mass: `1e-100`, so that their squares and products stay normal
 /// floats (contact distances squared, `1e-200`) instead of underflowing to zero.
 pub const MIN_SIZE: f64 = 1e-100;
+
+/// A tangential restitution, finite and in `[−1, 1]`, at the field `path`.
+fn check_tangential_restitution(path: &str, beta: f64) -> Result<(), SceneError> {
+    if !beta.is_finite() {
+        return Err(SceneError::NonFinite(path.into()));
+    }
+    if !(-1.0..=1.0).contains(&beta) {
+        return Err(SceneError::Field {
+            path: path.into(),
+            message: format!("{beta} is outside [-1, 1]"),
+        });
+    }
+    Ok(())
+}
 
 /// Refuses any of `values` beyond [`MAX_MAGNITUDE`], naming `field`.
 fn check_magnitudes(field: impl FnOnce() -> String, values: &[f64]) -> Result<(), SceneError> {

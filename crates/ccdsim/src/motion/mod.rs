@@ -15,6 +15,7 @@ mod laws;
 pub mod moving_wall;
 mod path;
 pub mod pivot;
+pub mod spin;
 
 pub use body::Body;
 pub use gravity::Gravity;
@@ -22,6 +23,7 @@ pub use growth::{Growth, GrowthLaw};
 pub use laws::Laws;
 pub use moving_wall::{start_motions, translated, MovingWall, WallMotion};
 pub use path::Path;
+pub use spin::Spin;
 
 use crate::geom::Vector;
 

@@ -16,6 +16,11 @@ pub struct EnergyBalance {
     /// Energy put in from outside the collisions, joules: the work of moving walls and the
     /// energy a program's edits added (negative when they took some out).
     pub work: f64,
+    /// Rotational kinetic energy at the start, joules (0 unless bodies spin, see
+    /// [`crate::motion::spin`]).
+    pub rotational_start: f64,
+    /// Rotational kinetic energy at the end, joules.
+    pub rotational_end: f64,
 }
 
 impl EnergyBalance {
@@ -23,21 +28,23 @@ impl EnergyBalance {
     ///
     /// `((K_end + U_end) − (K_start + U_start) − work) / max(K_start, K_end)`,
     ///
-    /// the change of kinetic plus potential energy not accounted for by outside work,
-    /// relative to the larger kinetic energy (the potential energy's zero is arbitrary, so it
+    /// the change of kinetic (translational plus rotational) plus potential energy not
+    /// accounted for by outside work, relative to the larger kinetic energy (the potential energy's zero is arbitrary, so it
     /// cannot be the scale). Elastic collisions keep it at rounding level (about 1e-15 per
     /// collision); inelastic ones make it negative: without gravity, moving walls or edits it
     /// is `(K_end − K_start) / K_start`, the fraction of kinetic energy lost. 0 when there is
     /// no kinetic energy at either end.
     #[must_use]
     pub fn relative_drift(&self) -> f64 {
-        let scale = self.kinetic_start.max(self.kinetic_end);
+        let (start, end) = (
+            self.kinetic_start + self.rotational_start,
+            self.kinetic_end + self.rotational_end,
+        );
+        let scale = start.max(end);
         if scale.is_nan() || scale <= 0.0 {
             return 0.0;
         }
-        let change = (self.kinetic_end + self.potential_end)
-            - (self.kinetic_start + self.potential_start)
-            - self.work;
+        let change = (end + self.potential_end) - (start + self.potential_start) - self.work;
         change / scale
     }
 }
@@ -64,7 +71,7 @@ mod tests {
             kinetic_end: 49.05,
             potential_start: 0.0,
             potential_end: -49.05,
-            work: 0.0,
+            ..EnergyBalance::default()
         };
         assert_eq!(b.relative_drift(), 0.0);
     }

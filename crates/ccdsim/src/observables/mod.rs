@@ -1,6 +1,6 @@
 //! Physical observables of a run, in 2D and 3D.
 //!
-//! * [`thermodynamic`]: kinetic temperature, collision rate, pressure and the compressibility
+//! * [`thermodynamic`]: kinetic (and rotational) temperature, collision rate, pressure and the compressibility
 //!   factor, from a [`Simulation`](crate::Simulation)'s counters.
 //! * [`PairCorrelation`]: the radial distribution function g(r) over frames.
 //! * [`mean_square_displacement`] and [`velocity_autocorrelation`]: time correlations over
@@ -23,4 +23,6 @@ pub use correlation::{mean_square_displacement, velocity_autocorrelation};
 pub use energy::EnergyBalance;
 pub use pair_correlation::PairCorrelation;
 pub use pressure_tensor::PressureTensor;
-pub use thermodynamic::{observables, temperature, world_volume, Observables};
+pub use thermodynamic::{
+    observables, rotational_temperature, temperature, world_volume, Observables,
+};

@@ -297,6 +297,7 @@ mod tests {
             radii: vec![0.1; n],
             masses: vec![1.0; n],
             positions,
+            spins: None,
         }
     }
 

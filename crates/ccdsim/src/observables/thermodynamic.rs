@@ -28,6 +28,10 @@ use crate::world::World;
 pub struct Observables {
     /// Kinetic temperature `kT`, joules.
     pub temperature: f64,
+    /// Rotational temperature `kT_rot = 2·K_rot / (f·N)`, joules, with `f` the rotational
+    /// degrees of freedom (1 for discs, 3 for spheres); `None` in a world that keeps no
+    /// spins (see [`crate::motion::spin`]).
+    pub rotational_temperature: Option<f64>,
     /// Body–body collisions per body per second.
     pub collision_rate: f64,
     /// Volume (area in 2D) used for the pressure, if the world has one.
@@ -67,6 +71,22 @@ pub fn temperature<const D: usize>(world: &World<D>) -> f64 {
     2.0 * k.max(0.0) / (D as f64 * n as f64)
 }
 
+/// Rotational temperature `kT_rot = 2·K_rot / (f·N)` of the world now, joules: `K_rot` the
+/// rotational energy of the `N` bodies that move freely, `f` 1 for discs and 3 for spheres;
+/// `None` in a world that keeps no spins.
+#[must_use]
+pub fn rotational_temperature<const D: usize>(world: &World<D>) -> Option<f64> {
+    if !world.is_rotational() {
+        return None;
+    }
+    let n = free_bodies(world);
+    if n == 0 {
+        return Some(0.0);
+    }
+    let f = crate::motion::spin::rotational_freedom::<D>() as f64;
+    Some(2.0 * world.rotational_energy() / (f * n as f64))
+}
+
 /// Number of bodies that move freely: neither kinematic nor vacant slots.
 fn free_bodies<const D: usize>(world: &World<D>) -> usize {
     world.masses().filter(|m| m.is_finite()).count()
@@ -99,6 +119,7 @@ pub fn observables<const D: usize>(
     };
     Observables {
         temperature: kt,
+        rotational_temperature: rotational_temperature(world),
         collision_rate,
         volume,
         pressure,

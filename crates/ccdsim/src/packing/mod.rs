@@ -247,6 +247,9 @@ pub fn compress<const D: usize>(
             kinematic: false,
             group: scene.bodies[i].group,
             mask: scene.bodies[i].mask,
+            inertia: None,
+            spin: None,
+            tangential_restitution: None,
         })
         .collect();
     let mut settings = scene.settings;

@@ -110,13 +110,21 @@ pub const VERSION_SEGMENT_RESTING: u32 = 12;
 /// the segment turned about without the rest bit, it comes off (falling, its state the
 /// record's); with the rest bit, it rests on the segment named (swung back or landed).
 pub const VERSION_PIVOTS: u32 = 13;
+/// Format version of run files of rotational scenes (rough bodies, or spins set; see
+/// [`crate::motion::spin`]): version 10's records, whose velocity changes may have a
+/// tangential part. Spins are not recorded: they follow from the scene's and each
+/// collision's impulse (`m·Δv`), applied at the contact point, so that a reader replays them
+/// exactly as `verify` does. Bodies never rest on walls in these scenes.
+pub const VERSION_ROUGH: u32 = 14;
 /// The newest format version this build reads.
-pub const VERSION_NEWEST: u32 = VERSION_PIVOTS;
+pub const VERSION_NEWEST: u32 = VERSION_ROUGH;
 
 /// The format version a run of `scene` is written in.
 #[must_use]
 pub fn version_for<const D: usize>(scene: &crate::scene::Scene<D>) -> u32 {
-    if crate::scene::slides(scene)
+    if scene.is_rotational() {
+        VERSION_ROUGH
+    } else if crate::scene::slides(scene)
         .iter()
         .zip(&scene.walls)
         .any(|(slide, wall)| slide.is_some() && matches!(wall, crate::wall::Wall::Segment { .. }))

@@ -62,6 +62,14 @@ impl<const D: usize> Simulation<D> {
         let slot = self.world.free_slot().unwrap_or(self.world.len());
         spec.check_fields(slot)
             .map_err(|e| SimError::Input(format!("add_body: {e}")))?;
+        if spec.is_rotational() {
+            return Err(SimError::Input(
+                "add_body: an added body starts without spin and with the scene's inertia \
+                 factor and tangential restitution (run files do not record them): leave its \
+                 `spin`, `inertia` and `tangential_restitution` out"
+                    .into(),
+            ));
+        }
         if let (Some(size), Some(sensors)) = (self.world.periodic(), &self.sensors) {
             // A body larger than the scene's could overlap two images of a sensor.
             for (k, sensor) in sensors.sensors().iter().enumerate() {

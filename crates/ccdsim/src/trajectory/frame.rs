@@ -52,6 +52,9 @@ pub struct Frame<const D: usize> {
     pub radii: Vec<f64>,
     /// Masses, kilograms.
     pub masses: Vec<f64>,
+    /// Angular velocities, radians per second (about the third axis in 2D), when the run
+    /// keeps spins (rough bodies, see [`crate::motion::spin`]); `None` otherwise.
+    pub spins: Option<Vec<Vector<3>>>,
 }
 
 impl<const D: usize> Frame<D> {
@@ -83,6 +86,9 @@ impl<const D: usize> Frame<D> {
                 .map(|&i| world.radius_at(i, sim.time()))
                 .collect(),
             masses: slots.iter().map(|&i| world.mass(i)).collect(),
+            spins: world
+                .is_rotational()
+                .then(|| slots.iter().map(|&i| world.spin(i)).collect()),
         }
     }
 

@@ -53,6 +53,10 @@ const NAMES: [&str; 11] = [
     "log/particles/id",
 ];
 
+/// The chunk of angular velocities (radians per second, `f64`, three per body), after
+/// [`NAMES`] in files of runs that keep spins ([`GsdWriter::create_with_spins`]).
+const ANGULAR_VELOCITY: &str = "log/particles/angular_velocity";
+
 /// Id of a name in [`NAMES`].
 fn id_of(name: &str) -> u16 {
     NAMES
@@ -116,14 +120,29 @@ pub struct GsdWriter<W: Write + Seek> {
     index: Vec<u8>,
     frames: u64,
     constants: Option<Constants>,
+    /// Whether the file has the [`ANGULAR_VELOCITY`] chunk.
+    spins: bool,
 }
 
 impl<W: Write + Seek> GsdWriter<W> {
     /// Starts a GSD file on `out` (written from its start), naming `application` (e.g.
     /// `"ccdsim 0.1.0"`, at most 63 bytes are kept) in the header.
     pub fn create(out: W, application: &str) -> io::Result<Self> {
+        Self::start(out, application, false)
+    }
+
+    /// [`GsdWriter::create`] for a run that keeps spins: each frame also holds the bodies'
+    /// angular velocities, `log/particles/angular_velocity` (`N × 3` `f64`, radians per
+    /// second; a disc's about the third axis).
+    pub fn create_with_spins(out: W, application: &str) -> io::Result<Self> {
+        Self::start(out, application, true)
+    }
+
+    fn start(out: W, application: &str, spins: bool) -> io::Result<Self> {
+        let extra: &[&str] = if spins { &[ANGULAR_VELOCITY] } else { &[] };
         let names: Vec<u8> = NAMES
             .iter()
+            .chain(extra)
             .flat_map(|n| n.bytes().chain(std::iter::once(0)))
             .collect();
         // Whole 64-byte blocks with at least one spare NUL: an empty name ends the list.
@@ -139,6 +158,7 @@ impl<W: Write + Seek> GsdWriter<W> {
             index: Vec::new(),
             frames: 0,
             constants: None,
+            spins,
         };
         w.out.seek(SeekFrom::Start(0))?;
         w.write_header(application, namelist_location, name_blocks)?;
@@ -290,6 +310,19 @@ impl<W: Write + Seek> GsdWriter<W> {
                 data: constants.ids.iter().flat_map(|i| i.to_le_bytes()).collect(),
             });
         }
+        if let (true, Some(spins)) = (self.spins, &frame.spins) {
+            chunks.push(Chunk {
+                id: NAMES.len() as u16,
+                kind: ElementType::F64,
+                n,
+                m: 3,
+                data: spins
+                    .iter()
+                    .flat_map(|w| w.0)
+                    .flat_map(f64::to_le_bytes)
+                    .collect(),
+            });
+        }
         // Readers search a frame's entries by id.
         debug_assert!(chunks.windows(2).all(|w| w[0].id < w[1].id));
         self.append(&chunks)?;
@@ -403,6 +436,7 @@ mod tests {
             velocities: vec![Vector([1.0, 0.0, 0.0]), Vector([0.0, -1.0, 0.25])],
             radii: vec![0.5, 0.25],
             masses: vec![1.0, 1.5],
+            spins: None,
         }
     }
 

@@ -56,6 +56,22 @@ impl TrajectoryWriter {
         })
     }
 
+    /// Creates (truncates) the file at `path` in `format` for a run that keeps spins
+    /// (`rotational`, see [`crate::World::is_rotational`]): each frame then holds the
+    /// bodies' angular velocities too (extended XYZ: the `angvel` property; GSD:
+    /// `log/particles/angular_velocity`). Without spins, as [`TrajectoryWriter::create`].
+    pub fn create_for(path: &Path, format: TrajectoryFormat, rotational: bool) -> io::Result<Self> {
+        if !rotational || format == TrajectoryFormat::ExtendedXyz {
+            // Extended XYZ frames say what they hold in their own header line.
+            return Self::create(path, format);
+        }
+        let file = BufWriter::new(File::create(path)?);
+        Ok(TrajectoryWriter::Gsd(GsdWriter::create_with_spins(
+            file,
+            concat!("ccdsim ", env!("CARGO_PKG_VERSION")),
+        )?))
+    }
+
     /// Appends one frame.
     pub fn write<const D: usize>(&mut self, frame: &Frame<D>) -> io::Result<()> {
         match self {

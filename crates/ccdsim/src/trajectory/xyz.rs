@@ -71,8 +71,12 @@ impl<W: Write> XyzWriter<W> {
             line.push_str("\" ");
         }
         line.push_str(
-            "Properties=species:S:1:pos:R:3:velo:R:3:radius:R:1:mass:R:1:image:I:3:id:I:1 Time=",
+            "Properties=species:S:1:pos:R:3:velo:R:3:radius:R:1:mass:R:1:image:I:3:id:I:1",
         );
+        if frame.spins.is_some() {
+            line.push_str(":angvel:R:3");
+        }
+        line.push_str(" Time=");
         // With a decimal point, so that readers guessing types take the time for a real.
         let at = line.len();
         push_number(line, frame.time);
@@ -104,7 +108,14 @@ impl<W: Write> XyzWriter<W> {
             for a in 0..3 {
                 let _ = write!(line, " {}", if a < D { frame.images[i][a] } else { 0 });
             }
-            let _ = writeln!(line, " {}", frame.ids[i]);
+            let _ = write!(line, " {}", frame.ids[i]);
+            if let Some(spins) = &frame.spins {
+                for w in spins[i].0 {
+                    line.push(' ');
+                    push_number(line, w);
+                }
+            }
+            line.push('\n');
             self.out.write_all(line.as_bytes())?;
         }
         Ok(())
@@ -143,6 +154,7 @@ mod tests {
             velocities: vec![Vector([1.0, 0.0]), Vector([-0.1, 2.5e20])],
             radii: vec![0.25, 0.25],
             masses: vec![1.0, 2.0],
+            spins: None,
         }
     }
 

@@ -25,7 +25,11 @@ impl<const D: usize> Verifier<D> {
     fn body_energy(&self, i: usize, t: f64) -> f64 {
         let m = self.mass[i];
         let potential = self.g(i).map_or(0.0, |g| -m * g.dot(self.pos_of(i, t)));
-        0.5 * m * self.vel_of(i, t).norm_sq() + potential
+        let rotation = self
+            .spins
+            .as_ref()
+            .map_or(0.0, |s| s.energy(i, m, self.radius_at(i, t)));
+        0.5 * m * self.vel_of(i, t).norm_sq() + potential + rotation
     }
 
     /// An edit record other than an added body's (those go to `check_add`): a new motion,
@@ -72,6 +76,9 @@ impl<const D: usize> Verifier<D> {
         self.filters[i] = CollisionFilter::NONE;
         self.mass[i] = 0.0;
         self.vacant[i] = true;
+        if let Some(spins) = &mut self.spins {
+            spins.vacate(i);
+        }
     }
 
     /// The records of an added body: the first is kept until its id record follows, then
@@ -149,6 +156,9 @@ impl<const D: usize> Verifier<D> {
             }
             if let Some(grid) = &mut self.grid {
                 grid.resize(k + 1);
+            }
+            if let Some(spins) = &mut self.spins {
+                spins.push();
             }
             self.make_vacant(k);
         }

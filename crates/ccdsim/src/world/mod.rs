@@ -9,6 +9,7 @@
 //! 15 % more collisions per second than with masses and counts in arrays of their own. Ids,
 //! read only by tools, live in a separate array.
 
+mod rotation;
 pub mod time_of_impact;
 
 pub use time_of_impact::{
@@ -21,6 +22,7 @@ use crate::geom::Vector;
 use crate::motion::{start_motions, translated, Body, GrowthLaw, Laws, Motion, Path, WallMotion};
 use crate::scene::{BodySpec, Scene, SceneError};
 use crate::wall::Wall;
+use rotation::Rotation;
 
 /// [`World::support`] of a body that rests on no wall, as stored.
 const NO_SUPPORT: u32 = u32::MAX;
@@ -129,6 +131,8 @@ pub struct World<const D: usize> {
     next_id: u64,
     laws: Laws<D>,
     now: f64,
+    /// Spins, inertia factors and tangential restitutions of a rotational scene's bodies.
+    rotation: Option<Rotation>,
 }
 
 impl<const D: usize> World<D> {
@@ -217,6 +221,7 @@ impl<const D: usize> World<D> {
                 resting: scene.settings.rest_speed.is_some(),
             },
             now: scene.start_time,
+            rotation: Rotation::of(scene),
         }
     }
 
@@ -317,6 +322,9 @@ impl<const D: usize> World<D> {
             if self.rest_speed.is_some() {
                 self.supports.push((NO_SUPPORT, 0));
             }
+            if let Some(rotation) = &mut self.rotation {
+                rotation.push_vacant();
+            }
         }
         // Filled lowest slot first.
         let n = self.bodies.len();
@@ -383,6 +391,9 @@ impl<const D: usize> World<D> {
         if self.tc.is_some() {
             self.last_collision[i] = f64::NEG_INFINITY;
         }
+        if let Some(rotation) = &mut self.rotation {
+            rotation.occupy(i, spec);
+        }
         i
     }
 
@@ -407,6 +418,9 @@ impl<const D: usize> World<D> {
         self.filters[i] = CollisionFilter::NONE;
         self.vacant[i] = true;
         self.free.push(i);
+        if let Some(rotation) = &mut self.rotation {
+            rotation.spins[i] = Vector::ZERO;
+        }
     }
 
     /// Current simulated time, seconds: every event before it has been resolved.
@@ -1051,6 +1065,79 @@ impl<const D: usize> World<D> {
         } else {
             self.body_restitution(i)
         }
+    }
+
+    /// True when the world keeps its bodies' angular velocities (rough bodies, or spins set
+    /// in the scene; see [`Scene::is_rotational`]).
+    #[must_use]
+    #[inline]
+    pub fn is_rotational(&self) -> bool {
+        self.rotation.is_some()
+    }
+
+    /// Angular velocity of body `i`, radians per second (about the third axis in 2D); zero in
+    /// a world that keeps no spins. Constant between events.
+    #[must_use]
+    pub fn spin(&self, i: usize) -> Vector<3> {
+        self.rotation.as_ref().map_or(Vector::ZERO, |r| r.spins[i])
+    }
+
+    /// Moment-of-inertia factor `q` of body `i` (its moment of inertia is `q·m·r²`).
+    #[must_use]
+    pub fn inertia_factor(&self, i: usize) -> f64 {
+        self.rotation
+            .as_ref()
+            .map_or(crate::motion::spin::default_inertia::<D>(), |r| {
+                r.inertia[i]
+            })
+    }
+
+    /// Tangential restitution of a collision of bodies `i` and `j`: the mean of their values
+    /// (−1, smooth, in a world that keeps no spins).
+    #[must_use]
+    pub fn pair_tangential_restitution(&self, i: usize, j: usize) -> f64 {
+        self.rotation.as_ref().map_or(-1.0, |r| {
+            let (a, b) = (r.tangential[i], r.tangential[j]);
+            if a == b {
+                a
+            } else {
+                0.5 * (a + b)
+            }
+        })
+    }
+
+    /// Tangential restitution of a collision of body `i` with a wall: the body's.
+    #[must_use]
+    pub fn wall_tangential_restitution(&self, i: usize) -> f64 {
+        self.rotation.as_ref().map_or(-1.0, |r| r.tangential[i])
+    }
+
+    /// Sets the angular velocity of body `i` (a collision's outcome).
+    pub(crate) fn set_spin(&mut self, i: usize, spin: Vector<3>) {
+        if let Some(r) = &mut self.rotation {
+            r.spins[i] = spin;
+        }
+    }
+
+    /// Rotational kinetic energy `Σ ½·q·m·r²·|ω|²` of the bodies that move freely, joules (0
+    /// in a world that keeps no spins; radii at the current time).
+    #[must_use]
+    pub fn rotational_energy(&self) -> f64 {
+        let Some(r) = &self.rotation else {
+            return 0.0;
+        };
+        let now = self.now;
+        (0..self.len())
+            .filter(|&i| self.mass(i).is_finite())
+            .map(|i| {
+                crate::motion::spin::rotational_energy(
+                    r.inertia[i],
+                    self.mass(i),
+                    self.radius_at(i, now),
+                    r.spins[i],
+                )
+            })
+            .sum()
     }
 
     /// The TC model's duration, seconds, if the scene sets one.

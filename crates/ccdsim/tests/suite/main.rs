@@ -24,6 +24,7 @@ mod narrow_properties;
 mod resting;
 mod restitution;
 mod rods;
+mod rough;
 mod run_files;
 mod sensors;
 mod thermostat;

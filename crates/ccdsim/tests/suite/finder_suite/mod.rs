@@ -27,6 +27,7 @@ mod gravity;
 mod growth;
 mod periodic;
 mod resting;
+mod rough;
 mod special_scenes;
 mod steering;
 

@@ -484,6 +484,9 @@ fn inelastic_collapse_to_huge_times() {
         kinematic: false,
         group: None,
         mask: None,
+        inertia: None,
+        spin: None,
+        tangential_restitution: None,
     };
     let corner = |x: f64, y: f64| Vector([x, y]);
     let scene = Scene::<2> {

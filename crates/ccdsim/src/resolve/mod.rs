@@ -1,5 +1,7 @@
 //! Collision response: impulses along the contact normal, with masses and restitution.
 
+mod rough;
+
 use crate::contact::narrow::wall_normal;
 use crate::contact::periodic::min_image;
 use crate::geom::Vector;
@@ -69,6 +71,7 @@ fn resolve_free_pair<const D: usize>(
     let sigma = world.radius_at(i, t) + world.radius_at(j, t);
     let (mut vi2, mut vj2) = (vi, vj);
     let e = world.pair_restitution(i, j, t);
+    let mut collided = false;
     if let Some(law) = world.growth() {
         // Growing radii: reverse the speed at which the surfaces approach (see
         // `crate::contact::growth`): u' = (1 + e)·σ̇ − e·u along the line of centres.
@@ -80,6 +83,7 @@ fn resolve_free_pair<const D: usize>(
                 let k = (1.0 + e) * (vn - grow);
                 vi2 = vi + n * (k * share_i);
                 vj2 = vj - n * (k * share_j);
+                collided = true;
             }
         }
     } else if dist > 0.0 {
@@ -91,6 +95,16 @@ fn resolve_free_pair<const D: usize>(
             let k = (1.0 + e) * vn;
             vi2 = vi + n * (k * share_i);
             vj2 = vj - n * (k * share_j);
+            collided = true;
+        }
+    }
+    if collided && world.is_rotational() {
+        let n = d * (1.0 / dist);
+        if let Some(kick) = rough::pair_kick(world, (i, vi), (j, vj), n, t) {
+            vi2 += kick.dv[0];
+            vj2 += kick.dv[1];
+            world.set_spin(i, kick.spins[0]);
+            world.set_spin(j, kick.spins[1]);
         }
     }
     world.set_state(i, pi, vi2, t);
@@ -194,6 +208,14 @@ pub fn resolve_body_wall<const D: usize>(world: &mut World<D>, i: usize, w: usiz
         let vn = (v - world.wall_velocity(w)).dot(n) - grow;
         if vn < 0.0 {
             v2 = v - n * ((1.0 + world.wall_restitution(i, t)) * vn);
+            if world.is_rotational() {
+                if let Some((dv, spin)) =
+                    rough::wall_kick(world, (i, v), world.wall_velocity(w), n, t)
+                {
+                    v2 += dv;
+                    world.set_spin(i, spin);
+                }
+            }
         }
         if let (Some(rest_speed), Some(_), Some(g)) =
             (world.rest_speed(), world.slide_of(w), world.gravity())
@@ -380,6 +402,9 @@ mod tests {
             kinematic: false,
             group: None,
             mask: None,
+            inertia: None,
+            spin: None,
+            tangential_restitution: None,
         }
     }
 
