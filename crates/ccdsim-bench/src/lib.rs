@@ -1,7 +1,8 @@
 //! Benchmark drivers behind `ccdsim bench`: the thesis's Table 5.1 (running time against the
 //! number of bodies for every finder), Table 5.2 (the exact simulation against a
 //! discrete-time stepper and the collisions it misses) and the gas workload (collisions per
-//! second and the equation of state of hard discs and spheres). They print tables and return data; the
+//! second and the equation of state of hard discs and spheres), and the rough-sphere cooling
+//! check (rotational against translational temperature, against kinetic theory). They print tables and return data; the
 //! command-line tool adds the files and plots.
 //!
 //! A crate of its own, apart from the library: these drivers time and report, and a program
@@ -13,6 +14,7 @@
 mod budget;
 mod discrete;
 mod gas;
+mod rough_cooling;
 mod thesis;
 
 pub use budget::{CellStatus, Planner};
@@ -20,6 +22,10 @@ pub use discrete::{run_discrete_bench, DiscreteBenchConfig, DiscreteBenchReport,
 pub use gas::{
     carnahan_starling_z, enskog_collision_rate, eos_z, gas_bench, henderson_z, standard_error,
     GasBenchConfig, GasBenchError, GasBenchReport,
+};
+pub use rough_cooling::{
+    cooling_coefficients, cooling_decay, huthmann_zippelius_ratio, ratio_relaxation, rough_cooling,
+    CoolingConfig, CoolingError, CoolingReport, CoolingSample,
 };
 pub use thesis::{
     fmt_seconds, run_thesis_bench, run_thesis_once, thesis_row, ThesisBenchConfig,

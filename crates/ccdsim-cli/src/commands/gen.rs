@@ -4,8 +4,8 @@ use anyhow::{Context, Result};
 use ccdsim::generate::{
     gas, pegs, rack, thesis, GasConfig, Lattice, PegsConfig, RackConfig, ThesisConfig,
 };
-use ccdsim::AnyScene;
 use ccdsim::Gravity;
+use ccdsim::{AnyScene, Scene, Settings};
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -112,6 +112,16 @@ struct GasArgs {
     /// of uniform speeds.
     #[arg(long)]
     temperature: Option<f64>,
+    /// Coefficient of restitution of every collision (`settings.restitution`), in [0, 1].
+    #[arg(long)]
+    restitution: Option<f64>,
+    /// Rough bodies: the tangential restitution of every collision
+    /// (`settings.tangential_restitution`), in [-1, 1]; −1 is smooth, 1 perfectly rough.
+    #[arg(long, allow_negative_numbers = true)]
+    tangential_restitution: Option<f64>,
+    /// The TC model's time (`settings.tc`), seconds: keeps an inelastic gas from collapsing.
+    #[arg(long)]
+    tc: Option<f64>,
 }
 
 /// Lattices of `--lattice`.
@@ -167,10 +177,16 @@ pub fn run(args: Args) -> Result<ExitCode> {
                 lattice: g.lattice.map(Lattice::from),
                 temperature: g.temperature,
             };
+            let mut settings = Settings::default();
+            if let Some(e) = g.restitution {
+                settings.restitution = e;
+            }
+            settings.tangential_restitution = g.tangential_restitution;
+            settings.tc = g.tc;
             if g.dim == 2 {
-                gas::<2>(&cfg)?.into()
+                with_settings(gas::<2>(&cfg)?, settings)?.into()
             } else {
-                gas::<3>(&cfg)?.into()
+                with_settings(gas::<3>(&cfg)?, settings)?.into()
             }
         }
         Kind::Rack(r) => {
@@ -238,5 +254,15 @@ fn with_gravity(scene: AnyScene, g: &[f64]) -> Result<AnyScene> {
             AnyScene::D3(s)
         }
     };
+    Ok(scene)
+}
+
+/// `scene` with the collision settings of `settings` (restitution, tangential restitution,
+/// TC time), validated.
+fn with_settings<const D: usize>(mut scene: Scene<D>, settings: Settings) -> Result<Scene<D>> {
+    scene.settings.restitution = settings.restitution;
+    scene.settings.tangential_restitution = settings.tangential_restitution;
+    scene.settings.tc = settings.tc;
+    scene.validate().context("gas")?;
     Ok(scene)
 }

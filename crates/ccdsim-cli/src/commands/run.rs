@@ -83,6 +83,9 @@ struct Summary {
     frames: u64,
     /// Kinetic temperature kT at the end (k = 1, the scene's units).
     temperature: f64,
+    /// Rotational temperature kT_rot at the end (2·K_rot/(f·N), f = 1 in 2D, 3 in 3D); null
+    /// unless the scene's bodies spin (rough bodies).
+    rotational_temperature: Option<f64>,
     /// Body–body collisions per body per unit time.
     collision_rate: f64,
     /// Pressure from the collision virial; null without a volume (no periodic box or walls).
@@ -194,6 +197,7 @@ fn simulate<const D: usize>(scene: &Scene<D>, args: &Args) -> Result<Summary> {
     };
     let momentum_start = sim.world().momentum().0.to_vec();
     let potential_start = sim.world().potential_energy_at(sim.time());
+    let rotational_start = sim.world().rotational_energy();
     // Everything is validated before the run file is created: bad input leaves no file.
     let mut sink = Sink {
         writer: match &args.record {
@@ -202,8 +206,9 @@ fn simulate<const D: usize>(scene: &Scene<D>, args: &Args) -> Result<Summary> {
         },
         error: None,
     };
+    let rotational = sim.world().is_rotational();
     let mut trajectory = match &frames {
-        Some((_, format, path)) => match TrajectoryWriter::create(path, *format) {
+        Some((_, format, path)) => match TrajectoryWriter::create_for(path, *format, rotational) {
             Ok(w) => Some(w),
             Err(e) => {
                 // No partial output: the run file just created goes too.
@@ -328,6 +333,8 @@ fn simulate<const D: usize>(scene: &Scene<D>, args: &Args) -> Result<Summary> {
         potential_start,
         potential_end,
         work: stats.wall_work,
+        rotational_start,
+        rotational_end: sim.world().rotational_energy(),
     }
     .relative_drift();
     let drift = if stats.kinetic_energy_start > 0.0 {
@@ -360,6 +367,7 @@ fn simulate<const D: usize>(scene: &Scene<D>, args: &Args) -> Result<Summary> {
         trajectory: args.trajectory.as_ref().map(|p| p.display().to_string()),
         frames: frames_written,
         temperature: observables.temperature,
+        rotational_temperature: observables.rotational_temperature,
         collision_rate: observables.collision_rate,
         pressure: observables.pressure,
         compressibility: observables.compressibility,
@@ -447,6 +455,12 @@ fn print_summary(s: &Summary, builtin: bool) -> std::io::Result<()> {
             "under gravity: kinetic + potential energy {} -> {} J ({drift})",
             sig(s.kinetic_energy_start + s.potential_energy_start, 10),
             sig(s.kinetic_energy_end + s.potential_energy_end, 10),
+        )?;
+    }
+    if let Some(rot) = s.rotational_temperature {
+        outln!(
+            "rough bodies: rotational temperature kT_rot {}; the drift counts rotational energy",
+            num(rot)
         )?;
     }
     out!(

@@ -69,6 +69,8 @@ fn check<R: Read, const D: usize>(
                 potential_start: report.potential_energy_start,
                 potential_end: report.potential_energy_end,
                 work: report.edit_energy + report.wall_work,
+                rotational_start: report.rotational_energy_start,
+                rotational_end: report.rotational_energy_end,
             }
             .relative_drift();
             let mut resets = if report.resets > 0 {

@@ -4,6 +4,7 @@
 mod discrete;
 mod gas;
 mod plot;
+mod rough_cooling;
 mod thesis;
 
 use anyhow::{anyhow, Context, Result};
@@ -28,6 +29,9 @@ enum Workload {
     /// Hard discs or spheres in a periodic box: collisions per second, peak memory per body,
     /// and the equation of state (Z, collision rate) against Henderson / Carnahan–Starling.
     Gas(gas::Args),
+    /// Homogeneous cooling gases of rough spheres: the ratio of rotational to translational
+    /// temperature and Haff's law against the Huthmann–Zippelius theory.
+    RoughCooling(rough_cooling::Args),
 }
 
 /// Runs the command.
@@ -36,6 +40,7 @@ pub fn run(args: Args) -> Result<ExitCode> {
         Workload::Thesis(a) => thesis::run(a),
         Workload::Discrete(a) => discrete::run(a),
         Workload::Gas(a) => gas::run(a),
+        Workload::RoughCooling(a) => rough_cooling::run(a),
     }
 }
 
