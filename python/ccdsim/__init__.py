@@ -209,6 +209,13 @@ class Simulation:
         return self._sim.velocities
 
     @property
+    def spins(self) -> np.ndarray:
+        """Angular velocities, N x 3, rad/s (a disc spins about the third axis; zeros unless
+        the scene has rough bodies or spins: ``settings.tangential_restitution``,
+        ``bodies[].spin``)."""
+        return self._sim.spins
+
+    @property
     def images(self) -> np.ndarray:
         """Periodic images, N x D integers: ``positions + images * box`` are the unwrapped
         positions (zeros without a periodic box)."""
@@ -427,6 +434,10 @@ class Simulation:
         """Total kinetic energy now, J."""
         return self._sim.kinetic_energy()
 
+    def rotational_energy(self) -> float:
+        """Rotational kinetic energy now, J (0 unless the bodies spin)."""
+        return self._sim.rotational_energy()
+
     def potential_energy(self) -> float:
         """Potential energy in the scene's gravity field now (``settings.gravity``), J:
         ``-sum(m g . x)``, zero without gravity. Elastic collisions keep kinetic plus
@@ -434,9 +445,10 @@ class Simulation:
         return self._sim.potential_energy()
 
     def observables(self) -> dict:
-        """Over the run so far: ``temperature`` (kT), ``collision_rate`` (per body per unit
-        time), ``volume``, ``pressure`` and ``compressibility`` (Z = PV/NkT; None without a
-        volume)."""
+        """Over the run so far: ``temperature`` (kT), ``rotational_temperature`` (kT_rot =
+        2 K_rot / (f N), f = 1 for discs and 3 for spheres; None unless the bodies spin),
+        ``collision_rate`` (per body per unit time), ``volume``, ``pressure`` and
+        ``compressibility`` (Z = PV/NkT; None without a volume)."""
         return self._sim.observables()
 
 

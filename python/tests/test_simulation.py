@@ -347,3 +347,40 @@ def test_a_ball_slides_along_a_shelf_and_flies_off_its_end_or_rolls_over_it():
     assert release["vel"][0] @ release["vel"][0] == pytest.approx(1 + 4 / 6, rel=1e-9)
     assert floor["b"] == 0
     assert slow.halt is None
+
+
+def test_rough_spheres_trade_translational_for_rotational_energy():
+    # A head-on-and-sideways meeting of two perfectly rough discs: energy moves into spin,
+    # the total is kept, and the rotational temperature is reported.
+    scene = {
+        "dim": 2,
+        "settings": {"tangential_restitution": 1.0},
+        "bodies": [
+            {"pos": [0.0, 0.0], "vel": [1.0, 0.5], "radius": 0.5},
+            {"pos": [3.0, 0.0], "vel": [-1.0, 0.0], "radius": 0.5, "spin": 2.0},
+        ],
+    }
+    sim = ccdsim.Simulation(scene, finder="all-pairs")
+    assert sim.spins.shape == (2, 3)
+    np.testing.assert_array_equal(sim.spins[:, 2], [0.0, 2.0])
+    before = sim.kinetic_energy() + sim.rotational_energy()
+    ev = sim.step()
+    assert ev["kind"] == ccdsim.BODY
+    assert not np.array_equal(sim.spins[:, 2], [0.0, 2.0])
+    after = sim.kinetic_energy() + sim.rotational_energy()
+    assert abs(after - before) < 1e-14 * before
+    assert sim.observables()["rotational_temperature"] > 0.0
+    smooth = ccdsim.Simulation(two_balls())
+    assert smooth.observables()["rotational_temperature"] is None
+    assert smooth.rotational_energy() == 0.0
+
+
+def test_bad_rough_fields_are_refused():
+    scene = two_balls()
+    scene["bodies"][0]["spin"] = [0.0, 0.0, 1.0]
+    with pytest.raises(ValueError, match=r"bodies\[0\]\.spin"):
+        ccdsim.Simulation(scene)
+    scene = two_balls()
+    scene["settings"] = {"tangential_restitution": 1.5}
+    with pytest.raises(ValueError, match="tangential_restitution"):
+        ccdsim.Simulation(scene)

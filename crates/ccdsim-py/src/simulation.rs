@@ -135,6 +135,21 @@ impl PySimulation {
         })
     }
 
+    /// Angular velocities now, N×3, radians per second (a disc's about the third axis; zeros
+    /// in a run that keeps no spins). Only collisions of rough bodies change them.
+    #[getter]
+    fn spins<'py>(&mut self, py: Python<'py>) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        with_sim!(self, s, {
+            let w = s.world();
+            matrix::<3>(py, (0..w.len()).map(|i| w.spin(i)))
+        })
+    }
+
+    /// Rotational kinetic energy now, joules (0 in a run that keeps no spins).
+    fn rotational_energy(&mut self) -> f64 {
+        with_sim!(self, s, s.world().rotational_energy())
+    }
+
     /// Periodic images, N×D integers: `positions + images · L` are the unwrapped positions
     /// (zeros without a periodic box).
     #[getter]
@@ -191,7 +206,8 @@ impl PySimulation {
                 let io = |e: std::io::Error| {
                     pyo3::exceptions::PyOSError::new_err(format!("{}: {e}", path.display()))
                 };
-                let mut w = TrajectoryWriter::create(&path, format).map_err(io)?;
+                let mut w = TrajectoryWriter::create_for(&path, format, s.world().is_rotational())
+                    .map_err(io)?;
                 let mut frames = 0;
                 for t in times {
                     s.run_until(t);
@@ -451,12 +467,14 @@ impl PySimulation {
         with_sim!(self, s, s.world().potential_energy_at(s.time()))
     }
 
-    /// Temperature, collision rate, volume, pressure and compressibility factor over the run
-    /// so far (None where the world has no volume).
+    /// Temperature, rotational temperature (None unless the run keeps spins), collision
+    /// rate, volume, pressure and compressibility factor over the run so far (None where the
+    /// world has no volume).
     fn observables<'py>(&mut self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         let o = with_sim!(self, s, s.observables());
         let d = PyDict::new(py);
         d.set_item("temperature", o.temperature)?;
+        d.set_item("rotational_temperature", o.rotational_temperature)?;
         d.set_item("collision_rate", o.collision_rate)?;
         d.set_item("volume", o.volume)?;
         d.set_item("pressure", o.pressure)?;
