@@ -24,8 +24,8 @@ pub use gas::{
     GasBenchConfig, GasBenchError, GasBenchReport,
 };
 pub use rough_cooling::{
-    cooling_coefficients, cooling_decay, huthmann_zippelius_ratio, ratio_relaxation, rough_cooling,
-    CoolingConfig, CoolingError, CoolingReport, CoolingSample,
+    cooling_coefficients, cooling_decay, default_settle, huthmann_zippelius_ratio,
+    ratio_relaxation, rough_cooling, CoolingConfig, CoolingError, CoolingReport, CoolingSample,
 };
 pub use thesis::{
     fmt_seconds, run_thesis_bench, run_thesis_once, thesis_row, ThesisBenchConfig,

@@ -27,7 +27,9 @@ mod options;
 mod sedgewick;
 
 pub use all_pairs::{all_pairs_next_event, AllPairs};
-pub use options::{auto_cells_skin, finder_options, FinderOption, FinderOptions};
+pub use options::{
+    auto_cells_skin, auto_cells_skin_at, finder_options, FinderOption, FinderOptions, LIST_PACKING,
+};
 
 /// `e`, unless its time is infinite (or undefined): a contact at an infinite time never
 /// happens. Times of impact overflow to infinity only in degenerate runs, when speeds have

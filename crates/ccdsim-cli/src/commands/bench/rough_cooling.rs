@@ -6,7 +6,7 @@ use super::{parse_list, write_file};
 use crate::number::sig;
 use crate::progress::Progress;
 use anyhow::{anyhow, Result};
-use ccdsim_bench::{ratio_relaxation, rough_cooling, CoolingConfig, CoolingReport};
+use ccdsim_bench::{default_settle, rough_cooling, CoolingConfig, CoolingReport};
 use plotters::prelude::*;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -31,7 +31,7 @@ pub struct Args {
     /// Moment-of-inertia factor q (2/5: solid spheres).
     #[arg(long, default_value_t = 0.4)]
     inertia: f64,
-    /// Collisions per body run before measuring (default: five relaxation times of the
+    /// Collisions per body run before measuring (default: eight relaxation times of the
     /// ratio T_rot/T_tr by the theory, at least 10).
     #[arg(long)]
     settle: Option<f64>,
@@ -60,14 +60,9 @@ pub fn run(args: Args) -> Result<ExitCode> {
         .flat_map(|&e| args.tangential_restitution.iter().map(move |&b| (e, b)))
         .collect();
     let per_body = |e: f64, beta: f64| {
-        args.settle.unwrap_or_else(|| {
-            let rate = ratio_relaxation(e, beta, args.inertia);
-            if rate > 0.0 {
-                (5.0 / rate).max(10.0)
-            } else {
-                10.0
-            }
-        }) + args.collisions_per_body
+        args.settle
+            .unwrap_or_else(|| default_settle(e, beta, args.inertia))
+            + args.collisions_per_body
     };
     let runs: Vec<u64> = cases
         .iter()

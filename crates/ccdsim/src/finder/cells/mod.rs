@@ -331,6 +331,16 @@ enum Mode<const D: usize> {
     Lists(Lists<D>),
 }
 
+/// The volume (area) fraction of the bodies of `world`, radii scaled by `grown`, in the
+/// periodic box of sides `size` (vacant slots left out).
+fn packing_fraction<const D: usize>(world: &World<D>, grown: f64, size: &Vector<D>) -> f64 {
+    let filled: f64 = (0..world.len())
+        .filter(|&i| !world.is_vacant(i))
+        .map(|i| crate::geom::ball_volume::<D>(world.radius(i) * grown))
+        .sum();
+    filled / size.0.iter().product::<f64>()
+}
+
 /// Largest `cells_skin` (relative to the largest contact distance).
 pub const MAX_CELLS_SKIN: f64 = 1.0;
 /// Smallest non-zero `cells_skin`.
@@ -376,6 +386,9 @@ pub struct Cells<const D: usize> {
     peak_bytes: usize,
     /// The skin of the list mode relative to the largest contact distance (0: crossings).
     skin: f64,
+    /// Whether the skin was left to the finder (`cells_skin` unset): it then chooses lists
+    /// by the world's packing at each `init` ([`super::auto_cells_skin_at`]).
+    auto_skin: bool,
     /// The mode `init` chose, with its structures.
     mode: Mode<D>,
     /// Prefetch hints are on: the working set is larger than a core's cache (see `init`).
@@ -429,6 +442,7 @@ impl<const D: usize> Cells<D> {
             stats: CellsStats::default(),
             peak_bytes: 0,
             skin: 0.0,
+            auto_skin: false,
             mode: Mode::Crossings,
             hints: false,
             horizon: f64::INFINITY,
@@ -450,6 +464,7 @@ impl<const D: usize> Cells<D> {
         check_options(options)?;
         Ok(Cells {
             skin: options.cells_skin.unwrap_or(super::auto_cells_skin(D)),
+            auto_skin: options.cells_skin.is_none(),
             ..Self::new()
         })
     }
@@ -710,9 +725,15 @@ impl<const D: usize> Finder<D> for Cells<D> {
         // List mode: periodic worlds only (in an open world a body flying off would leave
         // shells forever, where the crossings of the outer cells, which extend to infinity,
         // stop).
-        let list_mode = self.skin > 0.0 && period.is_some() && n < MAX_LIST_BODIES;
+        let relative_skin = match period {
+            Some(size) if self.auto_skin => {
+                super::auto_cells_skin_at(D, packing_fraction(world, grown, &size))
+            }
+            _ => self.skin,
+        };
+        let list_mode = relative_skin > 0.0 && period.is_some() && n < MAX_LIST_BODIES;
         let skin = if list_mode {
-            self.skin * sigma_max
+            relative_skin * sigma_max
         } else {
             0.0
         };

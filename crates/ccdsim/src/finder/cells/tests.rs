@@ -430,3 +430,33 @@ fn growing_bodies_too_far_apart_to_be_paired_still_meet() {
     assert_eq!((e.kind, e.a, e.b), (EventKind::Body, 0, 1));
     assert_eq!(Some(e.time), all_pairs_next_event(&world).map(|e| e.time));
 }
+
+#[test]
+fn the_automatic_skin_lists_only_dense_3d_periodic_worlds() {
+    let mut finder = Cells::<3>::with_options(&FinderOptions::default()).unwrap();
+    let gas_at = |packing: f64, lattice: bool| {
+        let scene = gas::<3>(&GasConfig {
+            n: 500,
+            packing,
+            radius_min: 0.5,
+            radius_max: 0.5,
+            periodic: true,
+            lattice: lattice.then_some(crate::generate::Lattice::Densest),
+            ..GasConfig::default()
+        })
+        .unwrap();
+        World::from_scene(&scene).unwrap()
+    };
+    // Dilute: a body would leave its shell many times per collision.
+    finder.init(&gas_at(0.05, false)).unwrap();
+    assert!(!finder.uses_lists());
+    // Dense: lists pay.
+    let dense = gas_at(0.45, true);
+    finder.init(&dense).unwrap();
+    assert!(finder.uses_lists());
+    finder.validate(&dense).unwrap();
+    // A skin the program chose is kept whatever the packing.
+    let mut chosen = with_skin::<3>(0.3);
+    chosen.init(&gas_at(0.05, false)).unwrap();
+    assert!(chosen.uses_lists());
+}
