@@ -37,16 +37,19 @@ pub fn resolve_body_body_contact<const D: usize>(
 ) -> Contact<D> {
     if world.has_resting() {
         resolve_resting_pair(world, i, j, t)
+    } else if world.is_rotational() {
+        resolve_free_pair::<D, true>(world, i, j, t)
     } else {
-        resolve_free_pair(world, i, j, t)
+        resolve_free_pair::<D, false>(world, i, j, t)
     }
 }
 
 /// [`resolve_body_body_contact`] where no body rests on a wall: the impulse along the line
-/// of centres. Out of line and without calls out (see [`World::free_position_at`]), as it
-/// always was: its values stay in registers.
+/// of centres, and with `ROUGH` (a world that keeps spins) the tangential impulse of rough
+/// bodies. Out of line and without calls out (see [`World::free_position_at`]), as it
+/// always was: its values stay in registers, and smooth worlds' copy has no rough path.
 #[inline(never)]
-fn resolve_free_pair<const D: usize>(
+fn resolve_free_pair<const D: usize, const ROUGH: bool>(
     world: &mut World<D>,
     i: usize,
     j: usize,
@@ -98,7 +101,7 @@ fn resolve_free_pair<const D: usize>(
             collided = true;
         }
     }
-    if collided && world.is_rotational() {
+    if ROUGH && collided {
         let n = d * (1.0 / dist);
         if let Some(kick) = rough::pair_kick(world, (i, vi), (j, vj), n, t) {
             vi2 += kick.dv[0];
