@@ -100,3 +100,54 @@ fn bench_refuses_bad_arguments() {
         assert_eq!(String::from_utf8(out.stderr).unwrap().lines().count(), 1);
     }
 }
+
+#[test]
+fn rough_gases_run_verify_and_cool_as_the_bench_reports() {
+    let dir = tmp_dir("rough");
+    std::fs::create_dir_all(&dir).unwrap();
+    let scene = dir.join("rough.json");
+    run_ok(
+        ccdsim()
+            .args(["gen", "gas", "--dim", "3", "--n", "200", "--packing", "0.1"])
+            .args(["--periodic", "--temperature", "1", "--restitution", "0.9"])
+            .args(["--tangential-restitution", "0.5", "--tc", "1e-4", "--out"])
+            .arg(&scene),
+    );
+    let record = dir.join("rough.ccd");
+    let out = run_ok(
+        ccdsim()
+            .arg("run")
+            .arg(&scene)
+            .args(["--events", "5000", "--json", "--quiet", "--record"])
+            .arg(&record),
+    );
+    let summary: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let rotational = summary["rotational_temperature"].as_f64().unwrap();
+    assert!(rotational > 0.0 && summary["energy_drift"].as_f64().unwrap() < 0.0);
+    let out = run_ok(ccdsim().arg("verify").arg(&record));
+    assert!(String::from_utf8(out.stdout).unwrap().starts_with("OK"));
+    // The cooling check, small: its table, samples and plot.
+    let out = run_ok(
+        ccdsim()
+            .args([
+                "bench",
+                "rough-cooling",
+                "--n",
+                "300",
+                "--restitution",
+                "0.9",
+            ])
+            .args(["--tangential-restitution=-1,1", "--settle", "3"])
+            .args(["--collisions-per-body", "3", "--quiet", "--out"])
+            .arg(&dir),
+    );
+    let text = String::from_utf8(out.stdout).unwrap();
+    assert!(
+        text.contains("| 0.9 | 1 |") && text.contains("| 0.9 | -1 |"),
+        "{text}"
+    );
+    let csv = std::fs::read_to_string(dir.join("rough_cooling.csv")).unwrap();
+    assert!(csv.starts_with("e,beta,collisions_per_body,time,temperature,rotational_temperature"));
+    let svg = std::fs::read_to_string(dir.join("rough_cooling.svg")).unwrap();
+    assert!(svg.contains("<svg") && svg.contains("e = 0.9"));
+}
