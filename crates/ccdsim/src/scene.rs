@@ -258,6 +258,22 @@ impl Default for Settings {
     }
 }
 
+/// The rotational fields of a scene's bodies, defaults filled in ([`Scene::body_rotations`]).
+#[derive(Clone, Debug, PartialEq)]
+pub struct BodyRotations {
+    /// Each body's angular velocity at the start, radians per second (a disc's about the
+    /// third axis).
+    pub spins: Vec<Vector<3>>,
+    /// Each body's moment-of-inertia factor `q`.
+    pub inertia: Vec<f64>,
+    /// Each body's tangential restitution `β`.
+    pub tangential: Vec<f64>,
+    /// The inertia factor of a body that sets none: a uniform disc's or sphere's.
+    pub default_inertia: f64,
+    /// The tangential restitution of a body that sets none: the scene's, or −1 (smooth).
+    pub default_tangential: f64,
+}
+
 /// A complete scene in `D` dimensions.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -646,6 +662,37 @@ impl<const D: usize> Scene<D> {
     pub fn is_rotational(&self) -> bool {
         self.settings.tangential_restitution.is_some()
             || self.bodies.iter().any(BodySpec::is_rotational)
+    }
+
+    /// The bodies' spins, inertia factors and tangential restitutions with the defaults filled
+    /// in, and the defaults a body added later takes; `None` unless the scene is rotational
+    /// ([`Scene::is_rotational`]). The one reading of these fields for the world and `verify`.
+    #[must_use]
+    pub fn body_rotations(&self) -> Option<BodyRotations> {
+        if !self.is_rotational() {
+            return None;
+        }
+        let default_tangential = self.settings.tangential_restitution.unwrap_or(-1.0);
+        let default_inertia = crate::motion::spin::default_inertia::<D>();
+        Some(BodyRotations {
+            spins: self
+                .bodies
+                .iter()
+                .map(|b| b.spin.map_or(Vector::ZERO, |s| s.vector()))
+                .collect(),
+            inertia: self
+                .bodies
+                .iter()
+                .map(|b| b.inertia.unwrap_or(default_inertia))
+                .collect(),
+            tangential: self
+                .bodies
+                .iter()
+                .map(|b| b.tangential_restitution.unwrap_or(default_tangential))
+                .collect(),
+            default_inertia,
+            default_tangential,
+        })
     }
 
     /// `settings.rest_speed`: positive and finite, under gravity, with fixed radii.

@@ -58,30 +58,14 @@ fn to3<const D: usize>(v: Vector<D>) -> Vector<3> {
 impl Spins {
     /// The scene's spins at its start; `None` unless the scene is rotational.
     pub(super) fn of<const D: usize>(scene: &Scene<D>) -> Option<Self> {
-        if !scene.is_rotational() {
-            return None;
-        }
-        let default_inertia = if D == 2 { 0.5 } else { 0.4 };
-        let default_tangential = scene.settings.tangential_restitution.unwrap_or(-1.0);
+        let r = scene.body_rotations()?;
         Some(Spins {
-            slack: vec![0.0; scene.bodies.len()],
-            spin: scene
-                .bodies
-                .iter()
-                .map(|b| b.spin.map_or(Vector::ZERO, |s| s.vector()))
-                .collect(),
-            inertia: scene
-                .bodies
-                .iter()
-                .map(|b| b.inertia.unwrap_or(default_inertia))
-                .collect(),
-            tangential: scene
-                .bodies
-                .iter()
-                .map(|b| b.tangential_restitution.unwrap_or(default_tangential))
-                .collect(),
-            default_inertia,
-            default_tangential,
+            slack: vec![0.0; r.spins.len()],
+            spin: r.spins,
+            inertia: r.inertia,
+            tangential: r.tangential,
+            default_inertia: r.default_inertia,
+            default_tangential: r.default_tangential,
         })
     }
 

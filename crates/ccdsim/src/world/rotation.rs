@@ -3,7 +3,6 @@
 //! these keeps none of it: smooth bodies pay nothing for rotation.
 
 use crate::geom::Vector;
-use crate::motion::spin::default_inertia;
 use crate::scene::{BodySpec, Scene};
 
 /// Per-slot rotational state, present in a world whose scene is rotational
@@ -27,29 +26,13 @@ impl Rotation {
     /// The rotational state of `scene`'s bodies at its start, or `None` for a scene of smooth
     /// bodies that sets no spin.
     pub(crate) fn of<const D: usize>(scene: &Scene<D>) -> Option<Self> {
-        if !scene.is_rotational() {
-            return None;
-        }
-        let default_tangential = scene.settings.tangential_restitution.unwrap_or(-1.0);
-        let q = default_inertia::<D>();
+        let r = scene.body_rotations()?;
         Some(Rotation {
-            spins: scene
-                .bodies
-                .iter()
-                .map(|b| b.spin.map_or(Vector::ZERO, |s| s.vector()))
-                .collect(),
-            inertia: scene
-                .bodies
-                .iter()
-                .map(|b| b.inertia.unwrap_or(q))
-                .collect(),
-            tangential: scene
-                .bodies
-                .iter()
-                .map(|b| b.tangential_restitution.unwrap_or(default_tangential))
-                .collect(),
-            default_tangential,
-            default_inertia: q,
+            spins: r.spins,
+            inertia: r.inertia,
+            tangential: r.tangential,
+            default_tangential: r.default_tangential,
+            default_inertia: r.default_inertia,
         })
     }
 
