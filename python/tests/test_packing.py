@@ -27,6 +27,31 @@ def test_a_bidisperse_2d_packing_jams_near_0_84():
     assert sim.stats()["max_overlap"] < 1e-9
 
 
+def test_an_isostatic_finish_makes_the_contacts_hold_the_packing():
+    plain = ccdsim.packing.pack(dim=2, n=300, bidisperse=1.4, rate=0.05, until_pressure=1e4, seed=3)
+    assert plain["finish"] is None
+    p = ccdsim.packing.pack(dim=2, n=300, bidisperse=1.4, rate=0.05, seed=3, isostatic=True)
+    assert p["rigid"] and p["held_contacts"] >= p["isostatic_contacts"] > 0
+    assert p["mean_contacts"] >= 3.97
+    assert p["finish"]["mean_overlap"] <= 1e-6 and p["finish"]["minimizations"] >= 2
+    # The touching pairs are apart, within the tolerance, and the packing holds its pressure
+    # at fixed radii: it is jammed, not held up by growth.
+    sim = ccdsim.Simulation(p["scene"])
+    x, r = sim.positions, sim.radii
+    box = np.array(p["scene"]["periodic"])
+    i, j = p["contacts"].T
+    d = x[j] - x[i]
+    d -= box * np.round(d / box)
+    gap = np.linalg.norm(d, axis=1) / (r[i] + r[j]) - 1
+    assert np.all(gap <= p["contact_tolerance"]) and np.all(gap > -1e-12)
+    assert sim.run_events(20 * 300) == 20 * 300
+    z = sim.observables()["compressibility"]
+    assert z > 1e4
+    held_by_growth = ccdsim.Simulation(plain["scene"])
+    held_by_growth.run_events(20 * 300)
+    assert held_by_growth.observables()["compressibility"] < z / 3
+
+
 def test_radii_grow_and_stop_growing():
     scene = ccdsim.generate.gas(n=100, packing=0.2, periodic=True, temperature=1.0, seed=4)
     scene["settings"]["growth"] = {"rate": 0.1}

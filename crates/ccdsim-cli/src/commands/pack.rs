@@ -4,7 +4,10 @@
 use crate::number::{num, sig};
 use crate::progress::Progress;
 use anyhow::{bail, Context, Result};
-use ccdsim::packing::{compress, dilute_start, CompressConfig, CompressStop, Packed, SizeMix};
+use ccdsim::packing::{
+    compress, dilute_start, finish_isostatic, CompressConfig, CompressStop, IsostaticConfig,
+    Packed, SizeMix,
+};
 use ccdsim::trajectory::{Frame, TrajectoryFormat, TrajectoryWriter};
 use ccdsim::Simulation;
 use serde::Serialize;
@@ -34,9 +37,18 @@ pub struct Args {
     /// A periodic box instead of walls.
     #[arg(long)]
     periodic: bool,
-    /// Stop when the reduced pressure P V / (N kT) passes this.
-    #[arg(long, default_value_t = 1e12)]
-    until_pressure: f64,
+    /// Stop compressing when the reduced pressure P V / (N kT) passes this (default 10^12,
+    /// or 10^4 with --isostatic).
+    #[arg(long)]
+    until_pressure: Option<f64>,
+    /// Then take the packing to its jamming point, where its contacts hold it rigid
+    /// (isostatic): soft-sphere energy minimisation, O'Hern et al. 2003.
+    #[arg(long)]
+    isostatic: bool,
+    /// With --isostatic: stop when the mean overlap of the jammed soft packing is at most
+    /// this fraction of a contact distance (the gaps of the packing written).
+    #[arg(long, default_value_t = 1e-6, requires = "isostatic")]
+    overlap: f64,
     /// Packing fraction of the random start.
     #[arg(long)]
     start_packing: Option<f64>,
@@ -81,8 +93,30 @@ struct Summary {
     rattlers: usize,
     mean_contacts: f64,
     contact_tolerance: f64,
+    /// Contacts among the bodies that are not rattlers.
+    held_contacts: usize,
+    /// The fewest contacts that can hold those bodies rigid.
+    isostatic_contacts: usize,
+    /// Whether `held_contacts` reaches `isostatic_contacts`.
+    rigid: bool,
+    /// The isostatic finish, with --isostatic.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    finish: Option<FinishSummary>,
     scene: String,
     xyz: String,
+}
+
+/// The `--json` summary's account of the isostatic finish.
+#[derive(Serialize)]
+struct FinishSummary {
+    minimizations: usize,
+    steps: u64,
+    mean_overlap: f64,
+    max_overlap: f64,
+    radius_scale: f64,
+    /// Packing fraction of the compressed packing, before the finish.
+    compressed_packing_fraction: f64,
+    wall_seconds: f64,
 }
 
 /// Runs the command.
@@ -105,9 +139,12 @@ fn pack<const D: usize>(args: &Args) -> Result<ExitCode> {
         bail!("--n: a packing needs at least one body");
     }
     let scene = dilute_start::<D>(args.n, start_packing, mix, args.periodic, args.seed)?;
+    let until_pressure = args
+        .until_pressure
+        .unwrap_or(if args.isostatic { 1e4 } else { 1e12 });
     let config = CompressConfig {
         rate: args.rate,
-        until_pressure: args.until_pressure,
+        until_pressure,
         max_events: args.max_events,
         contact_tolerance: args.contact_tolerance.unwrap_or(0.0),
         ..CompressConfig::default()
@@ -116,13 +153,46 @@ fn pack<const D: usize>(args: &Args) -> Result<ExitCode> {
     let xyz_path = with_extension(&args.out, "xyz");
     let started = Instant::now();
     // Progress: the decades of pressure climbed, out of those to the target.
-    let decades = args.until_pressure.log10().max(1e-9);
+    let decades = until_pressure.log10().max(1e-9);
     let mut progress = Progress::without_eta(1000, "compressing", args.quiet);
     let packed = compress(&scene, &args.finder, &config, |block| {
         let done = block.reduced_pressure.max(1.0).log10() / decades;
         progress.set((done.clamp(0.0, 1.0) * 1000.0) as u64);
     })?;
     progress.finish();
+    let mut finish = None;
+    let packed = if args.isostatic {
+        let finish_started = Instant::now();
+        // Progress: the decades of overlap shed, from 10^-3 down to the target.
+        let mut bar = Progress::without_eta(1000, "finding the jamming point", args.quiet);
+        let decades = (1e-3 / args.overlap).log10().max(1e-9);
+        let compressed_fraction = packed.packing_fraction;
+        let done = finish_isostatic(
+            &packed,
+            &IsostaticConfig {
+                overlap: args.overlap,
+                ..IsostaticConfig::default()
+            },
+            |overlap| {
+                let done = (1e-3 / overlap).log10() / decades;
+                bar.set((done.clamp(0.0, 1.0) * 1000.0) as u64);
+            },
+        )?;
+        bar.finish();
+        let f = done.finish.expect("the finish reports");
+        finish = Some(FinishSummary {
+            minimizations: f.minimizations,
+            steps: f.steps,
+            mean_overlap: f.mean_overlap,
+            max_overlap: f.max_overlap,
+            radius_scale: f.radius_scale,
+            compressed_packing_fraction: compressed_fraction,
+            wall_seconds: finish_started.elapsed().as_secs_f64(),
+        });
+        done
+    } else {
+        packed
+    };
     let wall_seconds = started.elapsed().as_secs_f64();
     write_outputs(&packed, &scene_path, &xyz_path)?;
     let stop = match packed.stop {
@@ -148,6 +218,10 @@ fn pack<const D: usize>(args: &Args) -> Result<ExitCode> {
         rattlers: packed.contacts.rattlers.len(),
         mean_contacts: packed.contacts.mean_contacts,
         contact_tolerance: packed.contact_tolerance,
+        held_contacts: packed.contacts.held_contacts,
+        isostatic_contacts: packed.contacts.isostatic_contacts,
+        rigid: packed.contacts.is_rigid(),
+        finish,
         scene: scene_path.display().to_string(),
         xyz: xyz_path.display().to_string(),
     };
@@ -179,6 +253,33 @@ fn pack<const D: usize>(args: &Args) -> Result<ExitCode> {
             s.rattlers,
             sig(s.mean_contacts, 5)
         )?;
+        if let Some(f) = &s.finish {
+            outln!(
+                "isostatic finish: {} minimisations, {} steps, {} s; packing fraction {} before; \
+                 mean overlap {} at the jamming point",
+                f.minimizations,
+                f.steps,
+                sig(f.wall_seconds, 3),
+                num(f.compressed_packing_fraction),
+                sig(f.mean_overlap, 2)
+            )?;
+        }
+        if s.rigid {
+            outln!(
+                "rigid: {} contacts hold the {} bodies that are not rattlers (isostatic: {})",
+                s.held_contacts,
+                s.bodies - s.rattlers,
+                s.isostatic_contacts
+            )?;
+        } else {
+            outln!(
+                "NOT RIGID: {} contacts among the {} bodies that are not rattlers, fewer than the \
+                 {} that can hold them (try --isostatic)",
+                s.held_contacts,
+                s.bodies - s.rattlers,
+                s.isostatic_contacts
+            )?;
+        }
         outln!("wrote {} and {}", s.scene, s.xyz)?;
     }
     Ok(ExitCode::SUCCESS)

@@ -103,6 +103,8 @@ fn bad_pack_settings_are_refused() {
         (vec!["--bidisperse", "0.5"], "bidisperse"),
         (vec!["--polydisperse", "2"], "polydisperse"),
         (vec!["--n", "0"], "--n"),
+        (vec!["--isostatic", "--overlap", "0.5"], "overlap"),
+        (vec!["--overlap", "1e-6"], "--isostatic"),
     ] {
         let out = ccdsim()
             .args(["pack", "--dim", "2", "--n", "20", "--periodic"])
@@ -113,4 +115,37 @@ fn bad_pack_settings_are_refused() {
         assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
         assert!(err.contains(culprit), "{args:?}: {err}");
     }
+}
+
+#[test]
+fn an_isostatic_packing_is_rigid_and_says_so() {
+    let prefix = common::scratch_file("pack", "iso3d");
+    let args = [
+        "pack",
+        "--dim",
+        "3",
+        "--n",
+        "200",
+        "--periodic",
+        "--rate",
+        "0.05",
+    ];
+    let out = stdout(
+        ccdsim()
+            .args(args)
+            .args(["--isostatic", "--json", "--out"])
+            .arg(&prefix),
+    );
+    let s: serde_json::Value = serde_json::from_str(out.trim()).unwrap();
+    assert_eq!(s["rigid"], true, "{s}");
+    let held = s["held_contacts"].as_u64().unwrap();
+    assert!(held >= s["isostatic_contacts"].as_u64().unwrap(), "{s}");
+    assert!(s["mean_contacts"].as_f64().unwrap() >= 5.95, "{s}");
+    assert!(s["finish"]["mean_overlap"].as_f64().unwrap() <= 1e-6, "{s}");
+    // Compression stopped at 10^4 before the finish.
+    assert!(s["reduced_pressure"].as_f64().unwrap() < 1e5, "{s}");
+    // Compression alone, even to 10^12, freezes before the contacts can hold the packing,
+    // and the summary says so.
+    let plain = stdout(ccdsim().args(args).arg("--out").arg(&prefix));
+    assert!(plain.contains("NOT RIGID"), "{plain}");
 }

@@ -20,6 +20,24 @@ pub struct ContactNetwork {
     /// among them); 0 when every body is a rattler. Isostatic packings have `2D`, less
     /// `O(1/N)`.
     pub mean_contacts: f64,
+    /// Contacts among the bodies that are not rattlers, wall contacts included.
+    pub held_contacts: usize,
+    /// The fewest contacts that can hold the bodies that are not rattlers rigid, their
+    /// degrees of freedom (Maxwell's count): `D (N' − 1)` for `N'` of them in a periodic box
+    /// (D per body less the box's free translation), `D N'` between walls; 0 when every body
+    /// is a rattler. A jammed frictionless packing has this many (it is isostatic), or a few
+    /// more.
+    pub isostatic_contacts: usize,
+}
+
+impl ContactNetwork {
+    /// Whether the contacts are enough to hold the packing rigid: some body is held and the
+    /// held bodies have at least [`ContactNetwork::isostatic_contacts`] contacts. This is the
+    /// count a jammed packing needs, not a proof that the network is rigid.
+    #[must_use]
+    pub fn is_rigid(&self) -> bool {
+        self.isostatic_contacts > 0 && self.held_contacts >= self.isostatic_contacts
+    }
 }
 
 /// The contact network of bodies at `positions` with `radii` (metres): a pair touches when
@@ -91,7 +109,19 @@ pub fn contact_network<const D: usize>(
     } else {
         held.iter().map(|&i| count[i]).sum::<usize>() as f64 / held.len() as f64
     };
+    let held_contacts = pairs
+        .iter()
+        .filter(|&&(i, j)| !rattler[i] && !rattler[j])
+        .count()
+        + wall_contacts.iter().filter(|&&(i, _)| !rattler[i]).count();
+    let isostatic_contacts = match (held.len(), periodic) {
+        (0, _) => 0,
+        (h, Some(_)) => D * (h - 1),
+        (h, None) => D * h,
+    };
     ContactNetwork {
+        held_contacts,
+        isostatic_contacts,
         pairs,
         walls: wall_contacts,
         rattlers: (0..n).filter(|&i| rattler[i]).collect(),
@@ -101,7 +131,7 @@ pub fn contact_network<const D: usize>(
 
 /// Every pair `(i, j)`, `i < j`, within `reach` of each other for which `keep(i, j, x_j −
 /// x_i)` holds (nearest images in a periodic box), sorted.
-fn close_pairs<const D: usize>(
+pub(crate) fn close_pairs<const D: usize>(
     positions: &[Vector<D>],
     periodic: Option<Vector<D>>,
     reach: f64,

@@ -23,9 +23,12 @@
 //! ```
 
 pub mod contacts;
+pub mod isostatic;
+pub(crate) mod soft;
 pub mod start;
 
 pub use contacts::{contact_network, ContactNetwork};
+pub use isostatic::{finish_isostatic, IsostaticConfig, IsostaticFinish};
 pub use start::{dilute_start, SizeMix};
 
 use crate::finder::{make_finder, FinderOptions};
@@ -118,6 +121,8 @@ pub struct Packed<const D: usize> {
     pub contacts: ContactNetwork,
     /// The contact tolerance used, relative to the contact distance.
     pub contact_tolerance: f64,
+    /// What the isostatic finish did, when the packing had one ([`finish_isostatic`]).
+    pub finish: Option<IsostaticFinish>,
 }
 
 /// Why [`compress`] cannot run.
@@ -271,5 +276,6 @@ pub fn compress<const D: usize>(
         stop,
         contacts,
         contact_tolerance: tolerance,
+        finish: None,
     })
 }

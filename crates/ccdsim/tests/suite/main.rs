@@ -15,6 +15,7 @@ mod finder_suite;
 mod gravity;
 mod growth;
 mod hard_inputs;
+mod jamming;
 mod kinematic;
 mod layers;
 mod ledges;
