@@ -6,6 +6,16 @@ import pytest
 import ccdsim
 
 
+def contact_gaps(p, sim):
+    """The gaps of a periodic packing's contacts, relative to their contact distances."""
+    x, r = sim.positions, sim.radii
+    box = np.array(p["scene"]["periodic"])
+    i, j = p["contacts"].T
+    d = x[j] - x[i]
+    d -= box * np.round(d / box)
+    return np.linalg.norm(d, axis=1) / (r[i] + r[j]) - 1
+
+
 def test_a_bidisperse_2d_packing_jams_near_0_84():
     p = ccdsim.packing.pack(dim=2, n=300, bidisperse=1.4, rate=0.02, until_pressure=1e8, seed=2)
     assert p["stop"] == "pressure"
@@ -16,12 +26,7 @@ def test_a_bidisperse_2d_packing_jams_near_0_84():
     assert len(p["rattlers"]) < 60
     # The packing goes on as a simulation, touching pairs within the tolerance of contact.
     sim = ccdsim.Simulation(p["scene"])
-    x, r = sim.positions, sim.radii
-    box = np.array(p["scene"]["periodic"])
-    i, j = p["contacts"].T
-    d = x[j] - x[i]
-    d -= box * np.round(d / box)
-    gap = np.linalg.norm(d, axis=1) / (r[i] + r[j]) - 1
+    gap = contact_gaps(p, sim)
     assert np.all(gap <= p["contact_tolerance"]) and np.all(gap > -1e-12)
     assert sim.run_events(5000) == 5000
     assert sim.stats()["max_overlap"] < 1e-9
@@ -37,12 +42,7 @@ def test_an_isostatic_finish_makes_the_contacts_hold_the_packing():
     # The touching pairs are apart, within the tolerance, and the packing holds its pressure
     # at fixed radii: it is jammed, not held up by growth.
     sim = ccdsim.Simulation(p["scene"])
-    x, r = sim.positions, sim.radii
-    box = np.array(p["scene"]["periodic"])
-    i, j = p["contacts"].T
-    d = x[j] - x[i]
-    d -= box * np.round(d / box)
-    gap = np.linalg.norm(d, axis=1) / (r[i] + r[j]) - 1
+    gap = contact_gaps(p, sim)
     assert np.all(gap <= p["contact_tolerance"]) and np.all(gap > -1e-12)
     assert sim.run_events(20 * 300) == 20 * 300
     z = sim.observables()["compressibility"]
