@@ -60,13 +60,40 @@ pub fn walls_bounds<const D: usize>(walls: &[Wall<D>]) -> Option<(Vector<D>, Vec
 #[must_use]
 pub fn wall_clearance<const D: usize>(wall: &Wall<D>, p: Vector<D>) -> f64 {
     match *wall {
-        Wall::Segment { a, b } => {
-            let u = b - a;
-            let s = ((p - a).dot(u) / u.norm_sq()).clamp(0.0, 1.0);
-            (p - (a + u * s)).norm()
-        }
+        Wall::Segment { a, b } => away_from_segment(a, b, p).norm(),
         Wall::Plane { point, normal } => (p - point).dot(normal) / normal.norm(),
     }
+}
+
+/// [`wall_clearance`] and the unit vector along which the wall pushes a body at `p`: away
+/// from a segment's nearest point (zero on the segment), along a plane's normal.
+#[must_use]
+pub(crate) fn wall_clearance_and_normal<const D: usize>(
+    wall: &Wall<D>,
+    p: Vector<D>,
+) -> (f64, Vector<D>) {
+    match *wall {
+        Wall::Segment { a, b } => {
+            let away = away_from_segment(a, b, p);
+            let c = away.norm();
+            if c > 0.0 {
+                (c, away * (1.0 / c))
+            } else {
+                (0.0, Vector::default())
+            }
+        }
+        Wall::Plane { point, normal } => {
+            let len = normal.norm();
+            ((p - point).dot(normal) / len, normal * (1.0 / len))
+        }
+    }
+}
+
+/// `p` less the nearest point of the segment from `a` to `b`.
+fn away_from_segment<const D: usize>(a: Vector<D>, b: Vector<D>, p: Vector<D>) -> Vector<D> {
+    let u = b - a;
+    let s = ((p - a).dot(u) / u.norm_sq()).clamp(0.0, 1.0);
+    p - (a + u * s)
 }
 
 /// Segments both of whose end points are shared with exactly one other segment end, on

@@ -12,7 +12,7 @@
 use crate::contact::periodic::min_image;
 use crate::geom::Vector;
 use crate::packing::contacts::close_pairs;
-use crate::wall::Wall;
+use crate::wall::{wall_clearance_and_normal, Wall};
 
 /// The outcome of [`minimize`].
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -170,7 +170,7 @@ impl<'a, const D: usize> SoftPacking<'a, D> {
         for (i, &p) in self.positions.iter().enumerate() {
             let r = self.radii[i];
             for wall in self.walls {
-                let (clearance, normal) = wall_normal(wall, p);
+                let (clearance, normal) = wall_clearance_and_normal(wall, p);
                 if clearance >= r {
                     continue;
                 }
@@ -303,28 +303,6 @@ impl Overlaps {
         self.overlap_max = self.overlap_max.max(overlap);
         self.force_sum += force;
         self.count += 1;
-    }
-}
-
-/// The distance from `wall` to `p` and the unit vector along which the wall pushes a body at
-/// `p` (away from a segment's nearest point; along a plane's normal, signed distance).
-fn wall_normal<const D: usize>(wall: &Wall<D>, p: Vector<D>) -> (f64, Vector<D>) {
-    match *wall {
-        Wall::Segment { a, b } => {
-            let u = b - a;
-            let s = ((p - a).dot(u) / u.norm_sq()).clamp(0.0, 1.0);
-            let away = p - (a + u * s);
-            let c = away.norm();
-            if c > 0.0 {
-                (c, away * (1.0 / c))
-            } else {
-                (0.0, Vector::default())
-            }
-        }
-        Wall::Plane { point, normal } => {
-            let len = normal.norm();
-            ((p - point).dot(normal) / len, normal * (1.0 / len))
-        }
     }
 }
 
