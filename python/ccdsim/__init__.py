@@ -426,8 +426,9 @@ class Simulation:
 
     def stats(self) -> dict:
         """Counters: ``events``, ``body_collisions``, ``wall_collisions``, ``max_overlap``,
-        ``kinetic_energy_start`` (J), the collision ``virial`` and thermostat ``resets`` (counted in
-        ``events``)."""
+        ``kinetic_energy_start`` (J), the collision ``virial``, thermostat ``resets`` (counted in
+        ``events``), and the bodies the scene's ``arrivals`` brought in so far (``arrivals``) with
+        the energy they brought (``arrival_energy``, J, kinetic plus potential)."""
         return self._sim.stats()
 
     def kinetic_energy(self) -> float:

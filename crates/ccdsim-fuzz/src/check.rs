@@ -83,7 +83,8 @@ pub fn run<const D: usize>(
 ) -> Outcome {
     let finder = make_finder::<D>(name, options).expect("a known finder");
     let mut sim = Simulation::with_finder(scene, finder).expect("a valid scene");
-    let steered = !case.edits.is_empty();
+    // A scene's arrivals are recorded as the additions they are.
+    let steered = !case.edits.is_empty() || !scene.arrivals.is_empty();
     let mut rec = if steered {
         sim.record_edits(true);
         RunWriter::new_steered(Vec::new(), name.into(), scene).expect("header")
@@ -115,7 +116,9 @@ pub fn run<const D: usize>(
         Schedule::Events { every } => {
             let every = u64::from(every.max(1));
             while events < case.max_events {
-                match sim.peek_event() {
+                let next = sim.peek_event();
+                write_arrivals(&mut sim, &mut rec);
+                match next {
                     Some(e) if e.time <= end => {}
                     _ => break,
                 }
@@ -133,7 +136,9 @@ pub fn run<const D: usize>(
         Schedule::Frames { dt } => {
             let mut frame_end = scene.start_time + dt;
             while events < case.max_events && frame_end <= end {
-                match sim.peek_event() {
+                let next = sim.peek_event();
+                write_arrivals(&mut sim, &mut rec);
+                match next {
                     Some(e) if e.time <= frame_end => {
                         let Some(c) = sim.step_event() else { break };
                         rec.write_event(&c).expect("write");
@@ -145,6 +150,7 @@ pub fn run<const D: usize>(
                             break;
                         }
                         sim.run_until(frame_end);
+                        write_arrivals(&mut sim, &mut rec);
                         log_sensors(&mut sim);
                         frame_end += dt;
                         if let Some(op) = edits.next() {
@@ -245,4 +251,11 @@ pub fn check_case_with(case: &Case, verify: bool) -> Result<Option<Checked>, Fai
             .unwrap_or_else(|| "a panic without a message".into());
         Err(Failure::Panic(message))
     })
+}
+
+/// Writes the arrivals `sim` brought in since the last call (its journaled additions).
+fn write_arrivals<const D: usize>(sim: &mut Simulation<D>, rec: &mut RunWriter<Vec<u8>, D>) {
+    for e in sim.take_edits() {
+        rec.write_event(&e).expect("write");
+    }
 }

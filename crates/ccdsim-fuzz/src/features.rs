@@ -5,7 +5,7 @@ use crate::case::{Case, EditOp, Schedule};
 use serde_json::Value;
 
 /// Every feature name [`features`] can report, in the order the coverage table prints them.
-pub const FEATURES: [&str; 29] = [
+pub const FEATURES: [&str; 30] = [
     "3D",
     "periodic",
     "segment walls",
@@ -19,6 +19,7 @@ pub const FEATURES: [&str; 29] = [
     "thermostat",
     "sensors",
     "moving walls",
+    "arrivals",
     "kinematic bodies",
     "per-body restitution",
     "collision groups",
@@ -85,6 +86,10 @@ pub fn features(case: &Case) -> Vec<&'static str> {
     add(
         s["moving_walls"].as_array().is_some_and(|a| !a.is_empty()),
         "moving walls",
+    );
+    add(
+        s["arrivals"].as_array().is_some_and(|a| !a.is_empty()),
+        "arrivals",
     );
     add(
         bodies

@@ -16,13 +16,14 @@
 //!   oblique), restitution, the TC model, resting contacts, growth, a thermostat, periodic
 //!   boxes, segment and plane walls, walls cut into collinear pieces, shelves and slopes (so
 //!   bodies rest, slide and roll over segment ends), 3D rods, sensors, moving walls,
-//!   kinematic bodies, per-body restitution, mass and collision groups; and edits between
+//!   kinematic bodies, per-body restitution, mass and collision groups, arrivals (bodies
+//!   entering at lattice points, several at one instant, some onto bodies); and edits between
 //!   steps (velocities, teleports, bodies added and removed, filters, wall velocities), driven
 //!   event by event or frame by frame as a game loop does.
 
 use crate::case::{Case, EditOp, Schedule};
 use ccdsim::generate::box_walls;
-use ccdsim::{BodySpec, MovingWall, Scene, Sensor, Settings, Vector, Wall};
+use ccdsim::{Arrival, BodySpec, MovingWall, Scene, Sensor, Settings, Vector, Wall};
 use proptest::prelude::*;
 
 /// Velocity components, m/s: zero first (the plainest), then small dyadic values of both signs.
@@ -92,6 +93,9 @@ pub struct Genome {
     walls: Vec<([u16; 3], [u16; 3])>,
     sensors: Vec<([u16; 3], u8)>,
     moving_walls: Vec<u8>,
+    /// Arrivals: lattice point, velocity choices, time slot (quarter seconds after the start,
+    /// so several share one instant).
+    arrivals: Vec<([u16; 3], [u8; 3], u8)>,
     schedule: u8,
     every: u8,
     edits: Vec<EditGene>,
@@ -161,6 +165,13 @@ pub fn genome(max_bodies: usize) -> impl Strategy<Value = Genome> {
         prop::collection::vec((any::<[u16; 3]>(), 0u8..4), 0..3),
         // Moving walls exclude growth: most cases go without, so growth is drawn often.
         prop_oneof![3 => Just(Vec::new()), 1 => prop::collection::vec(0u8..4, 1..3)],
+        prop_oneof![
+            3 => Just(Vec::new()),
+            1 => prop::collection::vec(
+                (any::<[u16; 3]>(), [0u8..12, 0u8..12, 0u8..12], 0u8..6),
+                1..6
+            )
+        ],
         0u8..4,
         1u8..8,
         prop::collection::vec(edit_gene(), 0..8),
@@ -183,7 +194,18 @@ pub fn genome(max_bodies: usize) -> impl Strategy<Value = Genome> {
                 start,
                 rough,
             ),
-            (bodies, walls, sensors, moving_walls, schedule, every, edits, max_events, duration),
+            (
+                bodies,
+                walls,
+                sensors,
+                moving_walls,
+                arrivals,
+                schedule,
+                every,
+                edits,
+                max_events,
+                duration,
+            ),
         )| Genome {
             dim3,
             unit,
@@ -201,6 +223,7 @@ pub fn genome(max_bodies: usize) -> impl Strategy<Value = Genome> {
             walls,
             sensors,
             moving_walls,
+            arrivals,
             schedule,
             every,
             edits,
@@ -382,6 +405,19 @@ impl<'a, const D: usize> Builder<'a, D> {
             });
             if scene.validate().is_err() {
                 scene.sensors.pop();
+            }
+        }
+        // Arrivals at lattice points, as large as the smallest body; those the validator
+        // refuses (crossing a wall, outside the box) are dropped, those landing on a body are
+        // kept (the run stops there, alike for every finder).
+        let r_min = scene.bodies.iter().fold(r_max, |m, b| m.min(b.radius));
+        for (pos, vel, slot) in &g.arrivals {
+            scene.arrivals.push(Arrival {
+                time: scene.start_time + 0.25 * f64::from(*slot),
+                body: BodySpec::new(self.lattice(pos), self.velocity(vel, false), r_min),
+            });
+            if scene.validate().is_err() {
+                scene.arrivals.pop();
             }
         }
         let schedule = match g.schedule {

@@ -454,6 +454,8 @@ impl PySimulation {
         d.set_item("kinetic_energy_start", st.kinetic_energy_start)?;
         d.set_item("virial", st.virial)?;
         d.set_item("resets", st.resets)?;
+        d.set_item("arrivals", st.arrivals)?;
+        d.set_item("arrival_energy", st.arrival_energy)?;
         Ok(d)
     }
 

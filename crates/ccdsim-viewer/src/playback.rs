@@ -330,6 +330,8 @@ impl<const D: usize> Playback<D> {
             walls: Vec::new(),
             sensors: Vec::new(),
             moving_walls: Vec::new(),
+            arrivals: Vec::new(),
+            histogram: None,
             periodic: None,
             start_time: snap.time,
             settings: self.scene.settings,

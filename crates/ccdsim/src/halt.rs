@@ -139,6 +139,18 @@ pub enum Halt {
         /// The run's mean free time so far, seconds.
         mean_free_time: f64,
     },
+    /// Arrival `arrival` (its index in the scene's `arrivals`) cannot enter at `time`: a body
+    /// or a moving wall occupies its place ([`crate::scene::arrival`]). The run stops there, after
+    /// every event at or before that time.
+    #[error(
+        "at t = {time:e} s arrivals[{arrival}] cannot enter: a body or a moving wall is in its place, so the run stops there (space the arrivals so that each finds its place free)"
+    )]
+    ArrivalBlocked {
+        /// The arrival's time, seconds.
+        time: f64,
+        /// Its index in the scene's `arrivals`.
+        arrival: usize,
+    },
     /// Body `body`, sliding on segment `wall`, reaches its end at `time` too slowly to fly
     /// clear of the edge. No longer raised: such a body rolls over the edge, turning about
     /// the end point ([`crate::motion::pivot`]). Kept so that code matching on halts still builds.
@@ -412,6 +424,23 @@ fn pair_beyond_range<const D: usize>(world: &World<D>) -> Option<(usize, usize)>
         }
     }
     best
+}
+
+impl Halt {
+    /// The simulated time the halt names, seconds: that of the event the run stops before
+    /// (for [`Halt::BeyondRange`], the time the run stopped at).
+    #[must_use]
+    pub fn time(&self) -> f64 {
+        match *self {
+            Halt::BeyondRange { time, .. }
+            | Halt::Resolution { time, .. }
+            | Halt::Resting { time, .. }
+            | Halt::RestingOnBody { time, .. }
+            | Halt::ArrivalBlocked { time, .. }
+            | Halt::OverEdge { time, .. }
+            | Halt::InelasticCollapse { time, .. } => time,
+        }
+    }
 }
 
 #[cfg(test)]

@@ -6,11 +6,13 @@ use crate::event::{Event, EventKind};
 use crate::finder::{make_finder, Finder, FinderError, FinderOptions};
 use crate::geom::Vector;
 use crate::halt::{beyond_range, unresolved, Halt, ResolutionGuard};
+use crate::histogram::{Histogram, HistogramCounts};
 use crate::moving_wall_tracker::MovingWallTracker;
 use crate::observables::thermodynamic::{observables, Observables};
 use crate::resolve::{
     resolve_body_body_contact, resolve_body_wall, resolve_exit, resolve_slide_end, SlideEnd,
 };
+use crate::scene::arrival::{arrival_order, Arrival};
 use crate::scene::{Scene, SceneError};
 use crate::sensor::SensorEvent;
 use crate::thermostat::ResetClock;
@@ -62,6 +64,11 @@ pub struct Stats {
     /// Periodic worlds: box exits applied (a body leaving through a face and re-entering
     /// through the opposite one). Not events: never returned, recorded or counted above.
     pub exits: u64,
+    /// Bodies the scene's `arrivals` brought in so far (see [`crate::scene::arrival`]).
+    pub arrivals: u64,
+    /// The energy they brought in, joules: kinetic plus, under gravity, potential
+    /// (`−m g·x`) at their entry.
+    pub arrival_energy: f64,
 }
 
 /// Why a simulation could not be created.
@@ -137,6 +144,11 @@ pub struct Simulation<const D: usize> {
     /// Where an inelastic collapse can happen, each body's recent collisions (see
     /// `sim/collapse.rs`).
     collapse: Option<CollapseWatch>,
+    /// The scene's arrivals still to come, each with its index in the scene, last to come
+    /// first (see [`crate::scene::arrival`]).
+    arrivals: Vec<(usize, Arrival<D>)>,
+    /// The next arrival's time, seconds; infinite when none is left. Read on every event.
+    arrival_at: f64,
 }
 
 impl<const D: usize> Simulation<D> {
@@ -151,6 +163,13 @@ impl<const D: usize> Simulation<D> {
         if !scene.sensors.is_empty() {
             sim.sensors = Some(SensorTracker::new(&sim.world, scene.sensors.clone()));
         }
+        let mut order = arrival_order(&scene.arrivals);
+        order.reverse();
+        sim.arrivals = order
+            .into_iter()
+            .map(|k| (k, scene.arrivals[k].clone()))
+            .collect();
+        sim.arrival_at = sim.arrivals.last().map_or(f64::INFINITY, |a| a.1.time);
         Ok(sim)
     }
 
@@ -187,6 +206,8 @@ impl<const D: usize> Simulation<D> {
             sensors: None,
             edits: None,
             pivots: PivotEvents::default(),
+            arrivals: Vec::new(),
+            arrival_at: f64::INFINITY,
         })
     }
 
@@ -398,6 +419,7 @@ impl<const D: usize> Simulation<D> {
                 Halt::Resolution { time, .. }
                 | Halt::Resting { time, .. }
                 | Halt::RestingOnBody { time, .. }
+                | Halt::ArrivalBlocked { time, .. }
                 | Halt::OverEdge { time, .. }
                 | Halt::InelasticCollapse { time, .. },
             ) => time > t,
@@ -429,6 +451,57 @@ impl<const D: usize> Simulation<D> {
     #[inline(never)]
     fn with_pivots(&mut self, found: Option<Event>) -> Option<Event> {
         Event::earliest(found, self.pivots.next())
+    }
+
+    /// True when the next arrival comes at or before `t` and before the next event `found`
+    /// (after every event at its time), or before the time the run halted at: an arrival
+    /// changes what happens after it. A run halted because an arrival was blocked stays so.
+    #[cold]
+    #[inline(never)]
+    fn arrives_before(&self, found: Option<&Event>, t: f64) -> bool {
+        let at = self.arrival_at;
+        at <= t
+            && match (found, self.halt) {
+                (Some(e), _) => at < e.time,
+                (None, None) => true,
+                (None, Some(Halt::BeyondRange { .. })) => true,
+                (None, Some(h)) => at < h.time(),
+            }
+    }
+
+    /// Brings in the next arrival at its time, as [`Simulation::add_body`] would; halts with
+    /// [`Halt::ArrivalBlocked`] if its place is taken.
+    #[cold]
+    #[inline(never)]
+    fn apply_arrival(&mut self) {
+        let Some((k, arrival)) = self.arrivals.last().cloned() else {
+            return;
+        };
+        let time = arrival.time;
+        if time > self.world.now() {
+            if let Some(s) = &mut self.sensors {
+                s.advance_to(&self.world, time);
+            }
+            self.world.set_now(time);
+        }
+        match self.add_body(arrival.body) {
+            Ok(i) => {
+                self.arrivals.pop();
+                self.arrival_at = self.arrivals.last().map_or(f64::INFINITY, |a| a.1.time);
+                let m = self.world.mass(i);
+                let potential = self
+                    .world
+                    .gravity()
+                    .map_or(0.0, |g| -m * g.dot(self.world.position_at(i, time)));
+                self.stats.arrivals += 1;
+                self.stats.arrival_energy +=
+                    0.5 * m * self.world.velocity_at(i, time).norm_sq() + potential;
+            }
+            Err(_) => {
+                self.halt = Some(Halt::ArrivalBlocked { time, arrival: k });
+                self.pending = Some(None);
+            }
+        }
     }
 
     /// True for a box exit (a wall event naming a face after the walls, static and moving).
@@ -505,7 +578,13 @@ impl<const D: usize> Simulation<D> {
         let guard = 1024 + 64 * self.world.len() as u64;
         let mut exits = 0;
         loop {
-            let e = self.next_any()?;
+            let found = self.next_any();
+            if self.arrival_at < f64::INFINITY && self.arrives_before(found.as_ref(), f64::INFINITY)
+            {
+                self.apply_arrival();
+                continue;
+            }
+            let e = found?;
             if self.is_void_reset(&e) {
                 self.skip_reset(e.time);
                 continue;
@@ -901,7 +980,12 @@ impl<const D: usize> Simulation<D> {
     /// returns `None` and changes nothing after `t` (box exits up to `t` are applied).
     pub fn step_event_until(&mut self, t: f64) -> Option<Collision<D>> {
         loop {
-            let e = self.next_any()?;
+            let found = self.next_any();
+            if self.arrival_at <= t && self.arrives_before(found.as_ref(), t) {
+                self.apply_arrival();
+                continue;
+            }
+            let e = found?;
             if e.time > t {
                 return None;
             }
@@ -935,6 +1019,7 @@ impl<const D: usize> Simulation<D> {
                 Halt::Resolution { time, .. }
                 | Halt::Resting { time, .. }
                 | Halt::RestingOnBody { time, .. }
+                | Halt::ArrivalBlocked { time, .. }
                 | Halt::OverEdge { time, .. }
                 | Halt::InelasticCollapse { time, .. },
             ) if time <= t
@@ -993,6 +1078,18 @@ impl<const D: usize> Simulation<D> {
             )));
         }
         Ok(())
+    }
+
+    /// What the bins of `histogram` hold now: the bodies present and not kinematic, by their
+    /// centres (periodic worlds: in the box).
+    #[must_use]
+    pub fn histogram(&self, histogram: &Histogram) -> HistogramCounts {
+        let t = self.world.now();
+        histogram.count(
+            (0..self.world.len())
+                .filter(|&i| !self.world.is_vacant(i) && !self.world.is_kinematic(i))
+                .map(|i| self.world.position_at(i, t)[histogram.axis]),
+        )
     }
 
     /// Gives body `i` a new velocity from the current time on (a game's kick or steering).

@@ -2,7 +2,8 @@
 
 use anyhow::{Context, Result};
 use ccdsim::generate::{
-    gas, pegs, rack, thesis, GasConfig, Lattice, PegsConfig, RackConfig, ThesisConfig,
+    galton, galton_duration, gas, pegs, rack, thesis, GaltonConfig, GasConfig, Lattice, PegsConfig,
+    RackConfig, ThesisConfig,
 };
 use ccdsim::Gravity;
 use ccdsim::{AnyScene, Scene, Settings};
@@ -34,6 +35,28 @@ enum Kind {
     Thesis(ThesisArgs),
     /// A peg board under gravity (2D): balls dropped through staggered rows of pegs.
     Pegs(PegsArgs),
+    /// A Galton board (2D): a funnel releases balls one at a time onto a triangle of pegs;
+    /// `ccdsim run` prints what each bin holds at the end (run it for the time printed).
+    Galton(GaltonArgs),
+}
+
+#[derive(clap::Args)]
+struct GaltonArgs {
+    /// Rows of pegs (the board has one bin more).
+    #[arg(long, default_value_t = GaltonConfig::default().rows)]
+    rows: usize,
+    /// Balls released.
+    #[arg(long, default_value_t = GaltonConfig::default().balls)]
+    balls: usize,
+    /// Seconds between one ball's release and the next (at least 0.25).
+    #[arg(long, default_value_t = GaltonConfig::default().interval)]
+    interval: f64,
+    /// Coefficient of restitution, in [0, 1).
+    #[arg(long, default_value_t = GaltonConfig::default().restitution)]
+    restitution: f64,
+    /// Random seed of where each ball is released.
+    #[arg(long, default_value_t = GaltonConfig::default().seed)]
+    seed: u64,
 }
 
 #[derive(clap::Args)]
@@ -50,8 +73,8 @@ struct PegsArgs {
     /// Coefficient of restitution, in [0, 1].
     #[arg(long, default_value_t = PegsConfig::default().restitution)]
     restitution: f64,
-    /// Bins along the floor, each a sensor that counts the balls landing in it (a Galton
-    /// board's histogram; `ccdsim run` reports what each holds at the end). 0: none.
+    /// Bins along the floor, each a sensor that counts the balls landing on it (`ccdsim run`
+    /// reports what each holds at the end; `gen galton` is a Galton board). 0: none.
     #[arg(long, default_value_t = PegsConfig::default().bins)]
     bins: usize,
     /// Random seed.
@@ -208,6 +231,23 @@ pub fn run(args: Args) -> Result<ExitCode> {
             ..PegsConfig::default()
         })?
         .into(),
+        Kind::Galton(g) => {
+            let cfg = GaltonConfig {
+                rows: g.rows,
+                balls: g.balls,
+                interval: g.interval,
+                restitution: g.restitution,
+                seed: g.seed,
+            };
+            let scene = galton(&cfg)?;
+            eprintln!(
+                "a Galton board: the last ball arrives at {} s; run it with `--until {}` to \
+                 let every ball settle",
+                (cfg.balls - 1) as f64 * cfg.interval,
+                galton_duration(&cfg)
+            );
+            scene.into()
+        }
         Kind::Thesis(t) => {
             let cfg = ThesisConfig {
                 wall_pieces: t.wall_pieces,

@@ -115,6 +115,23 @@ struct Summary {
     /// Work the moving walls did on the bodies, joules (0 without moving walls): with
     /// elastic collisions, the energy at the end less this is the energy at the start.
     wall_work: f64,
+    /// Bodies the scene's `arrivals` brought in during the run.
+    arrivals: u64,
+    /// The energy they brought in, joules (kinetic plus potential at entry); the drift
+    /// leaves it out.
+    arrival_energy: f64,
+    /// What the scene's `histogram` bins hold at the end, or null without one.
+    histogram: Option<HistogramSummary>,
+}
+
+/// The `--json` summary's `histogram`: the bins' edges and what each holds at the end.
+#[derive(Serialize)]
+struct HistogramSummary {
+    axis: usize,
+    edges: Vec<f64>,
+    counts: Vec<u64>,
+    /// Free bodies outside every bin.
+    outside: u64,
 }
 
 /// One sensor's counts in the `--json` summary.
@@ -128,7 +145,6 @@ struct SensorSummary {
 /// Writes sensor events as JSON lines.
 struct SensorLog {
     out: std::io::BufWriter<std::fs::File>,
-    ids: Vec<u64>,
 }
 
 impl SensorLog {
@@ -142,8 +158,10 @@ impl SensorLog {
                 ccdsim::SensorChange::Enter => "enter",
                 ccdsim::SensorChange::Leave => "leave",
             };
+            // Ids as they are now: bodies may have arrived since the run began.
+            let id = sim.world().ids()[e.body];
             let line = serde_json::json!({
-                "t": e.time, "body": log.ids[e.body], "sensor": e.sensor, "change": change,
+                "t": e.time, "body": id, "sensor": e.sensor, "change": change,
             });
             writeln!(log.out, "{line}")?;
         }
@@ -199,8 +217,11 @@ fn simulate<const D: usize>(scene: &Scene<D>, args: &Args) -> Result<Summary> {
     let potential_start = sim.world().potential_energy_at(sim.time());
     let rotational_start = sim.world().rotational_energy();
     // Everything is validated before the run file is created: bad input leaves no file.
+    // Arrivals are recorded as the additions they are: a steered run file.
+    let steered = !scene.arrivals.is_empty();
     let mut sink = Sink {
         writer: match &args.record {
+            Some(path) if steered => Some(RunWriter::record_steered(&mut sim, path, scene)?),
             Some(path) => Some(RunWriter::create(path, scene)?),
             None => None,
         },
@@ -235,7 +256,6 @@ fn simulate<const D: usize>(scene: &Scene<D>, args: &Args) -> Result<Summary> {
             };
             Some(SensorLog {
                 out: std::io::BufWriter::new(file),
-                ids: sim.world().ids().to_vec(),
             })
         }
         None => None,
@@ -249,7 +269,18 @@ fn simulate<const D: usize>(scene: &Scene<D>, args: &Args) -> Result<Summary> {
             let mut progress = Progress::new(n, "events", args.quiet);
             while count < n {
                 let batch = (n - count).min(4096);
-                let done = sim.run_events_with(batch, |c| sink.take(c));
+                let done = if steered {
+                    let mut done = 0;
+                    while done < batch {
+                        let Some(c) = sim.step_event() else { break };
+                        sink.take_edits(&mut sim);
+                        sink.take(&c);
+                        done += 1;
+                    }
+                    done
+                } else {
+                    sim.run_events_with(batch, |c| sink.take(c))
+                };
                 count += done;
                 progress.set(count);
                 SensorLog::drain(&mut sensor_log, &mut sim)?;
@@ -275,6 +306,9 @@ fn simulate<const D: usize>(scene: &Scene<D>, args: &Args) -> Result<Summary> {
                     let Some(c) = sim.step_event_until(stop) else {
                         break;
                     };
+                    if steered {
+                        sink.take_edits(&mut sim);
+                    }
                     sink.take(&c);
                     count += 1;
                     if count % 4096 == 0 {
@@ -288,6 +322,7 @@ fn simulate<const D: usize>(scene: &Scene<D>, args: &Args) -> Result<Summary> {
                     break;
                 }
                 sim.run_until(stop);
+                sink.take_edits(&mut sim);
                 SensorLog::drain(&mut sensor_log, &mut sim)?;
                 // A halted run stands still before `stop`: no frame claims a time it missed.
                 if !is_frame || sim.time() < stop {
@@ -303,6 +338,7 @@ fn simulate<const D: usize>(scene: &Scene<D>, args: &Args) -> Result<Summary> {
             progress.finish();
         }
     }
+    sink.take_edits(&mut sim);
     if let Some(e) = sink.error {
         return Err(e.into());
     }
@@ -332,7 +368,7 @@ fn simulate<const D: usize>(scene: &Scene<D>, args: &Args) -> Result<Summary> {
         kinetic_end: ke_end,
         potential_start,
         potential_end,
-        work: stats.wall_work,
+        work: stats.wall_work + stats.arrival_energy,
         rotational_start,
         rotational_end: sim.world().rotational_energy(),
     }
@@ -396,6 +432,17 @@ fn simulate<const D: usize>(scene: &Scene<D>, args: &Args) -> Result<Summary> {
         }),
         sensor_log: args.sensor_log.as_ref().map(|p| p.display().to_string()),
         wall_work: stats.wall_work,
+        arrivals: stats.arrivals,
+        arrival_energy: stats.arrival_energy,
+        histogram: scene.histogram.as_ref().map(|h| {
+            let held = sim.histogram(h);
+            HistogramSummary {
+                axis: h.axis,
+                edges: h.edges.clone(),
+                counts: held.counts,
+                outside: held.outside,
+            }
+        }),
     })
 }
 
@@ -406,6 +453,13 @@ struct Sink<const D: usize> {
 }
 
 impl<const D: usize> Sink<D> {
+    /// Writes the edits `sim` journaled since the last call (the arrivals it brought in).
+    fn take_edits(&mut self, sim: &mut Simulation<D>) {
+        for e in sim.take_edits() {
+            self.take(&e);
+        }
+    }
+
     fn take(&mut self, c: &ccdsim::Collision<D>) {
         if let (Some(w), None) = (self.writer.as_mut(), &self.error) {
             if let Err(e) = w.write_event(c) {
@@ -488,6 +542,38 @@ fn print_summary(s: &Summary, builtin: bool) -> std::io::Result<()> {
     }
     if let Some(l) = &s.sensor_log {
         outln!("sensor events written to {l}")?;
+    }
+    if s.arrivals > 0 {
+        outln!(
+            "{} bodies arrived, bringing {} J (the drift leaves it out)",
+            s.arrivals,
+            sig(s.arrival_energy, 10)
+        )?;
+    }
+    if let Some(h) = &s.histogram {
+        print_histogram(h)?;
+    }
+    Ok(())
+}
+
+/// The histogram as rows of bars, one per bin: its edges, its count, a bar scaled to the
+/// fullest bin.
+fn print_histogram(h: &HistogramSummary) -> std::io::Result<()> {
+    let total: u64 = h.counts.iter().sum();
+    let axis = ["x", "y", "z"].get(h.axis).copied().unwrap_or("?");
+    outln!(
+        "histogram along {axis}: {total} bodies in {} bins, {} outside",
+        h.counts.len(),
+        h.outside
+    )?;
+    let most = h.counts.iter().copied().max().unwrap_or(0).max(1);
+    for (k, &c) in h.counts.iter().enumerate() {
+        let bar = "#".repeat(((c * 50).div_ceil(most)) as usize);
+        outln!(
+            "  [{:>9}, {:>9}) {c:>6} {bar}",
+            sig(h.edges[k], 4),
+            sig(h.edges[k + 1], 4)
+        )?;
     }
     Ok(())
 }

@@ -616,3 +616,59 @@ fn magnitudes_beyond_f64_name_the_field() {
         refuse(name, &scene, culprit);
     }
 }
+
+#[test]
+fn a_galton_board_from_gen_runs_records_verifies_and_draws_its_histogram() {
+    let scene = tmp("galton.json");
+    let out = run_ok(
+        ccdsim()
+            .args(["gen", "galton", "--balls", "6", "--rows", "3", "--out"])
+            .arg(&scene),
+    );
+    let hint = String::from_utf8_lossy(&out.stderr);
+    assert!(hint.contains("--until 11.25"), "{hint}");
+    let mut files = Vec::new();
+    for finder in ["all-pairs", "cells"] {
+        let rec = tmp(&format!("galton-{finder}.ccd"));
+        let out = run_ok(
+            ccdsim()
+                .arg("run")
+                .arg(&scene)
+                .args(["--until", "11.25", "--json", "--finder", finder, "--record"])
+                .arg(&rec),
+        );
+        let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+        assert!(v["halt"].is_null(), "{v}");
+        assert_eq!(v["arrivals"], 6, "{v}");
+        assert!(v["arrival_energy"].as_f64().unwrap() > 0.0, "{v}");
+        let counts: Vec<u64> = serde_json::from_value(v["histogram"]["counts"].clone()).unwrap();
+        assert_eq!(counts.len(), 4, "{v}");
+        assert_eq!(counts.iter().sum::<u64>(), 6, "{v}");
+        assert_eq!(v["histogram"]["outside"], 0, "{v}");
+        let out = run_ok(ccdsim().arg("verify").arg(&rec));
+        assert!(
+            String::from_utf8_lossy(&out.stdout).contains("6 edits adding"),
+            "{}",
+            String::from_utf8_lossy(&out.stdout)
+        );
+        files.push(std::fs::read(&rec).unwrap());
+    }
+    assert!(files[0] == files[1], "run files differ");
+    let out = run_ok(ccdsim().arg("run").arg(&scene).args(["--until", "11.25"]));
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(text.contains("6 bodies arrived"), "{text}");
+    assert!(
+        text.contains("histogram along x: 6 bodies in 4 bins, 0 outside"),
+        "{text}"
+    );
+    let out = ccdsim()
+        .args(["gen", "galton", "--interval", "0.1"])
+        .output()
+        .unwrap();
+    assert!(!out.status.success());
+    assert!(
+        String::from_utf8_lossy(&out.stderr).contains("at least 0.25 s"),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+}

@@ -135,6 +135,14 @@ fn corpus() -> Vec<Case> {
             oracle: true,
             sensors: true,
         },
+        Case {
+            // Arrivals (recorded as bodies added), kinematic pegs, the TC model.
+            name: "galton",
+            source: Source::Generated(&["galton", "--balls", "30", "--rows", "6"]),
+            run: until("5"),
+            oracle: true,
+            sensors: false,
+        },
     ]
 }
 

@@ -1,6 +1,7 @@
 //! Scene generators: gases (random or lattice starts, walled or periodic boxes), the
-//! billiard rack, the thesis benchmark scene and a peg board under gravity.
+//! billiard rack, the thesis benchmark scene, a peg board under gravity and a Galton board.
 
+mod galton;
 mod gas;
 mod lattice;
 mod pegs;
@@ -8,6 +9,7 @@ mod place;
 mod rack;
 mod thesis;
 
+pub use galton::{galton, galton_duration, GaltonConfig};
 pub use gas::{densest_lattice_packing, gas, random_packing_limit, GasConfig};
 pub use lattice::Lattice;
 pub use pegs::{pegs, PegsConfig};

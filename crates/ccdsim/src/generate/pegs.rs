@@ -25,7 +25,7 @@ pub struct PegsConfig {
     /// Coefficient of restitution of every collision.
     pub restitution: f64,
     /// Bins along the floor: sensors (see [`crate::sensor`]) that count the balls landing in
-    /// them, a Galton board's histogram. Bin `k` is a disc centred on the floor under the
+    /// them (for a Galton board see [`super::galton`]). Bin `k` is a disc centred on the floor under the
     /// `k`-th of `bins` equal stretches of it, its radius half the stretch less a ball's: a
     /// ball touches it when its centre is within half a stretch of the disc's, so a ball on
     /// the floor lies in exactly one bin. 0: no sensors.

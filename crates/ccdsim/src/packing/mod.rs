@@ -268,6 +268,8 @@ pub fn compress<const D: usize>(
             periodic: scene.periodic,
             sensors: scene.sensors.clone(),
             moving_walls: scene.moving_walls.clone(),
+            arrivals: Vec::new(),
+            histogram: scene.histogram.clone(),
         },
         packing_fraction: packing_fraction(world, sim.time()).unwrap_or(0.0),
         reduced_pressure,

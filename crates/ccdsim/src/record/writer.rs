@@ -71,7 +71,19 @@ impl<W: Write, const D: usize> RunWriter<W, D> {
         Self::open(out, name, scene, true)
     }
 
+    /// A scene's arrivals ([`crate::scene::arrival`]) are recorded as the additions they are: the
+    /// file of a scene with arrivals is steered, and its header holds the scene without them.
     fn open(out: W, name: String, scene: &Scene<D>, steered: bool) -> Result<Self, RecordError> {
+        let without_arrivals;
+        let (scene, steered) = if scene.arrivals.is_empty() {
+            (scene, steered)
+        } else {
+            without_arrivals = Scene {
+                arrivals: Vec::new(),
+                ..scene.clone()
+            };
+            (&without_arrivals, true)
+        };
         let version = if steered {
             version_for(scene).max(VERSION_SLOTS)
         } else {

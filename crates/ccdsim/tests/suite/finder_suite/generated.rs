@@ -67,6 +67,8 @@ fn grid_scene_in<const D: usize>(
         },
         sensors: Vec::new(),
         moving_walls: Vec::new(),
+        arrivals: Vec::new(),
+        histogram: None,
     }
 }
 

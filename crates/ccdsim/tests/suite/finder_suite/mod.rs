@@ -21,6 +21,7 @@
 //! This file is the harness (recording runs, the per-event check, the drives that steer a
 //! run, the gas generators); each kind of scene has a file of its own.
 
+mod arrivals;
 mod gases;
 mod generated;
 mod gravity;
@@ -192,7 +193,8 @@ fn record_run<const D: usize>(
     let mut sim = Simulation::with_finder(scene, finder).expect("valid scene");
     // Runs steered by velocity kicks and teleports record their edits too: the run files
     // then compare the edits as well, and the oracle's can be verified.
-    let mut rec = if drive.steered() {
+    // A scene's arrivals are recorded as the additions they are, in a steered run file too.
+    let mut rec = if drive.steered() || !scene.arrivals.is_empty() {
         sim.record_edits(true);
         RunWriter::new_steered(Vec::new(), name.into(), scene).expect("header")
     } else {
@@ -207,6 +209,10 @@ fn record_run<const D: usize>(
     while events < max_events {
         let exits_before = sim.stats().exits;
         let got = sim.peek_event();
+        // Arrivals that came before this event.
+        for edit in sim.take_edits() {
+            rec.write_event(&edit).expect("write");
+        }
         if check {
             let mut want = Event::earliest(
                 Event::earliest(
@@ -246,6 +252,12 @@ fn record_run<const D: usize>(
             if let (None, Some(Halt::RestingOnBody { time, a, b })) = (got, sim.halt()) {
                 // Two bodies pressed together without normal speed (see `resting`): the same.
                 assert_eq!(want, Some(Event::body(time, a, b)), "{label} [{name}]");
+                want = None;
+            }
+            if let (None, Some(Halt::ArrivalBlocked { time, .. })) = (got, sim.halt()) {
+                // An arrival found its place taken: the run stopped at its time, after every
+                // event before it.
+                assert!(want.is_none_or(|w| w.time >= time), "{label} [{name}]");
                 want = None;
             }
             if let (None, Some(Halt::InelasticCollapse { time, .. })) = (got, sim.halt()) {
@@ -564,8 +576,9 @@ fn reference<const D: usize>(
 ) -> Recorded {
     let options = FinderOptions::default();
     let run = record_run(label, scene, "all-pairs", &options, max_events, drive, true);
-    // A steered run replays: its edit records say what the program did.
-    if drive.steered() {
+    // A steered run replays: its edit records say what the program (or the scene's arrivals)
+    // did.
+    if drive.steered() || !scene.arrivals.is_empty() {
         let mut r =
             ccdsim::record::RunReader::<_, D>::new(&run.bytes[..], label.into()).expect("header");
         let (events, end) = r.read_events().expect("records");

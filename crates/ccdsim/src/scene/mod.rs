@@ -3,8 +3,11 @@
 //! A scene is what a run starts from. [`AnyScene::from_json`] parses a file of either
 //! dimension; [`Scene::validate`] checks everything the simulator relies on.
 
+pub mod arrival;
+
 use crate::collision_filter::CollisionFilter;
 use crate::geom::{ball_volume, Vector};
+use crate::histogram::Histogram;
 use crate::motion::Gravity;
 use crate::motion::Growth;
 use crate::motion::MovingWall;
@@ -13,6 +16,7 @@ use crate::sensor::{sensor_fits_box, Sensor};
 use crate::thermostat::Thermostat;
 use crate::wall::{inside_even_odd, table_edges};
 pub use crate::wall::{wall_clearance, Wall};
+use arrival::Arrival;
 use serde::{Deserialize, Serialize};
 use std::fmt;
 
@@ -303,6 +307,13 @@ pub struct Scene<const D: usize> {
     /// is wall `walls.len() + k` in events. Not in periodic scenes, nor with growing radii.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub moving_walls: Vec<MovingWall<D>>,
+    /// Bodies that enter while the scene runs, each at its time (see [`crate::scene::arrival`]).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub arrivals: Vec<Arrival<D>>,
+    /// Bins that count where the bodies are at the end of a run (see
+    /// [`crate::histogram`]); they change nothing in the run.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub histogram: Option<Histogram>,
 }
 
 impl<const D: usize> Default for Scene<D> {
@@ -315,6 +326,8 @@ impl<const D: usize> Default for Scene<D> {
             periodic: None,
             sensors: Vec::new(),
             moving_walls: Vec::new(),
+            arrivals: Vec::new(),
+            histogram: None,
         }
     }
 }
@@ -597,6 +610,69 @@ impl<const D: usize> Scene<D> {
                     if !inside_even_odd(&loops, b.pos[0], b.pos[1]) {
                         return Err(SceneError::OutsideTable { body: self.name(i) });
                     }
+                }
+            }
+        }
+        self.validate_arrivals()?;
+        if let Some(h) = &self.histogram {
+            h.check(D).map_err(|message| SceneError::Field {
+                path: "histogram".into(),
+                message,
+            })?;
+        }
+        Ok(())
+    }
+
+    /// `arrivals[]`: each a valid body, entering at a finite time not before `start_time`,
+    /// without rotational fields, where no wall stands (bodies are checked when it enters).
+    fn validate_arrivals(&self) -> Result<(), SceneError> {
+        let loops = if D == 2 {
+            table_edges(&self.walls)
+        } else {
+            Vec::new()
+        };
+        for (k, a) in self.arrivals.iter().enumerate() {
+            let field = |what: &str| format!("arrivals[{k}].{what}");
+            if !a.time.is_finite() {
+                return Err(SceneError::NonFinite(field("time")));
+            }
+            check_magnitudes(|| field("time"), &[a.time])?;
+            let bad = |message: String| {
+                Err(SceneError::Field {
+                    path: format!("arrivals[{k}]"),
+                    message,
+                })
+            };
+            if a.time < self.start_time {
+                return bad(format!(
+                    "enters at {} s, before the scene's start_time {} s",
+                    a.time, self.start_time
+                ));
+            }
+            a.body.check_fields(k).map_err(|e| SceneError::Field {
+                path: format!("arrivals[{k}].body"),
+                message: e.to_string(),
+            })?;
+            if a.body.is_rotational() {
+                return bad(
+                    "an arriving body starts without spin and with the scene's inertia factor \
+                     and tangential restitution: leave its spin, inertia and \
+                     tangential_restitution out"
+                        .into(),
+                );
+            }
+            if let Some(w) = (0..self.walls.len())
+                .find(|&w| wall_clearance(&self.walls[w], a.body.pos) < a.body.radius)
+            {
+                return bad(format!("the body would cross wall {w}"));
+            }
+            if D == 2 && !loops.is_empty() && !inside_even_odd(&loops, a.body.pos[0], a.body.pos[1])
+            {
+                return bad("the body would lie outside the table the walls enclose".into());
+            }
+            if let Some(size) = self.periodic {
+                if (0..D).any(|d| !(0.0..size[d]).contains(&a.body.pos[d])) {
+                    return bad("the body would lie outside the periodic box".into());
                 }
             }
         }
@@ -1009,6 +1085,10 @@ struct SceneFile<const D: usize> {
     sensors: Vec<Sensor<D>>,
     #[serde(default)]
     moving_walls: Vec<MovingWall<D>>,
+    #[serde(default)]
+    arrivals: Vec<Arrival<D>>,
+    #[serde(default)]
+    histogram: Option<Histogram>,
 }
 
 fn parse_typed<const D: usize>(text: &str) -> Result<Scene<D>, SceneError> {
@@ -1026,6 +1106,8 @@ fn parse_typed<const D: usize>(text: &str) -> Result<Scene<D>, SceneError> {
         periodic: f.periodic,
         sensors: f.sensors,
         moving_walls: f.moving_walls,
+        arrivals: f.arrivals,
+        histogram: f.histogram,
     })
 }
 
