@@ -384,3 +384,26 @@ def test_bad_rough_fields_are_refused():
     scene["settings"] = {"tangential_restitution": 1.5}
     with pytest.raises(ValueError, match="tangential_restitution"):
         ccdsim.Simulation(scene)
+
+
+def test_a_scenes_arrivals_enter_at_their_times_in_every_finder():
+    scene = two_balls()
+    # A third ball arrives at t = 2 at x = 6, moving left: it meets ball 1 (moving right
+    # from x = 2.0 at t = 2 after the first collision) head on.
+    scene["arrivals"] = [
+        {"time": 2.0, "body": {"pos": [6.0, 0.0], "vel": [-1.0, 0.0], "radius": 0.5}}
+    ]
+    runs = []
+    for name in ccdsim.FINDER_NAMES:
+        sim = ccdsim.Simulation(scene, finder=name)
+        events = sim.advance(5.0)
+        assert sim.stats()["arrivals"] == 1
+        assert sim.stats()["arrival_energy"] == pytest.approx(0.5 * np.pi * 0.25)
+        assert len(sim.present) >= 3 and sim.present[2]
+        runs.append(events)
+    for other in runs[1:]:
+        np.testing.assert_array_equal(other, runs[0])
+    # Ball 1 leaves the first collision at t = 1 from x = 2 moving right; the arrival leaves
+    # x = 6 at t = 2 moving left: they touch when the gap 6 - 3 - 2(t - 2) is 1, at t = 3.
+    assert [(e["a"], e["b"]) for e in runs[0]] == [(0, 1), (1, 2)]
+    assert runs[0]["t"] == pytest.approx([1.0, 3.0], abs=1e-12)
