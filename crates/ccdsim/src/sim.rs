@@ -67,7 +67,7 @@ pub struct Stats {
     /// Bodies the scene's `arrivals` brought in so far (see [`crate::scene::arrival`]).
     pub arrivals: u64,
     /// The energy they brought in, joules: kinetic plus, under gravity, potential
-    /// (`−m g·x`) at their entry.
+    /// (`−m g·x`) at their entry (kinematic arrivals bring none).
     pub arrival_energy: f64,
 }
 
@@ -488,14 +488,17 @@ impl<const D: usize> Simulation<D> {
             Ok(i) => {
                 self.arrivals.pop();
                 self.arrival_at = self.arrivals.last().map_or(f64::INFINITY, |a| a.1.time);
-                let m = self.world.mass(i);
-                let potential = self
-                    .world
-                    .gravity()
-                    .map_or(0.0, |g| -m * g.dot(self.world.position_at(i, time)));
                 self.stats.arrivals += 1;
-                self.stats.arrival_energy +=
-                    0.5 * m * self.world.velocity_at(i, time).norm_sq() + potential;
+                // Kinematic bodies, of infinite mass, count in no energy.
+                if !self.world.is_kinematic(i) {
+                    let m = self.world.mass(i);
+                    let potential = self
+                        .world
+                        .gravity()
+                        .map_or(0.0, |g| -m * g.dot(self.world.position_at(i, time)));
+                    self.stats.arrival_energy +=
+                        0.5 * m * self.world.velocity_at(i, time).norm_sq() + potential;
+                }
             }
             Err(_) => {
                 self.halt = Some(Halt::ArrivalBlocked { time, arrival: k });

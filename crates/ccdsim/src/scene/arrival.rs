@@ -47,6 +47,39 @@ mod tests {
     }
 
     #[test]
+    fn arrivals_enter_at_their_times_and_count_their_energy() {
+        use crate::scene::Scene;
+        use crate::Simulation;
+        let ball = |x: f64, vx: f64| BodySpec::new(Vector([x, 0.0]), Vector([vx, 0.0]), 0.5);
+        let scene = Scene::<2> {
+            bodies: vec![ball(0.0, 0.0)],
+            arrivals: vec![
+                Arrival {
+                    time: 1.0,
+                    body: ball(5.0, -2.0),
+                },
+                Arrival {
+                    time: 1.0,
+                    body: BodySpec {
+                        kinematic: true,
+                        ..ball(-5.0, 0.0)
+                    },
+                },
+            ],
+            ..Scene::default()
+        };
+        let mut sim = Simulation::new(&scene, "cells").unwrap();
+        // The moving arrival meets body 0 after closing 4 m at 2 m/s.
+        let hit = sim.step_event().unwrap();
+        assert_eq!(hit.event.time, 3.0);
+        assert_eq!((hit.event.a, hit.event.b), (0, 1));
+        assert_eq!(sim.stats().arrivals, 2);
+        let m = std::f64::consts::PI * 0.25;
+        assert!((sim.stats().arrival_energy - 0.5 * m * 4.0).abs() < 1e-12);
+        assert!(sim.world().is_kinematic(2));
+    }
+
+    #[test]
     fn scenes_refuse_arrivals_that_cannot_enter_with_the_reason() {
         use crate::scene::Scene;
         use crate::wall::Wall;
