@@ -1,12 +1,12 @@
 //! The generic finder suite: every finder in [`FINDER_NAMES`] other than the all-pairs oracle
 //! (so finders added later join automatically) is run through whole simulations, recorded,
-//! and its run file must be byte-identical to that of an all-pairs run of the same scene,
-//! ending alike (the same halt, the same next event). That all-pairs run, made once per
-//! scene and shared by the finders, is itself checked on EVERY event against
-//! [`all_pairs_next_event`] (with the moving walls' and turning bodies' events) on the same
-//! world, bit for bit; so every finder's every event equals the oracle's. When a finder's run
-//! differs, it is run again with that per-event check, which names the first event that
-//! differs.
+//! and its run file must be byte-identical to that of a reference run of the same scene,
+//! ending alike (the same halt, the same next event). The reference run, made once per scene
+//! and shared by the finders, is checked on EVERY event against [`all_pairs_next_event`]
+//! (with the moving walls' and turning bodies' events) on the same world, bit for bit, so it
+//! is event for event the all-pairs run, and every finder's every event equals the oracle's.
+//! When a finder's run differs, it is run again with that per-event check, which names the
+//! first event that differs.
 //!
 //! Scenes: 2D and 3D gases with n from 1 to 500, monodisperse and polydisperse, dilute and
 //! dense, several seeds; proptest-generated scenes; and degenerate ones (no bodies, one
@@ -567,7 +567,16 @@ fn with_moving_walls<const D: usize>(mut scene: Scene<D>) -> Scene<D> {
     scene
 }
 
-/// The all-pairs run of `scene` that every finder's run file must equal byte for byte.
+/// The finder of the reference runs: checked against the oracle on every event, so its run is
+/// the all-pairs run (see [`reference`]).
+const REFERENCE_FINDER: &str = "cells";
+
+/// The run of `scene` that every finder's run file must equal byte for byte: made with
+/// [`REFERENCE_FINDER`], checked before every event against [`all_pairs_next_event`] (with
+/// the moving walls' and turning bodies' oracles) on the simulation's own world, bit for bit.
+/// Every event of it being the oracle's on the same world, it is event for event the run the
+/// all-pairs finder makes (which is `all_pairs_next_event` and nothing else), and it costs one
+/// oracle search per event instead of the two of an all-pairs run checked the same way.
 fn reference<const D: usize>(
     label: &str,
     scene: &Scene<D>,
@@ -575,7 +584,15 @@ fn reference<const D: usize>(
     drive: Drive,
 ) -> Recorded {
     let options = FinderOptions::default();
-    let run = record_run(label, scene, "all-pairs", &options, max_events, drive, true);
+    let run = record_run(
+        label,
+        scene,
+        REFERENCE_FINDER,
+        &options,
+        max_events,
+        drive,
+        true,
+    );
     // A steered run replays: its edit records say what the program (or the scene's arrivals)
     // did.
     if drive.steered() || !scene.arrivals.is_empty() {
@@ -595,7 +612,7 @@ fn reference<const D: usize>(
 }
 
 /// Runs `scene` with finder `name` and asserts that its run file and its end equal those of
-/// the all-pairs run `oracle` (made with the same `max_events` and `drive`, and checked
+/// the reference run `oracle` (made with the same `max_events` and `drive`, and checked
 /// against the oracle on every event); when they differ, runs it again checking every event
 /// against the oracle, to name the first that differs. Returns the number of events.
 fn check_run<const D: usize>(
