@@ -4,11 +4,14 @@
 //! ([`Body`]); the laws in force ([`Laws`]) say how it moves from there: a straight line, a
 //! parabola under [`Gravity`] (or a slide's acceleration on a wall it rests on, see
 //! [`crate::contact::resting`]), a radius growing by a [`GrowthLaw`], a turn about a segment's end
-//! point ([`pivot`]). Moving walls translate ([`WallMotion`]). This layer knows nothing of
+//! point ([`pivot`]). Moving walls translate ([`WallMotion`]). A billiard ball on the cloth
+//! slides, rolls and spins by the laws of [`cloth`], set going by a [`CueStrike`]. This layer knows nothing of
 //! contacts, scenes or worlds: the narrow phase ([`crate::contact`]) and everything above it
 //! build on it.
 
 mod body;
+pub mod cloth;
+pub mod cue_strike;
 pub mod gravity;
 pub mod growth;
 mod laws;
@@ -18,6 +21,8 @@ pub mod pivot;
 pub mod spin;
 
 pub use body::Body;
+pub use cloth::{ClothBall, ClothParams, ClothState};
+pub use cue_strike::CueStrike;
 pub use gravity::Gravity;
 pub use growth::{Growth, GrowthLaw};
 pub use laws::Laws;

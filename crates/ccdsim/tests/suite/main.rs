@@ -7,6 +7,7 @@ mod replay;
 mod analytic;
 mod body_slots;
 mod cells_vs_oracle;
+mod cloth_vs_pooltool;
 mod discrete_misses;
 mod edits;
 mod examples;
