@@ -615,14 +615,21 @@ impl<const D: usize> Cells<D> {
         // Every overlapping pair and image is listed, and nothing else.
         let images = 3usize.pow(D as u32);
         let mut count = 0usize;
+        // `a`'s list as marks over (body, image), so each pair is looked up in constant time.
+        let mut marked = vec![false; n * images];
         for a in 0..n {
+            for &e in lists.list(a) {
+                if entry_body(e) < n {
+                    marked[entry_body(e) * images + usize::from(entry_image(e))] = true;
+                }
+            }
             for b in a + 1..n {
                 for image in 0..images {
                     if !self.periodic && image != Grid::<D>::ZERO_IMAGE as usize {
                         continue;
                     }
                     let shift = self.shifts[image];
-                    let listed = lists.list(a).contains(&entry(b, image as u8));
+                    let listed = marked[b * images + image];
                     let overlaps = lists.overlap(&lists.centre[a], &lists.centre[b], &shift);
                     let mirrored = lists.overlap(
                         &lists.centre[b],
@@ -639,6 +646,11 @@ impl<const D: usize> Cells<D> {
                         ));
                     }
                     count += usize::from(listed);
+                }
+            }
+            for &e in lists.list(a) {
+                if entry_body(e) < n {
+                    marked[entry_body(e) * images + usize::from(entry_image(e))] = false;
                 }
             }
         }
