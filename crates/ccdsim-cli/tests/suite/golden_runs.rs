@@ -194,9 +194,24 @@ fn digest(bytes: &[u8]) -> (String, u64) {
     (hex, bytes.len() as u64)
 }
 
-/// The outputs of every case and finder: `(entry name, finder or "", command, bytes)`.
-fn outputs(dir: &Path) -> Vec<(String, String, String, Vec<u8>)> {
-    let mut out = Vec::new();
+/// One output of the corpus: `(entry name, finder or "", command, bytes)`.
+type Output = (String, String, String, Vec<u8>);
+
+/// One `ccdsim run` of the corpus: the entry names its outputs go under and the command.
+struct Job {
+    name: String,
+    finder: String,
+    record: PathBuf,
+    /// The sensor log, when the case compares it.
+    log: Option<PathBuf>,
+    cmd: std::process::Command,
+}
+
+/// The outputs of every case and finder: `(entry name, finder or "", command, bytes)`, in
+/// corpus order. The runs are independent processes: they run on as many threads as the
+/// machine has cores.
+fn outputs(dir: &Path) -> Vec<Output> {
+    let mut jobs = Vec::new();
     for case in corpus() {
         let scene: Option<PathBuf> = match case.source {
             Source::BuiltIn => None,
@@ -225,24 +240,51 @@ fn outputs(dir: &Path) -> Vec<(String, String, String, Vec<u8>)> {
             if case.sensors {
                 cmd.arg("--sensor-log").arg(&log);
             }
-            let shown = format!("{cmd:?}");
-            run_ok(&mut cmd);
-            out.push((
-                case.name.to_string(),
-                finder.to_string(),
-                shown.clone(),
-                std::fs::read(&record).unwrap(),
-            ));
-            if case.sensors {
-                out.push((
-                    format!("{}-sensor-log", case.name),
-                    finder.to_string(),
-                    shown,
-                    std::fs::read(&log).unwrap(),
-                ));
-            }
+            jobs.push(Job {
+                name: case.name.to_string(),
+                finder: finder.to_string(),
+                record,
+                log: case.sensors.then_some(log),
+                cmd,
+            });
         }
     }
+    let threads = std::thread::available_parallelism().map_or(2, |n| n.get());
+    let next = std::sync::atomic::AtomicUsize::new(0);
+    let slots: Vec<std::sync::Mutex<Option<Job>>> = jobs
+        .into_iter()
+        .map(|j| std::sync::Mutex::new(Some(j)))
+        .collect();
+    let done: std::sync::Mutex<Vec<(usize, Vec<Output>)>> = std::sync::Mutex::new(Vec::new());
+    std::thread::scope(|scope| {
+        for _ in 0..threads {
+            scope.spawn(|| loop {
+                let k = next.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+                let Some(slot) = slots.get(k) else { break };
+                let mut job = slot.lock().unwrap().take().expect("each job once");
+                let shown = format!("{:?}", job.cmd);
+                run_ok(&mut job.cmd);
+                let mut outs = vec![(
+                    job.name.clone(),
+                    job.finder.clone(),
+                    shown.clone(),
+                    std::fs::read(&job.record).unwrap(),
+                )];
+                if let Some(log) = &job.log {
+                    outs.push((
+                        format!("{}-sensor-log", job.name),
+                        job.finder.clone(),
+                        shown,
+                        std::fs::read(log).unwrap(),
+                    ));
+                }
+                done.lock().unwrap().push((k, outs));
+            });
+        }
+    });
+    let mut done = done.into_inner().unwrap();
+    done.sort_by_key(|(k, _)| *k);
+    let mut out: Vec<_> = done.into_iter().flat_map(|(_, outs)| outs).collect();
     for (name, args) in PACKINGS {
         let prefix = dir.join(name);
         let mut cmd = ccdsim();
