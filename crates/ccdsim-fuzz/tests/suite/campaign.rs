@@ -1,8 +1,8 @@
 //! A bounded fuzzing campaign, as `scripts/test` runs it: `CCDSIM_FUZZ_CASES` adversarial
-//! cases (default 10,000: 43 s measured on two cores in the test build on commit 8fb1791) from
-//! seed `CCDSIM_FUZZ_SEED` (default 1), on two threads, the same cases on every machine; every
-//! finder must agree with the oracle on every case, and the oracle's runs must verify. For
-//! longer campaigns, run `scripts/fuzz --minutes M`.
+//! cases (default 10,000: 43 s measured on two cores in the test build of commit ee68c27)
+//! from seed `CCDSIM_FUZZ_SEED` (default 1), on two threads, the same cases on every machine;
+//! every finder must agree with the oracle on every case, and the oracle's runs must verify.
+//! For longer campaigns, run `scripts/fuzz --minutes M`.
 
 use ccdsim_fuzz::campaign::{run, Progress, Settings};
 use std::sync::Arc;
