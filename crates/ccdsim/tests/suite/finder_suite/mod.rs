@@ -624,6 +624,10 @@ fn check_run<const D: usize>(
     drive: Drive,
     oracle: &Recorded,
 ) -> u64 {
+    if name == REFERENCE_FINDER && *options == FinderOptions::default() {
+        // The reference run itself, made and checked on every event already.
+        return oracle.events;
+    }
     let run = record_run(label, scene, name, options, max_events, drive, false);
     if run.events != oracle.events || run.bytes != oracle.bytes || run.end != oracle.end {
         record_run(label, scene, name, options, max_events, drive, true);
