@@ -474,20 +474,8 @@ fn thermostatted_gases() {
 /// and speeds near 10⁻¹⁶¹; a light ball rests in its way.
 #[test]
 fn inelastic_collapse_to_huge_times() {
-    let body = |pos: [f64; 2], vel: [f64; 2], radius: f64| BodySpec {
-        id: None,
-        pos: Vector(pos),
-        vel: Vector(vel),
-        radius,
-        mass: None,
-        restitution: None,
-        kinematic: false,
-        group: None,
-        mask: None,
-        inertia: None,
-        spin: None,
-        tangential_restitution: None,
-    };
+    let body =
+        |pos: [f64; 2], vel: [f64; 2], radius: f64| BodySpec::new(Vector(pos), Vector(vel), radius);
     let corner = |x: f64, y: f64| Vector([x, y]);
     let scene = Scene::<2> {
         settings: Settings {
