@@ -19,6 +19,7 @@
 #![deny(missing_docs)]
 #![forbid(unsafe_code)]
 
+pub mod billiards;
 pub mod collision_filter;
 pub mod contact;
 pub mod discrete;

@@ -5,6 +5,7 @@
 mod replay;
 
 mod analytic;
+mod billiards_vs_pooltool;
 mod body_slots;
 mod cells_vs_oracle;
 mod cloth_vs_pooltool;

@@ -1,0 +1,131 @@
+//! A ball bouncing off a cushion: Han's model (I. Han, "Dynamics in carom and three cushion
+//! billiards", Journal of Mechanical Science and Technology 19, 2005), as pooltool 0.3.3
+//! applies it (`physics/resolve/ball_cushion/han_2005`) with a constant restitution `e_c` and
+//! friction `f_c`.
+//!
+//! The cushion's nose touches the ball above its equator, at height `h` over the cloth, so the
+//! contact normal is tilted by `θ_a = asin(h/R − 1)` from the horizontal. In the cushion's
+//! frame (`x` along the normal into the cushion, `y` along it, `z` up) the contact point slips
+//! at `s = (v_x·sin θ_a + R·ω_y, −v_y − R·ω_z·cos θ_a + R·ω_x·sin θ_a)` and the ball drives
+//! into the cushion at `c = v_x·cos θ_a`. The normal impulse that restitution asks for is
+//! `(1 + e)·c·m`; if the impulse that would stop the slip, `|s|·2m/7`, is no larger, the
+//! contact sticks (the slip is removed), else it slides with friction `f_c` (Han's Eqs. 14–20).
+//! The ball's vertical velocity change is dropped: it stays on the cloth.
+
+use crate::geom::Vector;
+use crate::motion::ClothBall;
+
+/// The ball after bouncing off a cushion whose contact normal in the table plane is `normal`
+/// (a unit vector, either sign: it is turned to point into the cushion, along the ball's
+/// velocity), for a ball of radius `radius` (m) and mass `mass` (kg), a cushion nose at
+/// `height` (m) above the cloth, restitution `e` and friction `mu`. The position is unchanged.
+#[must_use]
+pub fn bounce(
+    b: &ClothBall,
+    normal: Vector<2>,
+    radius: f64,
+    mass: f64,
+    height: f64,
+    e: f64,
+    mu: f64,
+) -> ClothBall {
+    let n = if normal.dot(b.vel) > 0.0 {
+        normal
+    } else {
+        -normal
+    };
+    // The cushion frame: x along n, y along n turned a quarter counter-clockwise.
+    let t = Vector([-n[1], n[0]]);
+    let w_xy = Vector([b.spin[0], b.spin[1]]);
+    let (vx, vy) = (b.vel.dot(n), b.vel.dot(t));
+    let (wx, wy, wz) = (w_xy.dot(n), w_xy.dot(t), b.spin[2]);
+    let phi = vy.atan2(vx).rem_euclid(std::f64::consts::TAU);
+    let theta = (height / radius - 1.0).asin();
+    let (sin_t, cos_t) = theta.sin_cos();
+
+    let sx = vx * sin_t + radius * wy;
+    let sy = -vy - radius * wz * cos_t + radius * wx * sin_t;
+    let c = vx * cos_t;
+    let inertia = 2.0 / 5.0 * mass * radius * radius;
+    let a = 7.0 / 2.0 / mass;
+    let bb = 1.0 / mass;
+    let normal_impulse = (1.0 + e) * c / bb;
+    let stick_impulse = sx.hypot(sy) / a;
+    let (px, py, pz) = if stick_impulse <= normal_impulse {
+        (
+            -sx / a * sin_t - normal_impulse * cos_t,
+            sy / a,
+            sx / a * cos_t - normal_impulse * sin_t,
+        )
+    } else {
+        let f = mu * normal_impulse;
+        (
+            -f * phi.cos() * sin_t - normal_impulse * cos_t,
+            f * phi.sin(),
+            f * phi.cos() * cos_t - normal_impulse * sin_t,
+        )
+    };
+    let vx = vx + px / mass;
+    let vy = vy + py / mass;
+    let k = radius / inertia;
+    let wx = wx - k * py * sin_t;
+    let wy = wy + k * (px * sin_t - pz * cos_t);
+    let wz = wz + k * py * cos_t;
+    let vel = n * vx + t * vy;
+    let w_xy = n * wx + t * wy;
+    ClothBall {
+        pos: b.pos,
+        vel,
+        spin: Vector([w_xy[0], w_xy[1], wz]),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const R: f64 = 0.028575;
+    const M: f64 = 0.170097;
+
+    #[test]
+    fn a_rolling_ball_straight_into_a_rail_comes_back_slower_with_draw() {
+        let v = 1.0;
+        let b = ClothBall {
+            pos: Vector([0.5, 1.0]),
+            vel: Vector([v, 0.0]),
+            spin: Vector([0.0, v / R, 0.0]),
+        };
+        let after = bounce(&b, Vector([1.0, 0.0]), R, M, 1.28 * R, 0.85, 0.2);
+        assert!(after.vel[0] < 0.0 && after.vel[0] > -v, "{after:?}");
+        assert!(after.vel[1].abs() < 1e-12);
+        // Straight in, no side spin: nothing turns it sideways or about the vertical.
+        assert!(after.spin[0].abs() < 1e-9 && after.spin[2].abs() < 1e-9);
+        // The normal's sign does not matter.
+        let same = bounce(&b, Vector([-1.0, 0.0]), R, M, 1.28 * R, 0.85, 0.2);
+        assert_eq!(after, same);
+    }
+
+    #[test]
+    fn the_bounce_is_the_same_in_a_turned_frame() {
+        let b = ClothBall {
+            pos: Vector([0.0, 0.0]),
+            vel: Vector([0.8, 0.3]),
+            spin: Vector([5.0, -20.0, 12.0]),
+        };
+        let a = bounce(&b, Vector([1.0, 0.0]), R, M, 1.28 * R, 0.85, 0.2);
+        let (s, c) = 0.7f64.sin_cos();
+        let turn = |v: Vector<2>| Vector([c * v[0] - s * v[1], s * v[0] + c * v[1]]);
+        let tb = ClothBall {
+            pos: b.pos,
+            vel: turn(b.vel),
+            spin: {
+                let w = turn(Vector([b.spin[0], b.spin[1]]));
+                Vector([w[0], w[1], b.spin[2]])
+            },
+        };
+        let ta = bounce(&tb, turn(Vector([1.0, 0.0])), R, M, 1.28 * R, 0.85, 0.2);
+        let want = turn(a.vel);
+        assert!((ta.vel - want).norm() < 1e-12, "{ta:?} vs {want:?}");
+        assert!((ta.spin[2] - a.spin[2]).abs() < 1e-9);
+    }
+}

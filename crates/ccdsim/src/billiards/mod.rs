@@ -1,0 +1,36 @@
+//! Pool: balls that slide, roll and spin on the cloth, bounce off cushions and jaws and drop
+//! into pockets, played out event by event and exactly.
+//!
+//! The physics is Leckie & Greenspan's event-based pool simulator ("An event-based pool
+//! physics simulator", Advances in Computer Games 2005) with pooltool 0.3.3's models and
+//! parameters: the cloth's motion laws ([`crate::motion::cloth`]), the cue's strike
+//! ([`crate::motion::cue_strike`]), frictionless elastic ball–ball collisions
+//! ([`ball_impact`]), Han's cushion model ([`cushion_impact`]) and pooltool's default table
+//! ([`table`]). [`Shot`] plays a shot: set the balls down, strike one, run.
+//!
+//! ```
+//! use ccdsim::billiards::{BallParams, PocketTableSpecs, Shot, Table};
+//! use ccdsim::motion::CueStrike;
+//! use ccdsim::Vector;
+//!
+//! let table = Table::pool(&PocketTableSpecs::default());
+//! let mut shot = Shot::new(table, BallParams::default(), &[
+//!     Vector([0.5, 0.5]),   // the cue ball
+//!     Vector([0.5, 1.4]),   // an object ball straight up the table
+//! ]).unwrap();
+//! shot.strike(0, &CueStrike::new(2.0, 90.0)).unwrap();
+//! shot.run(10_000).unwrap();
+//! assert!(shot.is_still());
+//! assert!(shot.events().len() > 3);
+//! ```
+
+pub mod ball_impact;
+pub mod contact_time;
+pub mod cushion_impact;
+mod params;
+mod shot;
+pub mod table;
+
+pub use params::BallParams;
+pub use shot::{Shot, ShotError, ShotEvent, ShotEventKind, TableBall};
+pub use table::{Jaw, LinearCushion, Pocket, PocketTableSpecs, Table};

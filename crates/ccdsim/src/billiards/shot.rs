@@ -1,0 +1,520 @@
+//! A shot played out event by event: balls sliding, rolling and spinning on the cloth,
+//! meeting each other, the cushions and the jaws, and dropping into pockets, until every ball
+//! rests or is pocketed.
+//!
+//! The events and their order are those of Leckie & Greenspan's event-based simulator as
+//! pooltool 0.3.3 runs it: a ball's state change, two balls meeting (frictionless elastic,
+//! [`super::ball_impact`]), a ball meeting a straight cushion or a jaw (Han 2005,
+//! [`super::cushion_impact`]) or dropping into a pocket. After a collision both balls (or the
+//! one) are sliding, as pooltool sets them. Nothing is moved apart after a collision: the
+//! contact times are certified roots ([`super::contact_time`]), and a pair still touching
+//! meets again only if it turns to approach.
+//!
+//! Each ball's state is stored as of its last event; the next event of every pair, of every
+//! ball against the table and of every ball's state is a pure function of the stored states,
+//! kept until one of its balls has an event. [`Shot::next_event_naive`] computes it all afresh
+//! and is the oracle the kept predictions must equal bit for bit. Ties in time go to the state
+//! change, then two balls, a cushion, a jaw, a pocket (pooltool's order), then to the lowest
+//! index.
+
+use std::cmp::Ordering;
+
+use thiserror::Error;
+
+use super::ball_impact::exchange;
+use super::contact_time::{self, Flight};
+use super::cushion_impact::bounce;
+use super::params::BallParams;
+use super::table::Table;
+use crate::geom::Vector;
+use crate::motion::cloth::settle;
+use crate::motion::{ClothBall, ClothState, CueStrike};
+
+/// One ball: its state as of `time`, or the pocket it dropped into.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TableBall {
+    /// Position, velocity and angular velocity at `time`.
+    pub ball: ClothBall,
+    /// Motion state from `time` on.
+    pub state: ClothState,
+    /// Time of the ball's last event, seconds.
+    pub time: f64,
+    /// The pocket (an index into [`Table::pockets`]) it dropped into, if it did; it then rests
+    /// at the pocket's centre.
+    pub pocket: Option<usize>,
+}
+
+/// What happens at an event. Balls, cushions, jaws and pockets are indices into the shot's
+/// balls and the table's lists.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ShotEventKind {
+    /// A ball's motion state ends and the next begins.
+    Transition {
+        /// The ball.
+        ball: usize,
+        /// The state that ends.
+        from: ClothState,
+        /// The state that begins.
+        to: ClothState,
+    },
+    /// Two balls meet (`a < b`).
+    Balls {
+        /// The lower-numbered ball.
+        a: usize,
+        /// The higher-numbered ball.
+        b: usize,
+    },
+    /// A ball meets a straight cushion.
+    Cushion {
+        /// The ball.
+        ball: usize,
+        /// The cushion.
+        cushion: usize,
+    },
+    /// A ball meets a jaw.
+    Jaw {
+        /// The ball.
+        ball: usize,
+        /// The jaw.
+        jaw: usize,
+    },
+    /// A ball drops into a pocket.
+    Pocket {
+        /// The ball.
+        ball: usize,
+        /// The pocket.
+        pocket: usize,
+    },
+}
+
+impl ShotEventKind {
+    /// pooltool's rank for events at the same time: lower first.
+    fn rank(&self) -> (u8, usize, usize) {
+        match *self {
+            ShotEventKind::Transition { ball, .. } => (0, ball, 0),
+            ShotEventKind::Balls { a, b } => (1, a, b),
+            ShotEventKind::Cushion { ball, cushion } => (2, ball, cushion),
+            ShotEventKind::Jaw { ball, jaw } => (3, ball, jaw),
+            ShotEventKind::Pocket { ball, pocket } => (4, ball, pocket),
+        }
+    }
+}
+
+/// An event of a shot: what happens and when (seconds from the strike).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ShotEvent {
+    /// Time, seconds.
+    pub time: f64,
+    /// What happens.
+    pub kind: ShotEventKind,
+}
+
+fn earlier(a: &ShotEvent, b: &ShotEvent) -> bool {
+    match a.time.total_cmp(&b.time) {
+        Ordering::Less => true,
+        Ordering::Greater => false,
+        Ordering::Equal => a.kind.rank() < b.kind.rank(),
+    }
+}
+
+fn first(a: Option<ShotEvent>, b: Option<ShotEvent>) -> Option<ShotEvent> {
+    match (a, b) {
+        (Some(x), Some(y)) => Some(if earlier(&y, &x) { y } else { x }),
+        (x, None) => x,
+        (None, y) => y,
+    }
+}
+
+/// Why a shot cannot be set up or played on.
+#[derive(Debug, Error, Clone, PartialEq)]
+pub enum ShotError {
+    /// A ball does not lie on the playing surface clear of the cushions and pockets.
+    #[error("ball {0} at ({1}, {2}) is not on the table (clear of the cushions and pockets)")]
+    OffTable(usize, f64, f64),
+    /// Two balls overlap.
+    #[error("balls {0} and {1} overlap")]
+    Overlap(usize, usize),
+    /// A ball index out of range, or a pocketed ball.
+    #[error("there is no ball {0} on the table")]
+    NoSuchBall(usize),
+    /// The cue's tip would miss the ball (`a² + b² > 1` after throttling) or the strike is not
+    /// finite.
+    #[error(
+        "the cue would miss the ball (tip offset beyond its radius) or the strike is not finite"
+    )]
+    Miss,
+    /// The shot went on for more events than allowed (balls trapped in an endless sequence of
+    /// ever smaller bounces, or a limit set too low).
+    #[error("the shot did not end within {0} events")]
+    TooManyEvents(usize),
+}
+
+/// A shot on a table: the balls, the events so far and the predictions of the next ones.
+#[derive(Clone, Debug)]
+pub struct Shot {
+    table: Table,
+    params: BallParams,
+    balls: Vec<TableBall>,
+    time: f64,
+    /// Each ball's flight in its current state (end: its state change).
+    flights: Vec<Flight>,
+    /// Each ball's state change, if its state ends.
+    transitions: Vec<Option<ShotEvent>>,
+    /// The next meeting of balls `i < j`, at `i·n + j`.
+    pairs: Vec<Option<f64>>,
+    /// Each ball's next cushion, jaw or pocket.
+    rails: Vec<Option<ShotEvent>>,
+    events: Vec<ShotEvent>,
+}
+
+impl Shot {
+    /// Balls at rest at `positions` (metres) on `table`, at time 0.
+    ///
+    /// # Errors
+    /// A ball off the playing surface or in a pocket ([`ShotError::OffTable`]), or two balls
+    /// overlapping ([`ShotError::Overlap`]; touching is allowed).
+    pub fn new(
+        table: Table,
+        params: BallParams,
+        positions: &[Vector<2>],
+    ) -> Result<Shot, ShotError> {
+        let r = params.radius();
+        for (i, &p) in positions.iter().enumerate() {
+            if !p.is_finite() || !table.holds(p, r) {
+                return Err(ShotError::OffTable(i, p[0], p[1]));
+            }
+            for (j, &q) in positions.iter().enumerate().take(i) {
+                if (p - q).norm() < 2.0 * r {
+                    return Err(ShotError::Overlap(j, i));
+                }
+            }
+        }
+        let balls: Vec<TableBall> = positions
+            .iter()
+            .map(|&pos| TableBall {
+                ball: ClothBall {
+                    pos,
+                    vel: Vector::ZERO,
+                    spin: Vector::ZERO,
+                },
+                state: ClothState::Stationary,
+                time: 0.0,
+                pocket: None,
+            })
+            .collect();
+        let n = balls.len();
+        let mut shot = Shot {
+            table,
+            params,
+            balls,
+            time: 0.0,
+            flights: Vec::new(),
+            transitions: vec![None; n],
+            pairs: vec![None; n * n],
+            rails: vec![None; n],
+            events: Vec::new(),
+        };
+        shot.flights = (0..n).map(|i| shot.flight_of(i)).collect();
+        for i in 0..n {
+            shot.predict(i);
+        }
+        Ok(shot)
+    }
+
+    /// Strikes ball `ball` with the cue now: it leaves sliding with the strike's velocity and
+    /// angular velocity ([`CueStrike::launch`] with the shot's ball and cue parameters).
+    ///
+    /// # Errors
+    /// [`ShotError::NoSuchBall`] for a ball that is not on the table, [`ShotError::Miss`] when
+    /// the tip would miss it.
+    pub fn strike(&mut self, ball: usize, strike: &CueStrike) -> Result<(), ShotError> {
+        if self.balls.get(ball).is_none_or(|b| b.pocket.is_some()) {
+            return Err(ShotError::NoSuchBall(ball));
+        }
+        let p = &self.params;
+        let (vel, spin) = strike
+            .launch(p.mass, p.radius(), p.cue_mass, p.throttle_english)
+            .filter(|(v, w)| v.is_finite() && w.is_finite())
+            .ok_or(ShotError::Miss)?;
+        let now = self.time;
+        let b = self.ball_at(ball, now);
+        self.set(
+            ball,
+            ClothBall {
+                pos: b.pos,
+                vel,
+                spin,
+            },
+            ClothState::Sliding,
+        );
+        Ok(())
+    }
+
+    /// The table.
+    #[must_use]
+    pub fn table(&self) -> &Table {
+        &self.table
+    }
+
+    /// The ball parameters.
+    #[must_use]
+    pub fn params(&self) -> &BallParams {
+        &self.params
+    }
+
+    /// The balls as of their last events.
+    #[must_use]
+    pub fn balls(&self) -> &[TableBall] {
+        &self.balls
+    }
+
+    /// The time of the last event (or strike), seconds.
+    #[must_use]
+    pub fn time(&self) -> f64 {
+        self.time
+    }
+
+    /// Every event so far, in order.
+    #[must_use]
+    pub fn events(&self) -> &[ShotEvent] {
+        &self.events
+    }
+
+    /// Ball `i` at time `t` (seconds, not before its last event and not past its next state
+    /// change): position, velocity and angular velocity.
+    #[must_use]
+    pub fn ball_at(&self, i: usize, t: f64) -> ClothBall {
+        let b = &self.balls[i];
+        if b.pocket.is_some() {
+            return b.ball;
+        }
+        self.params.cloth.evolve(&b.ball, b.state, t - b.time)
+    }
+
+    /// Whether every ball rests or is pocketed.
+    #[must_use]
+    pub fn is_still(&self) -> bool {
+        self.balls
+            .iter()
+            .all(|b| b.pocket.is_some() || b.state == ClothState::Stationary)
+    }
+
+    /// The next event, from the kept predictions.
+    #[must_use]
+    pub fn next_event(&self) -> Option<ShotEvent> {
+        let n = self.balls.len();
+        let mut best = None;
+        for i in 0..n {
+            best = first(best, self.transitions[i]);
+            best = first(best, self.rails[i]);
+            for j in i + 1..n {
+                best = first(
+                    best,
+                    self.pairs[i * n + j].map(|time| ShotEvent {
+                        time,
+                        kind: ShotEventKind::Balls { a: i, b: j },
+                    }),
+                );
+            }
+        }
+        best
+    }
+
+    /// The next event, every prediction computed afresh from the stored states: the oracle
+    /// [`Shot::next_event`] must equal bit for bit.
+    #[must_use]
+    pub fn next_event_naive(&self) -> Option<ShotEvent> {
+        let n = self.balls.len();
+        let flights: Vec<Flight> = (0..n).map(|i| self.flight_of(i)).collect();
+        let r = self.params.radius();
+        let mut best = None;
+        for i in 0..n {
+            if self.balls[i].pocket.is_some() {
+                continue;
+            }
+            best = first(best, self.transition_of(i));
+            best = first(best, self.rail_of(i, &flights[i]));
+            for j in i + 1..n {
+                if self.balls[j].pocket.is_some() {
+                    continue;
+                }
+                let hit = contact_time::ball_ball(&flights[i], &flights[j], r);
+                best = first(
+                    best,
+                    hit.map(|time| ShotEvent {
+                        time,
+                        kind: ShotEventKind::Balls { a: i, b: j },
+                    }),
+                );
+            }
+        }
+        best
+    }
+
+    /// Plays the next event and returns it; `None` once every ball rests or is pocketed.
+    pub fn step(&mut self) -> Option<ShotEvent> {
+        let event = self.next_event()?;
+        let t = event.time;
+        self.time = t;
+        let p = self.params;
+        let r = p.radius();
+        match event.kind {
+            ShotEventKind::Transition { ball, to, .. } => {
+                let b = settle(self.ball_at(ball, t), to);
+                self.set(ball, b, to);
+            }
+            ShotEventKind::Balls { a, b } => {
+                let (na, nb) = exchange(&self.ball_at(a, t), &self.ball_at(b, t));
+                self.set(a, na, ClothState::Sliding);
+                self.set(b, nb, ClothState::Sliding);
+            }
+            ShotEventKind::Cushion { ball, cushion } => {
+                let c = &self.table.cushions[cushion];
+                let b = bounce(
+                    &self.ball_at(ball, t),
+                    c.normal(),
+                    r,
+                    p.mass,
+                    c.height,
+                    p.cushion_restitution,
+                    p.cushion_friction,
+                );
+                self.set(ball, b, ClothState::Sliding);
+            }
+            ShotEventKind::Jaw { ball, jaw } => {
+                let j = &self.table.jaws[jaw];
+                let at = self.ball_at(ball, t);
+                let d = at.pos - j.center;
+                let b = bounce(
+                    &at,
+                    d * (1.0 / d.norm()),
+                    r,
+                    p.mass,
+                    j.height,
+                    p.cushion_restitution,
+                    p.cushion_friction,
+                );
+                self.set(ball, b, ClothState::Sliding);
+            }
+            ShotEventKind::Pocket { ball, pocket } => {
+                let centre = self.table.pockets[pocket].center;
+                self.balls[ball].pocket = Some(pocket);
+                self.set(
+                    ball,
+                    ClothBall {
+                        pos: centre,
+                        vel: Vector::ZERO,
+                        spin: Vector::ZERO,
+                    },
+                    ClothState::Stationary,
+                );
+            }
+        }
+        self.events.push(event);
+        Some(event)
+    }
+
+    /// Plays events until every ball rests or is pocketed, at most `max_events` of them;
+    /// returns how many it played.
+    ///
+    /// # Errors
+    /// [`ShotError::TooManyEvents`] when balls are still moving after `max_events` events.
+    pub fn run(&mut self, max_events: usize) -> Result<usize, ShotError> {
+        for played in 0..max_events {
+            if self.step().is_none() {
+                return Ok(played);
+            }
+        }
+        if self.next_event().is_some() {
+            return Err(ShotError::TooManyEvents(max_events));
+        }
+        Ok(max_events)
+    }
+
+    /// Gives ball `i` a new state at the current time and renews every prediction it is in.
+    fn set(&mut self, i: usize, ball: ClothBall, state: ClothState) {
+        let b = &mut self.balls[i];
+        b.ball = ball;
+        b.state = state;
+        b.time = self.time;
+        self.flights[i] = self.flight_of(i);
+        self.predict(i);
+    }
+
+    /// Renews ball `i`'s state change, its next table event and its meetings with every other
+    /// ball, from its flight and theirs.
+    fn predict(&mut self, i: usize) {
+        let n = self.balls.len();
+        self.transitions[i] = self.transition_of(i);
+        self.rails[i] = self.rail_of(i, &self.flights[i]);
+        let r = self.params.radius();
+        for j in 0..n {
+            if j == i {
+                continue;
+            }
+            let (a, b) = (i.min(j), i.max(j));
+            let off = self.balls[a].pocket.is_some() || self.balls[b].pocket.is_some();
+            self.pairs[a * n + b] = if off {
+                None
+            } else {
+                contact_time::ball_ball(&self.flights[a], &self.flights[b], r)
+            };
+        }
+    }
+
+    fn flight_of(&self, i: usize) -> Flight {
+        let b = &self.balls[i];
+        let end = self.transition_of(i).map_or(f64::INFINITY, |e| e.time);
+        Flight::new(&self.params.cloth, &b.ball, b.state, b.time, end)
+    }
+
+    fn transition_of(&self, i: usize) -> Option<ShotEvent> {
+        let b = &self.balls[i];
+        if b.pocket.is_some() {
+            return None;
+        }
+        let (span, to) = self.params.cloth.transition(&b.ball, b.state)?;
+        Some(ShotEvent {
+            time: b.time + span,
+            kind: ShotEventKind::Transition {
+                ball: i,
+                from: b.state,
+                to,
+            },
+        })
+    }
+
+    fn rail_of(&self, i: usize, f: &Flight) -> Option<ShotEvent> {
+        if self.balls[i].pocket.is_some() || !f.moves() {
+            return None;
+        }
+        let r = self.params.radius();
+        let mut best = None;
+        let t = &self.table;
+        for (k, c) in t.cushions.iter().enumerate() {
+            let e = contact_time::cushion(f, c, r).map(|time| ShotEvent {
+                time,
+                kind: ShotEventKind::Cushion {
+                    ball: i,
+                    cushion: k,
+                },
+            });
+            best = first(best, e);
+        }
+        for (k, j) in t.jaws.iter().enumerate() {
+            let e = contact_time::jaw(f, j, r).map(|time| ShotEvent {
+                time,
+                kind: ShotEventKind::Jaw { ball: i, jaw: k },
+            });
+            best = first(best, e);
+        }
+        for (k, p) in t.pockets.iter().enumerate() {
+            let e = contact_time::pocket(f, p).map(|time| ShotEvent {
+                time,
+                kind: ShotEventKind::Pocket { ball: i, pocket: k },
+            });
+            best = first(best, e);
+        }
+        best
+    }
+}
