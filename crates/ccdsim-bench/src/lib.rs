@@ -1,8 +1,9 @@
 //! Benchmark drivers behind `ccdsim bench`: the thesis's Table 5.1 (running time against the
 //! number of bodies for every finder), Table 5.2 (the exact simulation against a
 //! discrete-time stepper and the collisions it misses) and the gas workload (collisions per
-//! second and the equation of state of hard discs and spheres), and the rough-sphere cooling
-//! check (rotational against translational temperature, against kinetic theory). They print tables and return data; the
+//! second and the equation of state of hard discs and spheres), the rough-sphere cooling
+//! check (rotational against translational temperature, against kinetic theory) and the pool
+//! break (breaks per second, beside pooltool's). They print tables and return data; the
 //! command-line tool adds the files and plots.
 //!
 //! A crate of its own, apart from the library: these drivers time and report, and a program
@@ -14,6 +15,7 @@
 mod budget;
 mod discrete;
 mod gas;
+mod pool_break;
 mod rough_cooling;
 mod thesis;
 
@@ -23,6 +25,7 @@ pub use gas::{
     carnahan_starling_z, enskog_collision_rate, eos_z, gas_bench, henderson_z, standard_error,
     GasBenchConfig, GasBenchError, GasBenchReport,
 };
+pub use pool_break::{pool_break, BreakLayout, BreakReport};
 pub use rough_cooling::{
     cooling_coefficients, cooling_decay, default_settle, huthmann_zippelius_ratio,
     ratio_relaxation, rough_cooling, CoolingConfig, CoolingError, CoolingReport, CoolingSample,

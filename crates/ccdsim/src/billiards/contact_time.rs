@@ -57,6 +57,20 @@ impl Flight {
         self.vel != Vector::ZERO || self.acc != Vector::ZERO
     }
 
+    /// How far the ball can get from where it is `dt0` seconds into the flight before `until`
+    /// (seconds, absolute), metres, an upper bound with room for rounding: speed times time
+    /// plus half the acceleration times time squared. Infinite for a flight that never ends.
+    #[must_use]
+    fn reach(&self, dt0: f64, until: f64) -> f64 {
+        let span = until - self.time - dt0;
+        if !span.is_finite() {
+            return f64::INFINITY;
+        }
+        let span = span.max(0.0);
+        let speed = (self.vel + self.acc * dt0).norm();
+        (speed * span + 0.5 * self.acc.norm() * span * span) * (1.0 + 1e-9)
+    }
+
     /// Position and velocity `dt` seconds after the flight's start.
     #[must_use]
     fn after(&self, dt: f64) -> (Vector<2>, Vector<2>) {
@@ -78,6 +92,12 @@ pub fn ball_ball(a: &Flight, b: &Flight, radius: f64) -> Option<f64> {
     let t0 = a.time.max(b.time);
     let (pa, va) = a.after(t0 - a.time);
     let (pb, vb) = b.after(t0 - b.time);
+    // Too far apart to meet before either flight ends: no quartic to solve.
+    let until = a.end.min(b.end);
+    let gap = (pb - pa).norm() - 2.0 * radius;
+    if gap > 0.0 && gap * (1.0 - 1e-9) > a.reach(t0 - a.time, until) + b.reach(t0 - b.time, until) {
+        return None;
+    }
     let dt = first_contact_accelerating(pb - pa, vb - va, b.acc - a.acc, 2.0 * radius)?;
     let t = t0 + dt;
     (t <= a.end.min(b.end)).then_some(t)
@@ -130,6 +150,10 @@ pub fn pocket(f: &Flight, k: &Pocket) -> Option<f64> {
 
 fn round(f: &Flight, center: Vector<2>, sigma: f64) -> Option<f64> {
     if !f.moves() {
+        return None;
+    }
+    let gap = (f.pos - center).norm() - sigma;
+    if gap > 0.0 && gap * (1.0 - 1e-9) > f.reach(0.0, f.end) {
         return None;
     }
     let dt = first_contact_accelerating(f.pos - center, f.vel, f.acc, sigma)?;

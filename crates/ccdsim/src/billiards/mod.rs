@@ -6,7 +6,8 @@
 //! parameters: the cloth's motion laws ([`crate::motion::cloth`]), the cue's strike
 //! ([`crate::motion::cue_strike`]), frictionless elastic ball–ball collisions
 //! ([`ball_impact`]), Han's cushion model ([`cushion_impact`]) and pooltool's default table
-//! ([`table`]). [`Shot`] plays a shot: set the balls down, strike one, run.
+//! ([`table`]) and racks ([`rack`]). [`Shot`] plays a shot: set the balls down, strike one,
+//! run.
 //!
 //! ```
 //! use ccdsim::billiards::{BallParams, PocketTableSpecs, Shot, Table};
@@ -28,9 +29,11 @@ pub mod ball_impact;
 pub mod contact_time;
 pub mod cushion_impact;
 mod params;
+pub mod rack;
 mod shot;
 pub mod table;
 
 pub use params::BallParams;
+pub use rack::{rack, Game};
 pub use shot::{Shot, ShotError, ShotEvent, ShotEventKind, TableBall};
 pub use table::{Jaw, LinearCushion, Pocket, PocketTableSpecs, Table};

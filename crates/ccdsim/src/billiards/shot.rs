@@ -100,6 +100,45 @@ impl ShotEventKind {
     }
 }
 
+impl ShotEventKind {
+    /// The event's type and agents as pooltool names them: "ball_ball", "ball_linear_cushion",
+    /// "ball_circular_cushion", "ball_pocket", or a transition such as "sliding_rolling";
+    /// agents by `ball_names` and the table's ids.
+    #[must_use]
+    pub fn names(&self, table: &Table, ball_names: &[String]) -> (String, Vec<String>) {
+        let ball = |i: usize| ball_names[i].clone();
+        match *self {
+            ShotEventKind::Transition { ball: i, from, to } => (
+                format!("{}_{}", state_name(from), state_name(to)),
+                vec![ball(i)],
+            ),
+            ShotEventKind::Balls { a, b } => ("ball_ball".into(), vec![ball(a), ball(b)]),
+            ShotEventKind::Cushion { ball: i, cushion } => (
+                "ball_linear_cushion".into(),
+                vec![ball(i), table.cushions[cushion].id.clone()],
+            ),
+            ShotEventKind::Jaw { ball: i, jaw } => (
+                "ball_circular_cushion".into(),
+                vec![ball(i), table.jaws[jaw].id.clone()],
+            ),
+            ShotEventKind::Pocket { ball: i, pocket } => (
+                "ball_pocket".into(),
+                vec![ball(i), table.pockets[pocket].id.clone()],
+            ),
+        }
+    }
+}
+
+/// pooltool's name for a motion state.
+fn state_name(s: ClothState) -> &'static str {
+    match s {
+        ClothState::Stationary => "stationary",
+        ClothState::Spinning => "spinning",
+        ClothState::Sliding => "sliding",
+        ClothState::Rolling => "rolling",
+    }
+}
+
 /// An event of a shot: what happens and when (seconds from the strike).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ShotEvent {

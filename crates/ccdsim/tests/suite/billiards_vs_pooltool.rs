@@ -11,8 +11,8 @@
 //! pooltool's time moves towards ccdsim's as the nudge goes to zero, so ccdsim's is the
 //! exact one.
 
-use ccdsim::billiards::{BallParams, PocketTableSpecs, Shot, ShotEvent, ShotEventKind, Table};
-use ccdsim::motion::{ClothState, CueStrike};
+use ccdsim::billiards::{BallParams, PocketTableSpecs, Shot, Table};
+use ccdsim::motion::CueStrike;
 use ccdsim::Vector;
 use serde_json::Value;
 
@@ -67,40 +67,6 @@ fn the_pool_table_is_pooltools_default_table() {
             (mine.radius - num(&p["radius"])).abs() < 1e-15,
             "pocket {id}"
         );
-    }
-}
-
-fn state_name(s: ClothState) -> &'static str {
-    match s {
-        ClothState::Stationary => "stationary",
-        ClothState::Spinning => "spinning",
-        ClothState::Sliding => "sliding",
-        ClothState::Rolling => "rolling",
-    }
-}
-
-/// An event as pooltool writes it: its type and its agents' names.
-fn pooltool_form(e: &ShotEvent, table: &Table, names: &[String]) -> (String, Vec<String>) {
-    match e.kind {
-        ShotEventKind::Transition { ball, from, to } => (
-            format!("{}_{}", state_name(from), state_name(to)),
-            vec![names[ball].clone()],
-        ),
-        ShotEventKind::Balls { a, b } => {
-            ("ball_ball".into(), vec![names[a].clone(), names[b].clone()])
-        }
-        ShotEventKind::Cushion { ball, cushion } => (
-            "ball_linear_cushion".into(),
-            vec![names[ball].clone(), table.cushions[cushion].id.clone()],
-        ),
-        ShotEventKind::Jaw { ball, jaw } => (
-            "ball_circular_cushion".into(),
-            vec![names[ball].clone(), table.jaws[jaw].id.clone()],
-        ),
-        ShotEventKind::Pocket { ball, pocket } => (
-            "ball_pocket".into(),
-            vec![names[ball].clone(), table.pockets[pocket].id.clone()],
-        ),
     }
 }
 
@@ -159,7 +125,7 @@ fn one_hundred_shots_give_pooltools_events() {
                 ));
                 break;
             };
-            let (kind, agents) = pooltool_form(mine, shot.table(), &names);
+            let (kind, agents) = mine.kind.names(shot.table(), &names);
             let their_agents: Vec<String> = their["agents"]
                 .as_array()
                 .unwrap()

@@ -4,6 +4,7 @@
 mod discrete;
 mod gas;
 mod plot;
+mod pool_break;
 mod rough_cooling;
 mod thesis;
 
@@ -32,6 +33,9 @@ enum Workload {
     /// Homogeneous cooling gases of rough spheres: the ratio of rotational to translational
     /// temperature and Haff's law against the Huthmann–Zippelius theory.
     RoughCooling(rough_cooling::Args),
+    /// A racked pool table broken again and again: the median time per break and breaks
+    /// per second (beside pooltool's, with a layout from scripts/pool-break-compare).
+    PoolBreak(pool_break::Args),
 }
 
 /// Runs the command.
@@ -41,6 +45,7 @@ pub fn run(args: Args) -> Result<ExitCode> {
         Workload::Discrete(a) => discrete::run(a),
         Workload::Gas(a) => gas::run(a),
         Workload::RoughCooling(a) => rough_cooling::run(a),
+        Workload::PoolBreak(a) => pool_break::run(a),
     }
 }
 
