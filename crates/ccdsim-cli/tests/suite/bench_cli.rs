@@ -151,3 +151,64 @@ fn rough_gases_run_verify_and_cool_as_the_bench_reports() {
     let svg = std::fs::read_to_string(dir.join("rough_cooling.svg")).unwrap();
     assert!(svg.contains("<svg") && svg.contains("e = 0.9"));
 }
+
+#[test]
+fn bench_pool_break_plays_a_rack_and_a_layout_beside_pooltools_events() {
+    // ccdsim's own 9-ball rack: every ball ends still, and the report adds up.
+    let out = run_ok(ccdsim().args(["bench", "pool-break", "--runs", "3", "--json"]));
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let events = v["events"].as_u64().unwrap();
+    assert!(events > 20, "{v}");
+    assert_eq!(v["event_list"].as_array().unwrap().len() as u64, events);
+    assert!(v["breaks_per_second"].as_f64().unwrap() > 0.0);
+    assert!(
+        v["ball_ball"].as_u64().unwrap() >= 9,
+        "the break reaches every ball: {v}"
+    );
+
+    // A layout with pooltool's events: one of the reference shots of the library's tests
+    // (the cue ball onto one object ball), with a made-up pooltool time.
+    let reference: serde_json::Value = serde_json::from_str(include_str!(
+        "../../../ccdsim/tests/data/pooltool-shots.json"
+    ))
+    .unwrap();
+    let shot = &reference["shots"][50];
+    let layout = serde_json::json!({
+        "balls": shot["balls"],
+        "strike": shot["strike"],
+        "pooltool": {"median_seconds": 0.1, "events": shot["events"]},
+    });
+    let file = common::scratch_file("bench-cli-pool", "layout.json");
+    std::fs::write(&file, layout.to_string()).unwrap();
+    let out = run_ok(
+        ccdsim()
+            .args(["bench", "pool-break", "--runs", "2", "--layout"])
+            .arg(&file),
+    );
+    let text = String::from_utf8(out.stdout).unwrap();
+    let n = shot["events"].as_array().unwrap().len();
+    assert!(
+        text.contains(&format!(
+            "the same {n} events as pooltool, in the same order"
+        )),
+        "{text}"
+    );
+    assert!(
+        text.contains("pooltool: median 100.0 ms per break"),
+        "{text}"
+    );
+
+    // A layout whose balls overlap is refused with the reason.
+    std::fs::write(
+        &file,
+        r#"{"balls": {"cue": [0.5, 0.5], "1": [0.51, 0.5]}, "strike": {"V0": 1, "phi": 0, "theta": 0, "a": 0, "b": 0}}"#,
+    )
+    .unwrap();
+    let out = ccdsim()
+        .args(["bench", "pool-break", "--layout"])
+        .arg(&file)
+        .output()
+        .unwrap();
+    assert!(!out.status.success());
+    assert!(String::from_utf8_lossy(&out.stderr).contains("overlap"));
+}
