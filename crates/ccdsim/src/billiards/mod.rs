@@ -34,6 +34,6 @@ mod shot;
 pub mod table;
 
 pub use params::BallParams;
-pub use rack::{rack, Game};
+pub use rack::{rack, rack_at, Game};
 pub use shot::{Shot, ShotError, ShotEvent, ShotEventKind, TableBall};
 pub use table::{Jaw, LinearCushion, Pocket, PocketTableSpecs, Table};

@@ -28,47 +28,61 @@ pub const RACK_GAP: f64 = 1e-3;
 /// that keep the racked balls apart.
 #[must_use]
 pub fn rack(game: Game, table: &Table, radius: f64, seed: u64) -> Vec<(String, Vector<2>)> {
+    let cue = match game {
+        Game::NineBall => [0.85, 0.23],
+        Game::EightBall => [0.6, 0.23],
+    };
+    rack_at(game, table, radius, seed, [0.5, 0.77], cue)
+}
+
+/// [`rack`] with the apex ball at `apex` and the cue ball at `cue`, each given as fractions of
+/// the table's width and length (pooltool's convention: `[0.5, 0.77]` and, for nine-ball,
+/// `[0.85, 0.23]`).
+#[must_use]
+pub fn rack_at(
+    game: Game,
+    table: &Table,
+    radius: f64,
+    seed: u64,
+    apex: [f64; 2],
+    cue: [f64; 2],
+) -> Vec<(String, Vector<2>)> {
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     let pitch = radius * (1.0 + RACK_GAP);
-    let apex = Vector([0.5 * table.width, 0.77 * table.length]);
+    let apex = Vector([apex[0] * table.width, apex[1] * table.length]);
+    let cue = Vector([cue[0] * table.width, cue[1] * table.length]);
     let h = 3f64.sqrt();
     // Grid steps in units of the pitch: along a row (2, 0), to the next row (±1, √3).
     let at = |row: f64, across: f64| apex + Vector([across * pitch, row * h * pitch]);
-    let (spots, cue): (Vec<(&str, Vector<2>)>, Vector<2>) = match game {
-        Game::NineBall => (
-            vec![
-                ("1", at(0.0, 0.0)),
-                ("2", at(1.0, -1.0)),
-                ("3", at(1.0, 1.0)),
-                ("4", at(2.0, 2.0)),
-                ("9", at(2.0, 0.0)),
-                ("5", at(2.0, -2.0)),
-                ("6", at(3.0, -1.0)),
-                ("7", at(3.0, 1.0)),
-                ("8", at(4.0, 0.0)),
-            ],
-            Vector([0.85 * table.width, 0.23 * table.length]),
-        ),
-        Game::EightBall => (
-            vec![
-                ("1", at(0.0, 0.0)),
-                ("9", at(1.0, -1.0)),
-                ("2", at(1.0, 1.0)),
-                ("10", at(2.0, 2.0)),
-                ("8", at(2.0, 0.0)),
-                ("3", at(2.0, -2.0)),
-                ("11", at(3.0, -3.0)),
-                ("4", at(3.0, -1.0)),
-                ("12", at(3.0, 1.0)),
-                ("5", at(3.0, 3.0)),
-                ("13", at(4.0, 4.0)),
-                ("6", at(4.0, 2.0)),
-                ("14", at(4.0, 0.0)),
-                ("15", at(4.0, -2.0)),
-                ("7", at(4.0, -4.0)),
-            ],
-            Vector([0.6 * table.width, 0.23 * table.length]),
-        ),
+    let spots: Vec<(&str, Vector<2>)> = match game {
+        Game::NineBall => vec![
+            ("1", at(0.0, 0.0)),
+            ("2", at(1.0, -1.0)),
+            ("3", at(1.0, 1.0)),
+            ("4", at(2.0, 2.0)),
+            ("9", at(2.0, 0.0)),
+            ("5", at(2.0, -2.0)),
+            ("6", at(3.0, -1.0)),
+            ("7", at(3.0, 1.0)),
+            ("8", at(4.0, 0.0)),
+        ],
+        Game::EightBall => vec![
+            ("1", at(0.0, 0.0)),
+            ("9", at(1.0, -1.0)),
+            ("2", at(1.0, 1.0)),
+            ("10", at(2.0, 2.0)),
+            ("8", at(2.0, 0.0)),
+            ("3", at(2.0, -2.0)),
+            ("11", at(3.0, -3.0)),
+            ("4", at(3.0, -1.0)),
+            ("12", at(3.0, 1.0)),
+            ("5", at(3.0, 3.0)),
+            ("13", at(4.0, 4.0)),
+            ("6", at(4.0, 2.0)),
+            ("14", at(4.0, 0.0)),
+            ("15", at(4.0, -2.0)),
+            ("7", at(4.0, -4.0)),
+        ],
     };
     let mut balls = vec![("cue".to_owned(), wiggle(cue, radius, &mut rng))];
     balls.extend(

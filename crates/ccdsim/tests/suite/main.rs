@@ -24,6 +24,7 @@ mod ledges;
 mod long_runs;
 mod moving_walls;
 mod narrow_properties;
+mod pooltool_issues;
 mod resting;
 mod restitution;
 mod rods;
