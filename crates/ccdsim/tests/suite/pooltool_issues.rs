@@ -32,8 +32,8 @@ fn play_and_check(mut shot: Shot, what: &str) -> Shot {
                     p[0] > -reach && p[0] < w + reach && p[1] > -reach && p[1] < l + reach,
                     "{what}: ball {i} left the table at t = {t}: {p:?}"
                 );
-                for j in i + 1..n {
-                    let Some(q) = at[j] else { continue };
+                for (j, q) in at.iter().enumerate().skip(i + 1) {
+                    let Some(q) = *q else { continue };
                     let d = (p - q).norm();
                     assert!(
                         d >= 2.0 * r * (1.0 - 1e-12),
