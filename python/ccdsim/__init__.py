@@ -25,6 +25,7 @@ from typing import Any, Iterator, Mapping, Optional, Sequence, Tuple, Union
 import numpy as np
 
 from . import _ccdsim
+from . import billiards
 from . import generate
 from . import observables
 from . import packing
@@ -37,6 +38,7 @@ __all__ = [
     "EVENT_DTYPE",
     "SENSOR_EVENT_DTYPE",
     "FINDER_NAMES",
+    "billiards",
     "generate",
     "observables",
     "packing",

@@ -4,6 +4,7 @@
 
 #![forbid(unsafe_code)]
 
+mod billiards;
 mod observables;
 mod packing;
 mod simulation;
@@ -176,6 +177,8 @@ fn _ccdsim(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(rack_json, m)?)?;
     m.add_function(wrap_pyfunction!(read_run, m)?)?;
     m.add_function(wrap_pyfunction!(packing::pack_json, m)?)?;
+    m.add_function(wrap_pyfunction!(billiards::pool_shot, m)?)?;
+    m.add_function(wrap_pyfunction!(billiards::pool_rack, m)?)?;
     observables::register(m)?;
     m.add("FINDER_NAMES", ccdsim::FINDER_NAMES.to_vec())?;
     Ok(())

@@ -1,0 +1,99 @@
+//! `ccdsim._ccdsim.pool_shot` and `pool_rack`: a pool shot played to the end, and the racks
+//! (see the library's `billiards` module).
+
+use ccdsim::billiards::{rack, BallParams, Game, PocketTableSpecs, Shot, Table};
+use ccdsim::motion::CueStrike;
+use ccdsim::Vector;
+use pyo3::exceptions::{PyRuntimeError, PyValueError};
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+
+/// The names and positions of `game`'s rack ("nine-ball" or "eight-ball") on pooltool's
+/// default table, seeded: a list of `(name, x, y)`, the cue ball first.
+#[pyfunction]
+#[pyo3(signature = (game="nine-ball", seed=1))]
+pub fn pool_rack(game: &str, seed: u64) -> PyResult<Vec<(String, f64, f64)>> {
+    let game = match game {
+        "nine-ball" => Game::NineBall,
+        "eight-ball" => Game::EightBall,
+        g => {
+            return Err(PyValueError::new_err(format!(
+                "game must be \"nine-ball\" or \"eight-ball\", not {g:?}"
+            )))
+        }
+    };
+    let table = Table::pool(&PocketTableSpecs::default());
+    Ok(rack(game, &table, BallParams::default().radius(), seed)
+        .into_iter()
+        .map(|(name, p)| (name, p[0], p[1]))
+        .collect())
+}
+
+/// Plays one shot on pooltool's default table with its default balls: `balls` is a list of
+/// `(name, x, y)` (metres), ball `cue` is struck (`speed` m/s towards `phi` degrees, cue
+/// elevation `theta` degrees, tip offsets `a` and `b` in ball radii), and the shot runs until
+/// every ball rests or is pocketed (at most `max_events` events). Returns a dict: `events`
+/// (a list of `(time, type, agents)` with pooltool's type names), `positions` (name → (x, y)
+/// at the end), `pocketed` (name → pocket id, in the order they dropped), `time` (when the
+/// last ball stopped, s). Runs without the GIL.
+#[pyfunction]
+#[pyo3(signature = (balls, speed, phi, theta=0.0, a=0.0, b=0.0, cue="cue", max_events=1_000_000))]
+#[allow(clippy::too_many_arguments)]
+pub fn pool_shot<'py>(
+    py: Python<'py>,
+    balls: Vec<(String, f64, f64)>,
+    speed: f64,
+    phi: f64,
+    theta: f64,
+    a: f64,
+    b: f64,
+    cue: &str,
+    max_events: usize,
+) -> PyResult<Bound<'py, PyDict>> {
+    let names: Vec<String> = balls.iter().map(|(n, _, _)| n.clone()).collect();
+    let cue_index = names
+        .iter()
+        .position(|n| n == cue)
+        .ok_or_else(|| PyValueError::new_err(format!("no ball named {cue:?}")))?;
+    let positions: Vec<Vector<2>> = balls.iter().map(|&(_, x, y)| Vector([x, y])).collect();
+    let strike = CueStrike {
+        speed,
+        phi,
+        theta,
+        a,
+        b,
+    };
+    let table = Table::pool(&PocketTableSpecs::default());
+    let mut shot = Shot::new(table, BallParams::default(), &positions)
+        .map_err(|e| PyValueError::new_err(e.to_string()))?;
+    shot.strike(cue_index, &strike)
+        .map_err(|e| PyValueError::new_err(e.to_string()))?;
+    let shot = py
+        .detach(move || shot.run(max_events).map(|_| shot))
+        .map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
+    let out = PyDict::new(py);
+    let events: Vec<(f64, String, Vec<String>)> = shot
+        .events()
+        .iter()
+        .map(|e| {
+            let (kind, agents) = e.kind.names(shot.table(), &names);
+            (e.time, kind, agents)
+        })
+        .collect();
+    out.set_item("events", events)?;
+    let end = PyDict::new(py);
+    for (i, name) in names.iter().enumerate() {
+        let p = shot.balls()[i].ball.pos;
+        end.set_item(name, (p[0], p[1]))?;
+    }
+    out.set_item("positions", end)?;
+    let pocketed = PyDict::new(py);
+    for e in shot.events() {
+        if let ccdsim::billiards::ShotEventKind::Pocket { ball, pocket } = e.kind {
+            pocketed.set_item(&names[ball], &shot.table().pockets[pocket].id)?;
+        }
+    }
+    out.set_item("pocketed", pocketed)?;
+    out.set_item("time", shot.time())?;
+    Ok(out)
+}

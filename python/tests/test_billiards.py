@@ -1,0 +1,45 @@
+"""Pool shots through the Python API: the rack, a break to the end, and bad input."""
+
+import pytest
+
+import ccdsim
+from ccdsim import billiards
+
+
+def test_a_nine_ball_break_plays_to_the_end():
+    balls = billiards.rack("nine-ball", seed=1)
+    assert [b[0] for b in balls][:2] == ["cue", "1"] and len(balls) == 10
+    result = billiards.shot(balls, speed=8.0, phi=billiards.aim(balls, "1"))
+    kinds = [k for _, k, _ in result.events]
+    assert kinds.count("ball_ball") >= 9
+    # The first collision is the cue ball on the 1 ball.
+    first = next(e for e in result.events if e[1] == "ball_ball")
+    assert sorted(first[2]) == ["1", "cue"]
+    times = [t for t, _, _ in result.events]
+    assert times == sorted(times) and result.time == times[-1]
+    assert set(result.positions) == {b[0] for b in balls}
+    for name, pocket in result.pocketed.items():
+        assert pocket in {"lb", "lc", "lt", "rb", "rc", "rt"}
+        assert any(k == "ball_pocket" and a[0] == name for _, k, a in result.events)
+
+
+def test_the_same_shot_gives_the_same_events():
+    balls = billiards.rack("eight-ball", seed=3)
+    assert len(balls) == 16
+    one = billiards.shot(balls, speed=7.0, phi=billiards.aim(balls, "1"), b=0.2)
+    two = billiards.shot(balls, speed=7.0, phi=billiards.aim(balls, "1"), b=0.2)
+    assert one == two
+
+
+def test_bad_shots_are_refused_with_the_reason():
+    with pytest.raises(ValueError, match="overlap"):
+        billiards.shot([("cue", 0.5, 0.5), ("1", 0.51, 0.5)], speed=1.0, phi=0.0)
+    with pytest.raises(ValueError, match="not on the table"):
+        billiards.shot([("cue", 2.0, 0.5)], speed=1.0, phi=0.0)
+    with pytest.raises(ValueError, match="no ball named"):
+        billiards.shot([("white", 0.5, 0.5)], speed=1.0, phi=0.0)
+    with pytest.raises(ValueError, match="miss"):
+        billiards.shot([("cue", 0.5, 0.5)], speed=1.0, phi=0.0, a=2.0, b=2.0)
+    with pytest.raises(ValueError, match="nine-ball"):
+        billiards.rack("snooker")
+    assert ccdsim.billiards is billiards
