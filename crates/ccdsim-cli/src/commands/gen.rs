@@ -1,6 +1,9 @@
 //! `ccdsim gen`: write a generated scene as JSON.
 
 use anyhow::{Context, Result};
+use ccdsim::billiards::{
+    self, BallParams, Game, PocketTableSpecs, PoolBall, PoolScene, PoolSetup, PoolShot, Table,
+};
 use ccdsim::generate::{
     galton, galton_duration, gas, pegs, rack, thesis, GaltonConfig, GasConfig, Lattice, PegsConfig,
     RackConfig, ThesisConfig,
@@ -30,6 +33,9 @@ enum Kind {
     Gas(GasArgs),
     /// A 15-ball billiard rack with the cue ball shot into it (2D).
     Rack(RackArgs),
+    /// A pool table (pooltool's default 7-foot table) racked for nine-ball or eight-ball, and
+    /// the break, or the shot given: a pool scene for `ccdsim run`.
+    Table(TableArgs),
     /// The thesis's benchmark scene (§5.2): a walled table of constant body density, sized for
     /// n; the constants are calibrated against its Table 5.1 (docs/benchmarks.md).
     Thesis(ThesisArgs),
@@ -174,6 +180,77 @@ impl From<LatticeArg> for Lattice {
     }
 }
 
+/// The racks `gen table` knows.
+#[derive(Clone, Copy, clap::ValueEnum)]
+enum GameArg {
+    NineBall,
+    EightBall,
+}
+
+#[derive(clap::Args)]
+struct TableArgs {
+    /// The rack.
+    #[arg(long, value_enum, default_value = "nine-ball")]
+    game: GameArg,
+    /// Seed of the rack's small random offsets.
+    #[arg(long, default_value_t = 1)]
+    seed: u64,
+    /// The shot: `V0,phi[,theta,a,b]` (m/s, degrees, degrees, ball radii, ball radii). Without
+    /// it, the break: 8 m/s from the cue ball straight at the apex ball.
+    #[arg(long, value_delimiter = ',', allow_hyphen_values = true)]
+    shot: Option<Vec<f64>>,
+}
+
+/// The pool scene of `gen table`.
+fn pool_table(t: &TableArgs) -> Result<PoolScene> {
+    let game = match t.game {
+        GameArg::NineBall => Game::NineBall,
+        GameArg::EightBall => Game::EightBall,
+    };
+    let table = Table::pool(&PocketTableSpecs::default());
+    let balls = billiards::rack(game, &table, BallParams::default().radius(), t.seed);
+    let (speed, phi, theta, a, b) = match t.shot.as_deref() {
+        None => {
+            let d = balls[1].1 - balls[0].1;
+            (
+                8.0,
+                d[1].atan2(d[0]).to_degrees().rem_euclid(360.0),
+                0.0,
+                0.0,
+                0.0,
+            )
+        }
+        Some(&[v, phi]) => (v, phi, 0.0, 0.0, 0.0),
+        Some(&[v, phi, theta, a, b]) => (v, phi, theta, a, b),
+        Some(other) => anyhow::bail!(
+            "--shot takes V0,phi or V0,phi,theta,a,b; {} numbers given",
+            other.len()
+        ),
+    };
+    let scene = PoolScene {
+        pool: PoolSetup {
+            balls: balls
+                .iter()
+                .map(|(name, p)| PoolBall {
+                    name: name.clone(),
+                    pos: p.0,
+                })
+                .collect(),
+            shot: PoolShot {
+                ball: "cue".into(),
+                speed,
+                phi,
+                theta,
+                a,
+                b,
+            },
+        },
+    };
+    // Refuse a shot that cannot be played (a tip that misses, a speed that is not finite).
+    scene.shot().context("--shot")?;
+    Ok(scene)
+}
+
 #[derive(clap::Args)]
 struct RackArgs {
     /// Cue ball speed, m/s.
@@ -186,7 +263,22 @@ struct RackArgs {
 
 /// Runs the command.
 pub fn run(args: Args) -> Result<ExitCode> {
+    if let Kind::Table(t) = &args.kind {
+        anyhow::ensure!(
+            args.gravity.is_none(),
+            "--gravity: a pool table has its own (the cloth's friction laws)"
+        );
+        let json = pool_table(t)?.to_json();
+        match &args.out {
+            Some(path) => {
+                std::fs::write(path, json).with_context(|| format!("writing {}", path.display()))?
+            }
+            None => out!("{json}")?,
+        }
+        return Ok(ExitCode::SUCCESS);
+    }
     let scene: AnyScene = match args.kind {
+        Kind::Table(_) => unreachable!("written above"),
         Kind::Gas(g) => {
             let cfg = GasConfig {
                 n: g.n,

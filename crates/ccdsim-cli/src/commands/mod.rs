@@ -7,5 +7,6 @@ pub mod gen;
 pub mod pack;
 pub mod render;
 pub mod run;
+mod run_pool;
 pub mod verify;
 pub mod view;

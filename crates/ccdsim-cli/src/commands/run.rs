@@ -17,7 +17,8 @@ use std::time::Instant;
 /// Arguments of `ccdsim run`.
 #[derive(clap::Args)]
 pub struct Args {
-    /// Scene file (JSON). Without it, the built-in billiard break is run.
+    /// Scene file (JSON): a ccdsim scene, or a pool scene (`ccdsim gen table`). Without it,
+    /// the built-in billiard break is run.
     scene: Option<PathBuf>,
     /// Next-event finder (broad phase).
     #[arg(long, default_value = "cells")]
@@ -171,6 +172,29 @@ impl SensorLog {
 
 /// Runs the command.
 pub fn run(args: Args) -> Result<ExitCode> {
+    if let Some(path) = &args.scene {
+        let text = std::fs::read_to_string(path).with_context(|| format!("{}", path.display()))?;
+        if ccdsim::billiards::PoolScene::is_pool_json(&text) {
+            let given = [
+                ("--finder", args.finder != "cells"),
+                ("--until", args.until.is_some()),
+                ("--events", args.events.is_some()),
+                ("--record", args.record.is_some()),
+                ("--frames", args.frames.is_some()),
+                ("--sensor-log", args.sensor_log.is_some()),
+            ];
+            let unsupported = super::run_pool::Unsupported(
+                given
+                    .iter()
+                    .filter(|(_, on)| *on)
+                    .map(|(f, _)| *f)
+                    .collect(),
+            );
+            super::run_pool::run(&text, &unsupported, args.json)
+                .with_context(|| format!("{}", path.display()))?;
+            return Ok(ExitCode::SUCCESS);
+        }
+    }
     let scene = match &args.scene {
         Some(path) => AnyScene::from_file(path).with_context(|| format!("{}", path.display()))?,
         None => AnyScene::D2(rack(&RackConfig::default())),

@@ -15,6 +15,7 @@ mod gas_and_periodic;
 mod golden_runs;
 mod hard_inputs;
 mod pack;
+mod pool;
 mod readme_sample;
 mod sensors;
 mod thermostat;

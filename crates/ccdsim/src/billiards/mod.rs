@@ -29,11 +29,13 @@ pub mod ball_impact;
 pub mod contact_time;
 pub mod cushion_impact;
 mod params;
+pub mod pool_scene;
 pub mod rack;
 mod shot;
 pub mod table;
 
 pub use params::BallParams;
+pub use pool_scene::{PoolBall, PoolScene, PoolSceneError, PoolSetup, PoolShot};
 pub use rack::{rack, rack_at, Game};
 pub use shot::{Shot, ShotError, ShotEvent, ShotEventKind, TableBall};
 pub use table::{Jaw, LinearCushion, Pocket, PocketTableSpecs, Table};

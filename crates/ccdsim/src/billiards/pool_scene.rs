@@ -1,0 +1,188 @@
+//! A pool scene file: the balls on pooltool's default table and the shot to play, as JSON.
+//!
+//! ```json
+//! {"pool": {"balls": [{"name": "cue", "pos": [0.842, 0.456]},
+//!                     {"name": "1", "pos": [0.495, 1.526]}],
+//!           "shot": {"ball": "cue", "speed": 8.0, "phi": 108.0}}}
+//! ```
+//!
+//! `shot` also takes `theta` (cue elevation, degrees), `a` and `b` (tip offsets in ball radii),
+//! all zero by default. Units are metres, m/s and degrees, as [`CueStrike`]'s.
+
+use serde::{Deserialize, Serialize};
+use thiserror::Error;
+
+use super::params::BallParams;
+use super::shot::{Shot, ShotError};
+use super::table::{PocketTableSpecs, Table};
+use crate::geom::Vector;
+use crate::motion::CueStrike;
+
+/// A ball of a pool scene: its name and where it stands (metres).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PoolBall {
+    /// The ball's name ("cue", "1", …).
+    pub name: String,
+    /// Position on the table, metres.
+    pub pos: [f64; 2],
+}
+
+/// The shot of a pool scene: which ball the cue strikes, and how.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PoolShot {
+    /// The name of the ball struck.
+    pub ball: String,
+    /// Cue speed, m/s.
+    pub speed: f64,
+    /// Direction, degrees counter-clockwise from `+x`.
+    pub phi: f64,
+    /// Cue elevation, degrees.
+    #[serde(default)]
+    pub theta: f64,
+    /// Side offset of the tip, ball radii.
+    #[serde(default)]
+    pub a: f64,
+    /// Vertical offset of the tip, ball radii.
+    #[serde(default)]
+    pub b: f64,
+}
+
+/// What a pool scene holds.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PoolSetup {
+    /// The balls, in order.
+    pub balls: Vec<PoolBall>,
+    /// The shot.
+    pub shot: PoolShot,
+}
+
+/// A pool scene file: `{"pool": {...}}`.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PoolScene {
+    /// The balls and the shot.
+    pub pool: PoolSetup,
+}
+
+/// Why a pool scene cannot be read or set up.
+#[derive(Debug, Error)]
+pub enum PoolSceneError {
+    /// Not JSON, or not a pool scene's fields (the path says where).
+    #[error("{0}")]
+    Format(String),
+    /// Two balls share a name.
+    #[error("two balls are named {0:?}")]
+    DuplicateName(String),
+    /// The shot names a ball that is not there.
+    #[error("the shot strikes {0:?}, which is not one of the balls")]
+    NoSuchBall(String),
+    /// The balls or the strike are refused by the table.
+    #[error(transparent)]
+    Shot(#[from] ShotError),
+}
+
+impl PoolScene {
+    /// Whether a JSON document is a pool scene (a top-level object with a `pool` key), so
+    /// that a reader can tell it from a ccdsim scene before parsing it.
+    #[must_use]
+    pub fn is_pool_json(json: &str) -> bool {
+        serde_json::from_str::<serde_json::Value>(json)
+            .is_ok_and(|v| v.as_object().is_some_and(|o| o.contains_key("pool")))
+    }
+
+    /// Parses a pool scene.
+    ///
+    /// # Errors
+    /// [`PoolSceneError::Format`] with the path of the bad field.
+    pub fn from_json(json: &str) -> Result<PoolScene, PoolSceneError> {
+        let de = &mut serde_json::Deserializer::from_str(json);
+        serde_path_to_error::deserialize(de).map_err(|e| {
+            let path = e.path().to_string();
+            PoolSceneError::Format(format!("{path}: {}", e.into_inner()))
+        })
+    }
+
+    /// The scene as pretty-printed JSON.
+    #[must_use]
+    pub fn to_json(&self) -> String {
+        serde_json::to_string_pretty(self).expect("a pool scene serialises") + "\n"
+    }
+
+    /// The balls' names, in order.
+    #[must_use]
+    pub fn names(&self) -> Vec<String> {
+        self.pool.balls.iter().map(|b| b.name.clone()).collect()
+    }
+
+    /// The shot set up on pooltool's default table with its default balls, struck and ready
+    /// to run.
+    ///
+    /// # Errors
+    /// Duplicate names, a shot at a ball that is not there, balls off the table or
+    /// overlapping, a tip that misses.
+    pub fn shot(&self) -> Result<Shot, PoolSceneError> {
+        let names = self.names();
+        for (i, n) in names.iter().enumerate() {
+            if names[..i].contains(n) {
+                return Err(PoolSceneError::DuplicateName(n.clone()));
+            }
+        }
+        let s = &self.pool.shot;
+        let cue = names
+            .iter()
+            .position(|n| *n == s.ball)
+            .ok_or_else(|| PoolSceneError::NoSuchBall(s.ball.clone()))?;
+        let positions: Vec<Vector<2>> = self.pool.balls.iter().map(|b| Vector(b.pos)).collect();
+        let table = Table::pool(&PocketTableSpecs::default());
+        let mut shot = Shot::new(table, BallParams::default(), &positions)?;
+        shot.strike(
+            cue,
+            &CueStrike {
+                speed: s.speed,
+                phi: s.phi,
+                theta: s.theta,
+                a: s.a,
+                b: s.b,
+            },
+        )?;
+        Ok(shot)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_pool_scene_reads_back_and_plays() {
+        let json = r#"{"pool": {"balls": [{"name": "cue", "pos": [0.5, 0.5]},
+                                          {"name": "1", "pos": [0.5, 1.2]}],
+                                "shot": {"ball": "cue", "speed": 2.0, "phi": 90.0}}}"#;
+        assert!(PoolScene::is_pool_json(json));
+        assert!(!PoolScene::is_pool_json(r#"{"dim": 2, "bodies": []}"#));
+        let scene = PoolScene::from_json(json).unwrap();
+        assert_eq!(PoolScene::from_json(&scene.to_json()).unwrap(), scene);
+        let mut shot = scene.shot().unwrap();
+        shot.run(100_000).unwrap();
+        assert!(shot.events().len() > 3);
+    }
+
+    #[test]
+    fn bad_pool_scenes_say_what_is_wrong() {
+        let err = PoolScene::from_json(r#"{"pool": {"balls": [], "shot": {"ball": "cue"}}}"#)
+            .unwrap_err();
+        assert!(err.to_string().contains("pool.shot"), "{err}");
+        let twice = r#"{"pool": {"balls": [{"name": "cue", "pos": [0.5, 0.5]},
+                                           {"name": "cue", "pos": [0.5, 1.0]}],
+                                 "shot": {"ball": "cue", "speed": 1, "phi": 0}}}"#;
+        let e = PoolScene::from_json(twice).unwrap().shot().unwrap_err();
+        assert!(matches!(e, PoolSceneError::DuplicateName(_)));
+        let missing = r#"{"pool": {"balls": [{"name": "cue", "pos": [0.5, 0.5]}],
+                                   "shot": {"ball": "white", "speed": 1, "phi": 0}}}"#;
+        let e = PoolScene::from_json(missing).unwrap().shot().unwrap_err();
+        assert!(e.to_string().contains("white"), "{e}");
+    }
+}
