@@ -395,8 +395,6 @@ impl Shot {
         let event = self.next_event()?;
         let t = event.time;
         self.time = t;
-        let p = self.params;
-        let r = p.radius();
         match event.kind {
             ShotEventKind::Transition { ball, to, .. } => {
                 let b = settle(self.ball_at(ball, t), to);
@@ -409,31 +407,12 @@ impl Shot {
             }
             ShotEventKind::Cushion { ball, cushion } => {
                 let c = &self.table.cushions[cushion];
-                let b = bounce(
-                    &self.ball_at(ball, t),
-                    c.normal(),
-                    r,
-                    p.mass,
-                    c.height,
-                    p.cushion_restitution,
-                    p.cushion_friction,
-                );
-                self.set(ball, b, ClothState::Sliding);
+                self.bounce_off(ball, c.normal(), c.height);
             }
             ShotEventKind::Jaw { ball, jaw } => {
                 let j = &self.table.jaws[jaw];
-                let at = self.ball_at(ball, t);
-                let d = at.pos - j.center;
-                let b = bounce(
-                    &at,
-                    d * (1.0 / d.norm()),
-                    r,
-                    p.mass,
-                    j.height,
-                    p.cushion_restitution,
-                    p.cushion_friction,
-                );
-                self.set(ball, b, ClothState::Sliding);
+                let d = self.ball_at(ball, t).pos - j.center;
+                self.bounce_off(ball, d * (1.0 / d.norm()), j.height);
             }
             ShotEventKind::Pocket { ball, pocket } => {
                 let centre = self.table.pockets[pocket].center;
@@ -468,6 +447,22 @@ impl Shot {
             return Err(ShotError::TooManyEvents(max_events));
         }
         Ok(max_events)
+    }
+
+    /// Ball `i` bounces now off a cushion nose at `height` (m) with contact normal `normal`
+    /// (Han 2005) and slides on.
+    fn bounce_off(&mut self, i: usize, normal: Vector<2>, height: f64) {
+        let p = self.params;
+        let b = bounce(
+            &self.ball_at(i, self.time),
+            normal,
+            p.radius(),
+            p.mass,
+            height,
+            p.cushion_restitution,
+            p.cushion_friction,
+        );
+        self.set(i, b, ClothState::Sliding);
     }
 
     /// Gives ball `i` a new state at the current time and renews every prediction it is in.
