@@ -65,12 +65,12 @@ pub fn pool_shot<'py>(
     };
     let table = Table::pool(&PocketTableSpecs::default());
     let mut shot = Shot::new(table, BallParams::default(), &positions)
-        .map_err(|e| PyValueError::new_err(e.to_string()))?;
+        .map_err(|e| PyValueError::new_err(e.describe(&names)))?;
     shot.strike(cue_index, &strike)
-        .map_err(|e| PyValueError::new_err(e.to_string()))?;
+        .map_err(|e| PyValueError::new_err(e.describe(&names)))?;
     let shot = py
         .detach(move || shot.run(max_events).map(|_| shot))
-        .map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
+        .map_err(|e| PyRuntimeError::new_err(e.describe(&names)))?;
     let out = PyDict::new(py);
     let events: Vec<(f64, String, Vec<String>)> = shot
         .events()

@@ -1,7 +1,7 @@
 //! `ccdsim run` on a pool scene (`ccdsim gen table`): the shot played until every ball rests
 //! or is pocketed, and what happened.
 
-use anyhow::{bail, Context, Result};
+use anyhow::{bail, Result};
 use ccdsim::billiards::{PoolScene, ShotEventKind};
 use serde::Serialize;
 
@@ -32,10 +32,13 @@ pub fn run(json: &str, unsupported: &Unsupported<'_>, as_json: bool) -> Result<(
     }
     let scene = PoolScene::from_json(json)?;
     let mut shot = scene.shot()?;
-    shot.run(1_000_000).context(
-        "the shot did not end: balls pressed together are not modelled yet (docs/model.md, Pool)",
-    )?;
     let names = scene.names();
+    if let Err(e) = shot.run(1_000_000) {
+        bail!(
+            "the shot could not be played to the end (docs/model.md, Pool): {}",
+            e.describe(&names)
+        );
+    }
     let count = |f: fn(&ShotEventKind) -> bool| shot.events().iter().filter(|e| f(&e.kind)).count();
     let summary = PoolSummary {
         events: shot.events().len(),

@@ -79,9 +79,9 @@ pub enum PoolSceneError {
     /// The shot names a ball that is not there.
     #[error("the shot strikes {0:?}, which is not one of the balls")]
     NoSuchBall(String),
-    /// The balls or the strike are refused by the table.
-    #[error(transparent)]
-    Shot(#[from] ShotError),
+    /// The balls or the strike are refused by the table (the message names the balls).
+    #[error("{1}")]
+    Shot(ShotError, String),
 }
 
 impl PoolScene {
@@ -137,7 +137,11 @@ impl PoolScene {
             .ok_or_else(|| PoolSceneError::NoSuchBall(s.ball.clone()))?;
         let positions: Vec<Vector<2>> = self.pool.balls.iter().map(|b| Vector(b.pos)).collect();
         let table = Table::pool(&PocketTableSpecs::default());
-        let mut shot = Shot::new(table, BallParams::default(), &positions)?;
+        let named = |e: ShotError| {
+            let text = e.describe(&names);
+            PoolSceneError::Shot(e, text)
+        };
+        let mut shot = Shot::new(table, BallParams::default(), &positions).map_err(named)?;
         shot.strike(
             cue,
             &CueStrike {
@@ -147,7 +151,8 @@ impl PoolScene {
                 a: s.a,
                 b: s.b,
             },
-        )?;
+        )
+        .map_err(named)?;
         Ok(shot)
     }
 }

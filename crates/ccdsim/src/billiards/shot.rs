@@ -186,6 +186,42 @@ pub enum ShotError {
     /// ever smaller bounces, or a limit set too low).
     #[error("the shot did not end within {0} events")]
     TooManyEvents(usize),
+    /// Two touching balls meet without approaching, or twice at one instant: their different
+    /// decelerations press them together, a lasting contact the model does not have
+    /// (docs/model.md, "Pool").
+    #[error(
+        "balls {0} and {1} press together at t = {2} s (touching, not approaching, pushed \
+         together by their decelerations): a lasting contact is not modelled yet"
+    )]
+    Pressed(usize, usize, f64),
+}
+
+impl ShotError {
+    /// The message with the balls called by `names` (indexed as the shot's balls) instead of
+    /// by number.
+    #[must_use]
+    pub fn describe(&self, names: &[String]) -> String {
+        let name = |i: usize| {
+            names
+                .get(i)
+                .map_or_else(|| i.to_string(), |n| format!("{n:?}"))
+        };
+        match *self {
+            ShotError::OffTable(i, x, y) => format!(
+                "ball {} at ({x}, {y}) is not on the table (clear of the cushions and pockets)",
+                name(i)
+            ),
+            ShotError::Overlap(i, j) => format!("balls {} and {} overlap", name(i), name(j)),
+            ShotError::NoSuchBall(i) => format!("there is no ball {} on the table", name(i)),
+            ShotError::Pressed(a, b, t) => format!(
+                "balls {} and {} press together at t = {t} s (touching, not approaching, pushed \
+                 together by their decelerations): a lasting contact is not modelled yet",
+                name(a),
+                name(b)
+            ),
+            ShotError::Miss | ShotError::TooManyEvents(_) => self.to_string(),
+        }
+    }
 }
 
 /// A shot on a table: the balls, the events so far and the predictions of the next ones.
@@ -204,6 +240,10 @@ pub struct Shot {
     /// Each ball's next cushion, jaw or pocket.
     rails: Vec<Option<ShotEvent>>,
     events: Vec<ShotEvent>,
+    /// The first meeting of two balls that were not approaching.
+    pressed: Option<(usize, usize, f64)>,
+    /// Each ball's last meeting with a higher-numbered ball: that ball and the time.
+    last_meeting: Vec<Option<(usize, f64)>>,
 }
 
 impl Shot {
@@ -252,6 +292,8 @@ impl Shot {
             pairs: vec![None; n * n],
             rails: vec![None; n],
             events: Vec::new(),
+            pressed: None,
+            last_meeting: vec![None; n],
         };
         shot.flights = (0..n).map(|i| shot.flight_of(i)).collect();
         for i in 0..n {
@@ -330,6 +372,15 @@ impl Shot {
         self.params.cloth.evolve(&b.ball, b.state, t - b.time)
     }
 
+    /// The first two balls that met without approaching, or met twice at the same time, and
+    /// when: touching balls pressed together by their different decelerations. The elastic
+    /// model then meets them again and again at ever shorter intervals, and at last at one
+    /// instant for ever; what follows is not physics. [`Shot::run`] stops there.
+    #[must_use]
+    pub fn pressed(&self) -> Option<(usize, usize, f64)> {
+        self.pressed
+    }
+
     /// Whether every ball rests or is pocketed.
     #[must_use]
     pub fn is_still(&self) -> bool {
@@ -401,7 +452,15 @@ impl Shot {
                 self.set(ball, b, to);
             }
             ShotEventKind::Balls { a, b } => {
-                let (na, nb) = exchange(&self.ball_at(a, t), &self.ball_at(b, t));
+                let (ba, bb) = (self.ball_at(a, t), self.ball_at(b, t));
+                // Not approaching, or meeting again with no time in between (the intervals
+                // of a Zeno sequence fall below the resolution of t): pressed together.
+                let again = self.last_meeting[a] == Some((b, t));
+                if again || (ba.vel - bb.vel).dot(bb.pos - ba.pos) <= 0.0 {
+                    self.pressed.get_or_insert((a, b, t));
+                }
+                self.last_meeting[a] = Some((b, t));
+                let (na, nb) = exchange(&ba, &bb);
                 self.set(a, na, ClothState::Sliding);
                 self.set(b, nb, ClothState::Sliding);
             }
@@ -436,9 +495,14 @@ impl Shot {
     /// returns how many it played.
     ///
     /// # Errors
-    /// [`ShotError::TooManyEvents`] when balls are still moving after `max_events` events.
+    /// [`ShotError::TooManyEvents`] when balls are still moving after `max_events` events;
+    /// [`ShotError::Pressed`] as soon as two balls meet without approaching (see
+    /// [`Shot::pressed`]).
     pub fn run(&mut self, max_events: usize) -> Result<usize, ShotError> {
         for played in 0..max_events {
+            if let Some((a, b, t)) = self.pressed {
+                return Err(ShotError::Pressed(a, b, t));
+            }
             if self.step().is_none() {
                 return Ok(played);
             }

@@ -178,7 +178,8 @@ pub fn run(args: Args) -> Result<ExitCode> {
             (BreakLayout::racked(game, args.seed, args.speed), None)
         }
     };
-    let report = pool_break(&layout, args.runs).map_err(|e| anyhow!(e))?;
+    let names: Vec<String> = layout.balls.iter().map(|(n, _)| n.clone()).collect();
+    let report = pool_break(&layout, args.runs).map_err(|e| anyhow!(e.describe(&names)))?;
     if args.json {
         let mut v = serde_json::to_value(&report)?;
         v["breaks_per_second"] = (1.0 / report.median_seconds).into();
