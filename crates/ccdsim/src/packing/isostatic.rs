@@ -9,7 +9,10 @@
 //! overlaps remain at the minimum. A first factor above 1 jams it; then each step shrinks
 //! the radii by most of the mean overlap (which is proportional to the distance from the
 //! jamming point), or bisects when a step overshoots, until the mean overlap of the jammed
-//! minimum is below the target. The contacts of that minimum carry balanced forces, so after
+//! minimum is below the target. Only minima whose forces balanced within the steps allowed,
+//! and whose mean overlap is not far below the target ([`MARGINAL`]), count as jammed: one
+//! that ran out of steps may still be unjamming, and one with next to no overlap sits on
+//! the jamming point, where contacts carrying no force cannot be told from gaps. The contacts of that minimum carry balanced forces, so after
 //! removing rattlers they hold the packing rigid: the contact count is isostatic, `2D` per
 //! body less `O(1/N)`.
 //!
@@ -28,6 +31,10 @@ use crate::sim::Simulation;
 /// Steps towards the jamming point [`finish_isostatic`] takes before it gives up (a search
 /// takes 5 to 10).
 const MAX_ROUNDS: usize = 200;
+
+/// Jammed minima whose mean overlap is below this fraction of the target count as not
+/// jammed (see [`finish_isostatic`]).
+const MARGINAL: f64 = 1e-2;
 
 /// How [`finish_isostatic`] runs.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -147,14 +154,18 @@ pub fn finish_isostatic<const D: usize>(
     // Over-compress until the minimum keeps overlaps.
     let start = soft.positions.clone();
     let mut s_lo = 1.0f64;
-    let mut grow = 1e-3;
+    let mut grow = 4e-3;
     let mut hi = loop {
         let s = 1.0 + grow;
         let m = minimize_at(&mut soft, &start, s, &loose);
-        if m.jammed() {
+        if m.jammed() && m.converged {
             break Jammed::new(s, m, &soft.positions);
         }
-        s_lo = s;
+        // Unjammed, or so near the jamming point that the minimisation ran out of steps
+        // (the closer, the slower): compress further, where the minimum is found fast.
+        if m.converged {
+            s_lo = s;
+        }
         grow *= 4.0;
         if grow > 0.3 {
             return Err(far_from_jammed());
@@ -190,7 +201,9 @@ pub fn finish_isostatic<const D: usize>(
                 _ => hi.scale * (1.0 - 1.5 * ov),
             };
             // A tenth of the way, or just past the target when that is nearer: the last
-            // minima, near the jamming point, are the slow ones.
+            // minima, near the jamming point, are the slow ones. (A thirtieth of the way
+            // starts the next minimisation too far from its minimum: at N = 3000 one ran
+            // out of 2 × 10⁵ steps.)
             let fraction = (0.7 * config.overlap / ov).max(0.1);
             let mut s = jamming + fraction * (hi.scale - jamming);
             if !(s > s_lo && s < hi.scale) {
@@ -207,11 +220,8 @@ pub fn finish_isostatic<const D: usize>(
             }
         }
         let m = minimize_at(&mut soft, &guess, s, tolerance);
-        // A loose minimum whose overlaps mostly relax away under the strict tolerance was
-        // sliding towards unjamming: that size does not jam.
-        let sliding = s >= hi.scale && m.mean_overlap < 0.5 * hi.minimum.mean_overlap;
-        if m.jammed() && !sliding {
-            let strict_now = std::ptr::eq(tolerance, &strict);
+        let strict_now = std::ptr::eq(tolerance, &strict);
+        if counts_as_jammed(&m, strict_now, s, &hi, config.overlap) {
             let next = Jammed {
                 strict: strict_now,
                 ..Jammed::new(s, m, &soft.positions)
@@ -299,6 +309,28 @@ pub fn finish_isostatic<const D: usize>(
     })
 }
 
+/// Whether the minimum `m` found at radius factor `s` (with the strict tolerance or not) counts
+/// as jammed, `hi` being the jammed minimum the search holds. Not when:
+/// * no overlap beyond rounding is left ([`Minimum::jammed`]);
+/// * a loose minimisation ran out of steps before its forces balanced: it may still be
+///   unjamming (near the jamming point minima are slow to find);
+/// * at `hi`'s size or larger, its overlaps mostly relaxed away: the loose minimum `hi` was
+///   sliding towards unjamming;
+/// * its mean overlap is below [`MARGINAL`] of the `target`: it sits so near the jamming point
+///   that contacts carrying next to no force cannot be told from gaps.
+fn counts_as_jammed<const D: usize>(
+    m: &Minimum,
+    strict: bool,
+    s: f64,
+    hi: &Jammed<D>,
+    target: f64,
+) -> bool {
+    let settled = m.converged || strict;
+    let sliding = s >= hi.scale && m.mean_overlap < 0.5 * hi.minimum.mean_overlap;
+    let marginal = m.mean_overlap < MARGINAL * target;
+    m.jammed() && settled && !sliding && !marginal
+}
+
 fn far_from_jammed() -> CompressError {
     CompressError::Config(
         "the packing does not jam when its radii grow by 30 %: it is far from jammed".into(),
@@ -316,4 +348,89 @@ fn spatial_order<const D: usize>(positions: &[Vector<D>], cell: f64) -> Vec<usiz
         order.sort_by_key(|&i| key(&positions[i]));
     }
     order
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn minimum(mean_overlap: f64, converged: bool) -> Minimum {
+        Minimum {
+            energy_per_body: mean_overlap * mean_overlap,
+            mean_overlap,
+            max_overlap: 4.0 * mean_overlap,
+            steps: 1000,
+            converged,
+            rounding: 1e-12,
+        }
+    }
+
+    #[test]
+    fn only_settled_minima_clear_of_the_jamming_point_count_as_jammed() {
+        let hi = Jammed::<3>::new(1.002, minimum(1e-4, true), &[]);
+        let target = 1e-6;
+        // Below `hi`, settled, overlap above the target: jammed.
+        assert!(counts_as_jammed(
+            &minimum(2e-5, true),
+            false,
+            1.0015,
+            &hi,
+            target
+        ));
+        // A loose minimisation that ran out of steps may still be unjamming; a strict one
+        // that did so is taken as it is.
+        assert!(!counts_as_jammed(
+            &minimum(2e-5, false),
+            false,
+            1.0015,
+            &hi,
+            target
+        ));
+        assert!(counts_as_jammed(
+            &minimum(2e-5, false),
+            true,
+            1.0015,
+            &hi,
+            target
+        ));
+        // Overlaps far below the target (the case a 3D N = 3000 search once ended on, with
+        // 1.3 × 10⁻¹¹ and too few contacts to hold the packing): not jammed.
+        assert!(!counts_as_jammed(
+            &minimum(1.3e-11, true),
+            true,
+            1.0015,
+            &hi,
+            target
+        ));
+        assert!(counts_as_jammed(
+            &minimum(1.1e-8, true),
+            true,
+            1.0015,
+            &hi,
+            target
+        ));
+        // At `hi`'s size, overlaps that relax to less than half of `hi`'s: sliding.
+        assert!(!counts_as_jammed(
+            &minimum(4e-5, true),
+            true,
+            1.002,
+            &hi,
+            target
+        ));
+        assert!(counts_as_jammed(
+            &minimum(6e-5, true),
+            true,
+            1.002,
+            &hi,
+            target
+        ));
+        // Nothing left beyond rounding.
+        assert!(!counts_as_jammed(
+            &minimum(1e-13, true),
+            true,
+            1.0015,
+            &hi,
+            1e-12
+        ));
+    }
 }

@@ -60,10 +60,13 @@ pub(crate) struct SoftPacking<'a, const D: usize> {
     radii: Vec<f64>,
     walls: &'a [Wall<D>],
     periodic: Option<Vector<D>>,
-    /// Pairs within `reach` when the list was built, with `1/σ` and the periodic image that
-    /// brought them there (added to `x_j − x_i`; it stays right while no body moves half the
-    /// skin), and where the bodies were then.
-    list: Vec<(u32, u32, f64, Vector<D>)>,
+    /// Pairs within `reach` when the list was built, with `1/σ`, that are close directly,
+    /// and where the bodies were then.
+    list: Vec<(u32, u32, f64)>,
+    /// Pairs close through a periodic image, with `1/σ` and the image's shift (added to
+    /// `x_j − x_i`; it stays right while no body moves half the skin). Kept apart so that the
+    /// many direct pairs are small to stream through at every step.
+    list_across: Vec<(u32, u32, f64, Vector<D>)>,
     listed_at: Vec<Vector<D>>,
     skin: f64,
 }
@@ -85,6 +88,7 @@ impl<'a, const D: usize> SoftPacking<'a, D> {
             walls,
             periodic,
             list: Vec::new(),
+            list_across: Vec::new(),
             listed_at: Vec::new(),
             // Wide enough that bodies of a packing near jamming seldom outrun it.
             skin: 0.1 * r_min,
@@ -110,40 +114,53 @@ impl<'a, const D: usize> SoftPacking<'a, D> {
     fn relist(&mut self) {
         let r_max = self.radii.iter().copied().fold(0.0f64, f64::max);
         let reach = 2.0 * r_max + self.skin;
-        self.list = if self.positions.len() < 2 {
-            Vec::new()
-        } else {
+        self.list.clear();
+        self.list_across.clear();
+        if self.positions.len() >= 2 {
             let radii = &self.radii;
             let skin = self.skin;
             let positions = &self.positions;
-            close_pairs(positions, self.periodic, reach, |i, j, d| {
+            let pairs = close_pairs(positions, self.periodic, reach, |i, j, d| {
                 d.norm() <= radii[i] + radii[j] + skin
-            })
-            .into_iter()
-            .map(|(i, j)| {
+            });
+            for (i, j) in pairs {
                 let raw = positions[j] - positions[i];
                 let shift = match self.periodic {
                     Some(size) => min_image(raw, &size) - raw,
                     None => Vector::default(),
                 };
-                (i as u32, j as u32, 1.0 / (radii[i] + radii[j]), shift)
-            })
-            .collect()
-        };
+                let inv_sigma = 1.0 / (radii[i] + radii[j]);
+                if shift == Vector::default() {
+                    self.list.push((i as u32, j as u32, inv_sigma));
+                } else {
+                    self.list_across
+                        .push((i as u32, j as u32, inv_sigma, shift));
+                }
+            }
+        }
         self.listed_at.clone_from(&self.positions);
     }
 
     /// Relists when some body has moved half the skin since the last list: until then every
-    /// pair that can overlap is on it.
-    fn relist_if_stale(&mut self) {
+    /// pair that can overlap is on it. `bound` is an upper bound of every body's displacement
+    /// since the list (the sum of the largest step of each step): the bodies are only looked
+    /// at once it passes half the skin, and it then becomes their largest displacement.
+    fn relist_if_stale(&mut self, bound: &mut f64) {
         let half = 0.5 * self.skin;
-        let moved = self
+        if *bound <= half {
+            return;
+        }
+        let moved_sq = self
             .positions
             .iter()
             .zip(&self.listed_at)
-            .any(|(p, q)| (*p - *q).norm_sq() > half * half);
-        if moved {
+            .map(|(p, q)| (*p - *q).norm_sq())
+            .fold(0.0, f64::max);
+        if moved_sq > half * half {
             self.relist();
+            *bound = 0.0;
+        } else {
+            *bound = moved_sq.sqrt();
         }
     }
 
@@ -153,7 +170,11 @@ impl<'a, const D: usize> SoftPacking<'a, D> {
     fn forces(&self, forces: &mut [Vector<D>]) -> Overlaps {
         forces.fill(Vector::default());
         let mut o = Overlaps::default();
-        for &(i, j, inv_sigma, shift) in &self.list {
+        let direct = self
+            .list
+            .iter()
+            .map(|&(i, j, s)| (i, j, s, Vector::default()));
+        for (i, j, inv_sigma, shift) in direct.chain(self.list_across.iter().copied()) {
             let (i, j) = (i as usize, j as usize);
             let d = self.positions[j] - self.positions[i] + shift;
             let dist_sq = d.norm_sq();
@@ -211,10 +232,21 @@ impl<'a, const D: usize> SoftPacking<'a, D> {
                 .fold(0.0, |m: f64, x| m.max(x.abs())),
         };
         let floor = 64.0 * f64::EPSILON * extent / (sigma_min * sigma_min);
+        // How far any body may have moved since the pair list was made.
+        let mut moved = f64::INFINITY;
         loop {
-            self.relist_if_stale();
+            self.relist_if_stale(&mut moved);
             let o = self.forces(&mut forces);
-            let max_force_sq = forces.iter().map(|f| f.norm_sq()).fold(0.0, f64::max);
+            // One pass for every sum the step needs: the largest force (convergence), the
+            // power `F·v`, and `|F|²` and `|v|²` (FIRE's mixing).
+            let (mut max_force_sq, mut power, mut f_sq, mut v_sq) = (0.0f64, 0.0, 0.0, 0.0);
+            for (f, v) in forces.iter().zip(&velocities) {
+                let ff = f.norm_sq();
+                max_force_sq = max_force_sq.max(ff);
+                f_sq += ff;
+                power += f.dot(*v);
+                v_sq += v.norm_sq();
+            }
             let mean_force = if o.count > 0 {
                 o.force_sum / o.count as f64
             } else {
@@ -238,7 +270,6 @@ impl<'a, const D: usize> SoftPacking<'a, D> {
                 };
             }
             steps += 1;
-            let power: f64 = forces.iter().zip(&velocities).map(|(f, v)| f.dot(*v)).sum();
             if power > 0.0 {
                 positive += 1;
                 if positive > DELAY {
@@ -251,24 +282,29 @@ impl<'a, const D: usize> SoftPacking<'a, D> {
                 for (p, v) in self.positions.iter_mut().zip(&velocities) {
                     *p -= *v * (0.5 * dt);
                 }
+                moved += 0.5 * dt * v_sq.sqrt();
                 velocities.fill(Vector::default());
+                (power, v_sq) = (0.0, 0.0);
                 dt = (dt * SHRINK).max(dt_min);
                 alpha = ALPHA_START;
             }
-            for (v, f) in velocities.iter_mut().zip(&forces) {
-                *v += *f * dt;
-            }
-            let v_norm = velocities.iter().map(|v| v.norm_sq()).sum::<f64>().sqrt();
-            let f_norm = forces.iter().map(|f| f.norm_sq()).sum::<f64>().sqrt();
-            if f_norm > 0.0 {
-                let turn = alpha * v_norm / f_norm;
-                for (v, f) in velocities.iter_mut().zip(&forces) {
-                    *v = *v * (1.0 - alpha) + *f * turn;
-                }
-            }
-            for (p, v) in self.positions.iter_mut().zip(&velocities) {
+            // The kick `v + F dt` has the norm `|v|² + 2 dt F·v + dt² |F|²`; the velocity is
+            // then turned towards the force (FIRE's mixing) and the bodies move, in one pass.
+            let kicked_sq = (v_sq + dt * (2.0 * power + dt * f_sq)).max(0.0);
+            let turn = if f_sq > 0.0 {
+                alpha * (kicked_sq / f_sq).sqrt()
+            } else {
+                0.0
+            };
+            let keep = if f_sq > 0.0 { 1.0 - alpha } else { 1.0 };
+            let mut step_sq = 0.0f64;
+            for ((p, v), f) in self.positions.iter_mut().zip(&mut velocities).zip(&forces) {
+                let kicked = *v + *f * dt;
+                *v = kicked * keep + *f * turn;
+                step_sq = step_sq.max(v.norm_sq());
                 *p += *v * dt;
             }
+            moved += dt * step_sq.sqrt();
         }
     }
 
