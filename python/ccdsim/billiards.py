@@ -19,7 +19,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Sequence, Tuple
+from typing import Mapping, Optional, Sequence, Tuple
 
 from . import _ccdsim
 
@@ -69,13 +69,27 @@ def shot(
     b: float = 0.0,
     cue: str = "cue",
     max_events: int = 1_000_000,
+    ball_ball: Optional[Mapping[str, float]] = None,
 ) -> Shot:
     """Strikes ball ``cue`` (``speed`` m/s towards ``phi`` degrees; cue elevation ``theta``
     degrees; tip offsets ``a`` (side) and ``b`` (height) in ball radii) and plays the shot
     until every ball rests or is pocketed. ``balls``: ``(name, x, y)`` in metres on
-    pooltool's default 7-foot table (0.9906 x 1.9812 m). Raises ``ValueError`` for balls off
-    the table or overlapping and for a tip that misses, ``RuntimeError`` when the shot does
-    not end within ``max_events`` events."""
+    pooltool's default 7-foot table (0.9906 x 1.9812 m). Balls meet without friction,
+    elastically, unless ``ball_ball`` is given, as in a pool scene: ``{"restitution": e_b,
+    "friction": mu}`` (0.95 and Alciatore's friction curve when left out) selects the
+    frictional model. Raises ``ValueError`` for balls off the table or overlapping, for a tip
+    that misses and for bad ``ball_ball`` numbers or keys, ``RuntimeError`` when the shot
+    does not end within ``max_events`` events."""
+    model = None
+    if ball_ball is not None:
+        unknown = set(ball_ball) - {"restitution", "friction"}
+        if unknown:
+            raise ValueError(f"ball_ball: unknown keys {sorted(unknown)}")
+        friction = ball_ball.get("friction")
+        model = (
+            float(ball_ball.get("restitution", 0.95)),
+            None if friction is None else float(friction),
+        )
     d = _ccdsim.pool_shot(
         [(str(n), float(x), float(y)) for n, x, y in balls],
         float(speed),
@@ -85,6 +99,7 @@ def shot(
         float(b),
         cue,
         int(max_events),
+        model,
     )
     return Shot(
         events=[(t, k, list(agents)) for t, k, agents in d["events"]],

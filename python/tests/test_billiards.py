@@ -43,3 +43,17 @@ def test_bad_shots_are_refused_with_the_reason():
     with pytest.raises(ValueError, match="nine-ball"):
         billiards.rack("snooker")
     assert ccdsim.billiards is billiards
+
+
+def test_the_frictional_model_throws_a_cut_ball():
+    balls = [("cue", 0.5, 0.5), ("1", 0.5, 1.0)]
+    plain = billiards.shot(balls, speed=2.0, phi=88.0)
+    frictional = billiards.shot(balls, speed=2.0, phi=88.0, ball_ball={"friction": 0.06})
+    assert plain.positions["1"] != frictional.positions["1"]
+    assert frictional == billiards.shot(
+        balls, speed=2.0, phi=88.0, ball_ball={"restitution": 0.95, "friction": 0.06}
+    )
+    with pytest.raises(ValueError, match="restitution"):
+        billiards.shot(balls, speed=2.0, phi=88.0, ball_ball={"restitution": 2.0})
+    with pytest.raises(ValueError, match="unknown keys"):
+        billiards.shot(balls, speed=2.0, phi=88.0, ball_ball={"mu": 0.1})

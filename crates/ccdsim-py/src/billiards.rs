@@ -1,7 +1,9 @@
 //! `ccdsim._ccdsim.pool_shot` and `pool_rack`: a pool shot played to the end, and the racks
 //! (see the library's `billiards` module).
 
-use ccdsim::billiards::{rack, BallParams, Game, PocketTableSpecs, Shot, Table};
+use ccdsim::billiards::{
+    rack, BallBallModel, BallParams, Game, PocketTableSpecs, PoolBallBall, Shot, Table,
+};
 use ccdsim::motion::CueStrike;
 use ccdsim::Vector;
 use pyo3::exceptions::{PyRuntimeError, PyValueError};
@@ -35,9 +37,11 @@ pub fn pool_rack(game: &str, seed: u64) -> PyResult<Vec<(String, f64, f64)>> {
 /// every ball rests or is pocketed (at most `max_events` events). Returns a dict: `events`
 /// (a list of `(time, type, agents)` with pooltool's type names), `positions` (name → (x, y)
 /// at the end), `pocketed` (name → pocket id, in the order they dropped), `time` (when the
-/// last ball stopped, s). Runs without the GIL.
+/// last ball stopped, s). `ball_ball`, `(restitution, friction or None)`, makes balls meet by
+/// the frictional model (see `ccdsim::billiards::ball_impact`); without it they meet without
+/// friction, elastically. Runs without the GIL.
 #[pyfunction]
-#[pyo3(signature = (balls, speed, phi, theta=0.0, a=0.0, b=0.0, cue="cue", max_events=1_000_000))]
+#[pyo3(signature = (balls, speed, phi, theta=0.0, a=0.0, b=0.0, cue="cue", max_events=1_000_000, ball_ball=None))]
 #[allow(clippy::too_many_arguments)]
 pub fn pool_shot<'py>(
     py: Python<'py>,
@@ -49,7 +53,20 @@ pub fn pool_shot<'py>(
     b: f64,
     cue: &str,
     max_events: usize,
+    ball_ball: Option<(f64, Option<f64>)>,
 ) -> PyResult<Bound<'py, PyDict>> {
+    let params = BallParams {
+        ball_ball: match ball_ball {
+            None => BallBallModel::FrictionlessElastic,
+            Some((restitution, friction)) => PoolBallBall {
+                restitution,
+                friction,
+            }
+            .model()
+            .map_err(|e| PyValueError::new_err(e.to_string()))?,
+        },
+        ..BallParams::default()
+    };
     let names: Vec<String> = balls.iter().map(|(n, _, _)| n.clone()).collect();
     let cue_index = names
         .iter()
@@ -64,7 +81,7 @@ pub fn pool_shot<'py>(
         b,
     };
     let table = Table::pool(&PocketTableSpecs::default());
-    let mut shot = Shot::new(table, BallParams::default(), &positions)
+    let mut shot = Shot::new(table, params, &positions)
         .map_err(|e| PyValueError::new_err(e.describe(&names)))?;
     shot.strike(cue_index, &strike)
         .map_err(|e| PyValueError::new_err(e.describe(&names)))?;

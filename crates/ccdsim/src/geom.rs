@@ -92,6 +92,19 @@ impl<const D: usize> Vector<D> {
     }
 }
 
+impl Vector<3> {
+    /// Cross product `self × o`.
+    #[must_use]
+    #[inline]
+    pub fn cross(self, o: Self) -> Self {
+        Vector([
+            self[1] * o[2] - self[2] * o[1],
+            self[2] * o[0] - self[0] * o[2],
+            self[0] * o[1] - self[1] * o[0],
+        ])
+    }
+}
+
 impl<const D: usize> Add for Vector<D> {
     type Output = Self;
     #[inline]

@@ -2,7 +2,8 @@
 
 use anyhow::{Context, Result};
 use ccdsim::billiards::{
-    self, BallParams, Game, PocketTableSpecs, PoolBall, PoolScene, PoolSetup, PoolShot, Table,
+    self, BallParams, Game, PocketTableSpecs, PoolBall, PoolBallBall, PoolScene, PoolSetup,
+    PoolShot, Table,
 };
 use ccdsim::generate::{
     galton, galton_duration, gas, pegs, rack, thesis, GaltonConfig, GasConfig, Lattice, PegsConfig,
@@ -199,6 +200,11 @@ struct TableArgs {
     /// it, the break: 8 m/s from the cue ball straight at the apex ball.
     #[arg(long, value_delimiter = ',', allow_hyphen_values = true)]
     shot: Option<Vec<f64>>,
+    /// Balls meet with friction and restitution 0.95 (pooltool 0.4's `frictional_inelastic`,
+    /// Alciatore's friction curve) instead of without friction, elastically (pooltool 0.3.3's
+    /// default). The scene's `ball_ball` field sets other coefficients.
+    #[arg(long)]
+    frictional: bool,
 }
 
 /// The pool scene of `gen table`.
@@ -244,6 +250,10 @@ fn pool_table(t: &TableArgs) -> Result<PoolScene> {
                 a,
                 b,
             },
+            ball_ball: t.frictional.then_some(PoolBallBall {
+                restitution: 0.95,
+                friction: None,
+            }),
         },
     };
     // Refuse a shot that cannot be played (a tip that misses, a speed that is not finite).

@@ -32,6 +32,24 @@ fn gen_table_writes_a_break_that_run_plays_to_the_end() {
     let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     assert_eq!(v["pool"]["balls"].as_array().unwrap().len(), 16);
     assert_eq!(v["pool"]["shot"]["b"], 0.3);
+    assert!(v["pool"].get("ball_ball").is_none());
+
+    // The frictional ball-ball model: the scene says so, and the break plays differently.
+    let frictional = common::scratch_file("pool", "frictional.json");
+    run_ok(
+        ccdsim()
+            .args(["gen", "table", "--frictional", "--out"])
+            .arg(&frictional),
+    );
+    let v: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&frictional).unwrap()).unwrap();
+    assert_eq!(
+        v["pool"]["ball_ball"],
+        serde_json::json!({"restitution": 0.95})
+    );
+    let out = run_ok(ccdsim().arg("run").arg(&frictional).arg("--json"));
+    let other: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_ne!(other["positions"], summary["positions"]);
 }
 
 #[test]

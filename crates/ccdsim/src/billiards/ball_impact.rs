@@ -1,8 +1,18 @@
-//! Two balls meeting: frictionless, instantaneous and perfectly elastic, between equal masses
-//! (pooltool 0.3.3's default ball–ball model, `frictionless_elastic`). The velocity
-//! components along the line of centres are exchanged; the rest of each velocity, and every
-//! angular velocity, is kept (no friction acts between the balls).
+//! Two balls meeting, by one of two models between equal masses:
+//!
+//! * [`exchange`]: frictionless, instantaneous and perfectly elastic (pooltool 0.3.3's default
+//!   ball–ball model, `frictionless_elastic`). The velocity components along the line of
+//!   centres are exchanged; the rest of each velocity, and every angular velocity, is kept.
+//! * [`frictional`]: instantaneous, with restitution `e_b` along the line of centres and
+//!   friction between the balls' surfaces (pooltool 0.4's `frictional_inelastic`, after
+//!   D. Alciatore's technical proofs TP, billiards.colostate.edu). The
+//!   friction impulse opposes the contact points' relative slip and is at most `μ` times the
+//!   change of the balls' normal relative speed; when that much would reverse the slip, the
+//!   balls leave the contact rolling on each other instead (no slip). It throws the object
+//!   ball off the line of centres and passes spin from one ball to the other.
 
+use super::params::BallFriction;
+use crate::geom::Vector;
 use crate::motion::ClothBall;
 
 /// The two balls just after they meet with centres at `a.pos` and `b.pos`: each gives the
@@ -21,6 +31,73 @@ pub fn exchange(a: &ClothBall, b: &ClothBall) -> (ClothBall, ClothBall) {
         ClothBall {
             vel: b.vel + push,
             ..*b
+        },
+    )
+}
+
+/// Below this relative speed of the contact points (m/s) the balls do not slip on each other
+/// (pooltool's `EPS`).
+const NO_SLIP: f64 = 100.0 * f64::EPSILON;
+
+/// The two balls of radius `radius` (metres) just after they meet with centres at `a.pos` and
+/// `b.pos`, with restitution `restitution` along the line of centres and friction `friction`
+/// between their surfaces (see the module docs). Velocities stay in the table's plane: the
+/// vertical part of the friction impulse turns spins but lifts no ball.
+#[must_use]
+pub fn frictional(
+    a: &ClothBall,
+    b: &ClothBall,
+    radius: f64,
+    restitution: f64,
+    friction: &BallFriction,
+) -> (ClothBall, ClothBall) {
+    let lift = |v: Vector<2>| Vector([v[0], v[1], 0.0]);
+    let d = b.pos - a.pos;
+    let n2 = d * (1.0 / d.norm());
+    let n = lift(n2);
+    let (va, vb) = (lift(a.vel), lift(b.vel));
+    let (an, bn) = (va.dot(n), vb.dot(n));
+    let e = restitution;
+    let an_after = 0.5 * ((1.0 - e) * an + (1.0 + e) * bn);
+    let bn_after = 0.5 * ((1.0 + e) * an + (1.0 - e) * bn);
+    // The tangential parts, and the contact points' velocities from them and the spins.
+    let (at, bt) = (va - n * an, vb - n * bn);
+    let contact_slip = |at: Vector<3>, wa: Vector<3>, bt: Vector<3>, wb: Vector<3>| {
+        (at + wa.cross(n * radius)) - (bt + wb.cross(n * -radius))
+    };
+    let slip = contact_slip(at, a.spin, bt, b.spin);
+    let slip_speed = slip.norm();
+    // The friction impulse per unit mass on `a` (on `b` it is the opposite), and the spin it
+    // gives each ball (the same for both: opposite impulses at opposite points).
+    let mut kick = None;
+    if slip_speed > NO_SLIP {
+        let mu = friction.coefficient(slip_speed);
+        let dv = slip * (-mu * (bn_after - an_after).abs() / slip_speed);
+        let dw = n.cross(dv) * (2.5 / radius);
+        let after = contact_slip(at + dv, a.spin + dw, bt - dv, b.spin + dw);
+        if slip.dot(after) > 0.0 {
+            kick = Some((dv, dw));
+        }
+    }
+    // Sliding would reverse the slip (or there is none): the impulse that stops it.
+    let (dv, dw) = kick.unwrap_or_else(|| {
+        let w = a.spin + b.spin;
+        (
+            (at - bt + w.cross(n) * radius) * (-1.0 / 7.0),
+            (n.cross(at - bt) * (1.0 / radius) + w) * (-5.0 / 14.0),
+        )
+    });
+    let flat = |v: Vector<3>, along: f64| Vector([v[0], v[1]]) + n2 * along;
+    (
+        ClothBall {
+            pos: a.pos,
+            vel: flat(at + dv, an_after),
+            spin: a.spin + dw,
+        },
+        ClothBall {
+            pos: b.pos,
+            vel: flat(bt - dv, bn_after),
+            spin: b.spin + dw,
         },
     )
 }
@@ -54,5 +131,49 @@ mod tests {
         let (c, o) = exchange(&cue, &cut);
         assert!(c.vel.dot(o.vel).abs() < 1e-12);
         assert!((c.vel + o.vel - cue.vel).norm() < 1e-12);
+    }
+
+    #[test]
+    fn friction_throws_a_cut_object_ball_and_keeps_momentum() {
+        let r = 0.028575;
+        let friction = BallFriction::Constant(0.05);
+        // Head on, no spin, e = 1: the frictionless exchange.
+        let cue = ClothBall {
+            pos: Vector([0.0, 0.0]),
+            vel: Vector([2.0, 0.0]),
+            spin: Vector::ZERO,
+        };
+        let object = ClothBall {
+            pos: Vector([2.0 * r, 0.0]),
+            vel: Vector::ZERO,
+            spin: Vector::ZERO,
+        };
+        let (c, o) = frictional(&cue, &object, r, 1.0, &friction);
+        assert_eq!((c.vel, o.vel), (Vector::ZERO, Vector([2.0, 0.0])));
+        assert_eq!((c.spin, o.spin), (Vector::ZERO, Vector::ZERO));
+        // Restitution 0.9: the object ball takes 95 % and the cue ball keeps 5 %.
+        let (c, o) = frictional(&cue, &object, r, 0.9, &friction);
+        assert!((c.vel - Vector([0.1, 0.0])).norm() < 1e-15);
+        assert!((o.vel - Vector([1.9, 0.0])).norm() < 1e-15);
+        // A half-ball cut (30°): the object ball leaves off the line of centres, towards the
+        // cue ball's motion (throw), with spin; the momentum in the plane is kept.
+        let d = Vector([(30f64).to_radians().cos(), -(30f64).to_radians().sin()]) * (2.0 * r);
+        let cut = ClothBall { pos: d, ..object };
+        let (c, o) = frictional(&cue, &cut, r, 1.0, &friction);
+        let n = d * (1.0 / d.norm());
+        let off_line = o.vel[0] * n[1] - o.vel[1] * n[0];
+        assert!(off_line < 0.0, "{o:?}");
+        let throw = off_line.abs().atan2(o.vel.dot(n)).to_degrees();
+        assert!(throw > 1.0 && throw < 5.0, "{throw}°");
+        assert!((c.vel + o.vel - cue.vel).norm() < 1e-12);
+        assert!(o.spin[2] != 0.0 && c.spin[2] == o.spin[2]);
+        // Large friction: the balls leave rolling on each other at the contact.
+        let (c, o) = frictional(&cue, &cut, r, 1.0, &BallFriction::Constant(1.0));
+        let lift = |v: Vector<2>| Vector([v[0], v[1], 0.0]);
+        let n3 = lift(n);
+        let ct = lift(c.vel) - n3 * c.vel.dot(n) + c.spin.cross(n3 * r);
+        let ot = lift(o.vel) - n3 * o.vel.dot(n) + o.spin.cross(n3 * -r);
+        let slip = ct - ot;
+        assert!(Vector([slip[0], slip[1]]).norm() < 1e-12, "{slip:?}");
     }
 }

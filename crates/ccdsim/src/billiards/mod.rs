@@ -34,8 +34,8 @@ pub mod rack;
 mod shot;
 pub mod table;
 
-pub use params::BallParams;
-pub use pool_scene::{PoolBall, PoolScene, PoolSceneError, PoolSetup, PoolShot};
+pub use params::{BallBallModel, BallFriction, BallParams};
+pub use pool_scene::{PoolBall, PoolBallBall, PoolScene, PoolSceneError, PoolSetup, PoolShot};
 pub use rack::{rack, rack_at, Game};
 pub use shot::{Shot, ShotError, ShotEvent, ShotEventKind, TableBall};
 pub use table::{Jaw, LinearCushion, Pocket, PocketTableSpecs, Table};

@@ -7,12 +7,15 @@
 //! ```
 //!
 //! `shot` also takes `theta` (cue elevation, degrees), `a` and `b` (tip offsets in ball radii),
-//! all zero by default. Units are metres, m/s and degrees, as [`CueStrike`]'s.
+//! all zero by default. Units are metres, m/s and degrees, as [`CueStrike`]'s. Balls meet
+//! without friction and elastically unless `pool` has `"ball_ball": {"restitution": e_b,
+//! "friction": u_b}`, the frictional model ([`BallBallModel::FrictionalInelastic`]; `e_b` is
+//! 0.95 by default, and without `friction` the coefficient follows Alciatore's curve).
 
 use serde::{Deserialize, Serialize};
 use thiserror::Error;
 
-use super::params::BallParams;
+use super::params::{BallBallModel, BallFriction, BallParams};
 use super::shot::{Shot, ShotError};
 use super::table::{PocketTableSpecs, Table};
 use crate::geom::Vector;
@@ -49,6 +52,51 @@ pub struct PoolShot {
     pub b: f64,
 }
 
+/// The frictional ball–ball model of a pool scene ([`BallBallModel::FrictionalInelastic`]).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PoolBallBall {
+    /// Coefficient of restitution between two balls, `e_b` in [0, 1] (0.95).
+    #[serde(default = "PoolBallBall::default_restitution")]
+    pub restitution: f64,
+    /// Coefficient of friction between two balls' surfaces, `u_b` ≥ 0; without it,
+    /// Alciatore's curve ([`BallFriction::ALCIATORE`]).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub friction: Option<f64>,
+}
+
+impl PoolBallBall {
+    fn default_restitution() -> f64 {
+        0.95
+    }
+
+    /// The model, or why the numbers cannot be one ([`PoolSceneError::Format`]).
+    ///
+    /// # Errors
+    /// A restitution outside [0, 1] or a friction that is not a number ≥ 0.
+    pub fn model(&self) -> Result<BallBallModel, PoolSceneError> {
+        if !(0.0..=1.0).contains(&self.restitution) {
+            return Err(PoolSceneError::Format(format!(
+                "pool.ball_ball.restitution: {} is not in [0, 1]",
+                self.restitution
+            )));
+        }
+        let friction = match self.friction {
+            None => BallFriction::ALCIATORE,
+            Some(u) if u.is_finite() && u >= 0.0 => BallFriction::Constant(u),
+            Some(u) => {
+                return Err(PoolSceneError::Format(format!(
+                    "pool.ball_ball.friction: {u} is not a number ≥ 0"
+                )))
+            }
+        };
+        Ok(BallBallModel::FrictionalInelastic {
+            restitution: self.restitution,
+            friction,
+        })
+    }
+}
+
 /// What a pool scene holds.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -57,6 +105,9 @@ pub struct PoolSetup {
     pub balls: Vec<PoolBall>,
     /// The shot.
     pub shot: PoolShot,
+    /// The frictional ball–ball model; without it, balls meet without friction, elastically.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub ball_ball: Option<PoolBallBall>,
 }
 
 /// A pool scene file: `{"pool": {...}}`.
@@ -141,7 +192,14 @@ impl PoolScene {
             let text = e.describe(&names);
             PoolSceneError::Shot(e, text)
         };
-        let mut shot = Shot::new(table, BallParams::default(), &positions).map_err(named)?;
+        let params = BallParams {
+            ball_ball: match &self.pool.ball_ball {
+                None => BallBallModel::FrictionlessElastic,
+                Some(b) => b.model()?,
+            },
+            ..BallParams::default()
+        };
+        let mut shot = Shot::new(table, params, &positions).map_err(named)?;
         shot.strike(
             cue,
             &CueStrike {
@@ -189,5 +247,49 @@ mod tests {
                                    "shot": {"ball": "white", "speed": 1, "phi": 0}}}"#;
         let e = PoolScene::from_json(missing).unwrap().shot().unwrap_err();
         assert!(e.to_string().contains("white"), "{e}");
+        for (field, says) in [
+            (r#"{"restitution": 1.5}"#, "restitution"),
+            (r#"{"friction": -0.1}"#, "friction"),
+            (r#"{"friction": 0.1, "spin": 2}"#, "unknown field"),
+        ] {
+            let json = format!(
+                r#"{{"pool": {{"balls": [{{"name": "cue", "pos": [0.5, 0.5]}}],
+                             "shot": {{"ball": "cue", "speed": 1, "phi": 0}},
+                             "ball_ball": {field}}}}}"#
+            );
+            let e = PoolScene::from_json(&json).and_then(|s| s.shot().map(|_| ()));
+            let e = e.expect_err(field).to_string();
+            assert!(e.contains(says) && e.contains("ball_ball"), "{field}: {e}");
+        }
+    }
+
+    #[test]
+    fn a_frictional_scene_plays_with_its_model_and_reads_back() {
+        let json = r#"{"pool": {"balls": [{"name": "cue", "pos": [0.5, 0.5]},
+                                          {"name": "1", "pos": [0.5, 1.0]}],
+                                "shot": {"ball": "cue", "speed": 2, "phi": 88},
+                                "ball_ball": {"friction": 0.06}}}"#;
+        let scene = PoolScene::from_json(json).unwrap();
+        let b = scene.pool.ball_ball.as_ref().unwrap();
+        assert_eq!((b.restitution, b.friction), (0.95, Some(0.06)));
+        assert_eq!(PoolScene::from_json(&scene.to_json()).unwrap(), scene);
+        let shot = scene.shot().unwrap();
+        assert_eq!(
+            shot.params().ball_ball,
+            BallBallModel::FrictionalInelastic {
+                restitution: 0.95,
+                friction: BallFriction::Constant(0.06)
+            }
+        );
+        // The same cut without friction sends the object ball elsewhere.
+        let mut plain = scene.clone();
+        plain.pool.ball_ball = None;
+        let end = |s: &PoolScene| {
+            let mut shot = s.shot().unwrap();
+            shot.run(10_000).unwrap();
+            shot.balls()[1].ball.pos
+        };
+        let (a, b) = (end(&scene), end(&plain));
+        assert!((a - b).norm() > 1e-3, "{a:?} {b:?}");
     }
 }

@@ -3,8 +3,8 @@
 //! rests or is pocketed.
 //!
 //! The events and their order are those of Leckie & Greenspan's event-based simulator as
-//! pooltool 0.3.3 runs it: a ball's state change, two balls meeting (frictionless elastic,
-//! [`super::ball_impact`]), a ball meeting a straight cushion or a jaw (Han 2005,
+//! pooltool 0.3.3 runs it: a ball's state change, two balls meeting (frictionless elastic, or
+//! frictional as an option: [`super::ball_impact`], [`BallParams::ball_ball`]), a ball meeting a straight cushion or a jaw (Han 2005,
 //! [`super::cushion_impact`]) or dropping into a pocket. After a collision both balls (or the
 //! one) are sliding, as pooltool sets them. Nothing is moved apart after a collision: the
 //! contact times are certified roots ([`super::contact_time`]), and a pair still touching
@@ -21,10 +21,10 @@ use std::cmp::Ordering;
 
 use thiserror::Error;
 
-use super::ball_impact::exchange;
+use super::ball_impact::{exchange, frictional};
 use super::contact_time::{self, Flight};
 use super::cushion_impact::bounce;
-use super::params::BallParams;
+use super::params::{BallBallModel, BallParams};
 use super::table::Table;
 use crate::geom::Vector;
 use crate::motion::cloth::settle;
@@ -460,7 +460,13 @@ impl Shot {
                     self.pressed.get_or_insert((a, b, t));
                 }
                 self.last_meeting[a] = Some((b, t));
-                let (na, nb) = exchange(&ba, &bb);
+                let (na, nb) = match self.params.ball_ball {
+                    BallBallModel::FrictionlessElastic => exchange(&ba, &bb),
+                    BallBallModel::FrictionalInelastic {
+                        restitution,
+                        friction,
+                    } => frictional(&ba, &bb, self.params.radius(), restitution, &friction),
+                };
                 self.set(a, na, ClothState::Sliding);
                 self.set(b, nb, ClothState::Sliding);
             }

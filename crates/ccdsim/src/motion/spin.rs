@@ -75,20 +75,12 @@ fn widen<const D: usize>(v: Vector<D>) -> Vector<3> {
     w
 }
 
-fn cross(a: Vector<3>, b: Vector<3>) -> Vector<3> {
-    Vector([
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ])
-}
-
 /// `ω × n`, the velocity of the point at unit offset `n` from the centre of a body spinning
 /// at `ω`, in the body's `D` dimensions (in 2D `ω` lies along the third axis and the result
 /// in the plane).
 #[must_use]
 pub fn surface_velocity<const D: usize>(omega: Vector<3>, n: Vector<D>) -> Vector<D> {
-    let w = cross(omega, widen(n));
+    let w = omega.cross(widen(n));
     let mut out = Vector::<D>::ZERO;
     out.0.copy_from_slice(&w.0[..D]);
     out
@@ -98,7 +90,7 @@ pub fn surface_velocity<const D: usize>(omega: Vector<3>, n: Vector<D>) -> Vecto
 /// centre, per metre of lever (multiply by the radius for newton-metre-seconds).
 #[must_use]
 pub fn moment<const D: usize>(n: Vector<D>, impulse: Vector<D>) -> Vector<3> {
-    cross(widen(n), widen(impulse))
+    widen(n).cross(widen(impulse))
 }
 
 /// Rotational kinetic energy `½·q·m·r²·|ω|²` of a body of mass `m`, radius `r`, inertia

@@ -14,6 +14,7 @@ mod edits;
 mod examples;
 mod filters;
 mod finder_suite;
+mod frictional_vs_pooltool;
 mod gravity;
 mod growth;
 mod hard_inputs;
