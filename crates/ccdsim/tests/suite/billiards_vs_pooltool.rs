@@ -16,15 +16,12 @@ use ccdsim::motion::CueStrike;
 use ccdsim::Vector;
 use serde_json::Value;
 
+use crate::reference_json::{num, vec_of};
+
 const REFERENCE: &str = include_str!("../data/pooltool-shots.json");
 
-fn num(v: &Value) -> f64 {
-    v.as_f64().expect("a number")
-}
-
 fn point(v: &Value) -> Vector<2> {
-    let a = v.as_array().expect("an array");
-    Vector([num(&a[0]), num(&a[1])])
+    vec_of(v)
 }
 
 fn close(a: Vector<2>, b: Vector<2>) -> bool {

@@ -14,16 +14,9 @@ use ccdsim::motion::ClothBall;
 use ccdsim::Vector;
 use serde_json::Value;
 
+use crate::reference_json::{num, vec_of};
+
 const REFERENCE: &str = include_str!("../data/pooltool-ball-ball.json");
-
-fn num(v: &Value) -> f64 {
-    v.as_f64().expect("a number")
-}
-
-fn vec_of<const N: usize>(v: &Value) -> Vector<N> {
-    let a = v.as_array().expect("an array");
-    Vector(std::array::from_fn(|k| num(&a[k])))
-}
 
 #[test]
 fn every_collision_matches_pooltool() {

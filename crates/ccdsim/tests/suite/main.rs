@@ -26,6 +26,7 @@ mod long_runs;
 mod moving_walls;
 mod narrow_properties;
 mod pooltool_issues;
+mod reference_json;
 mod resting;
 mod restitution;
 mod rods;
