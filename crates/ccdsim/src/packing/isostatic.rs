@@ -32,6 +32,10 @@ use crate::sim::Simulation;
 /// takes 5 to 10).
 const MAX_ROUNDS: usize = 200;
 
+/// Times [`finish_isostatic`] looks again below a jammed minimum whose bracket has closed
+/// with its overlap still above the target, before it settles for that minimum.
+const MAX_RELOOKS: usize = 3;
+
 /// Jammed minima whose mean overlap is below this fraction of the target count as not
 /// jammed (see [`finish_isostatic`]).
 const MARGINAL: f64 = 1e-2;
@@ -176,6 +180,7 @@ pub fn finish_isostatic<const D: usize>(
     let mut before: Option<Jammed<D>> = None;
     let mut guess = hi.positions.clone();
     let mut rounds = 0usize;
+    let mut relooks = 0usize;
     loop {
         rounds += 1;
         if rounds > MAX_ROUNDS {
@@ -184,7 +189,17 @@ pub fn finish_isostatic<const D: usize>(
             )));
         }
         let close = hi.minimum.mean_overlap <= config.overlap;
-        let unresolved = hi.scale - s_lo <= 4.0 * f64::EPSILON * hi.scale;
+        let mut unresolved = hi.scale - s_lo <= 4.0 * f64::EPSILON * hi.scale;
+        if unresolved && !close && !hi.strict && relooks < MAX_RELOOKS {
+            // The bracket closed on a jammed minimum whose overlap is still far above the
+            // target: the size below it was judged unjammed from other positions (a soft
+            // packing's minimum depends on where the minimisation starts, and a jammed branch
+            // can end abruptly), so look below it again from this minimum's positions.
+            relooks += 1;
+            s_lo = 1.0;
+            before = None;
+            unresolved = false;
+        }
         if (close || unresolved) && hi.strict {
             break;
         }
