@@ -5,9 +5,10 @@ use crate::case::{Case, EditOp, Schedule};
 use serde_json::Value;
 
 /// Every feature name [`features`] can report, in the order the coverage table prints them.
-pub const FEATURES: [&str; 30] = [
+pub const FEATURES: [&str; 31] = [
     "3D",
     "periodic",
+    "sheared box",
     "segment walls",
     "plane walls",
     "open (no walls)",
@@ -64,6 +65,7 @@ pub fn features(case: &Case) -> Vec<&'static str> {
     let walls = s["walls"].as_array().cloned().unwrap_or_default();
     add(s["dim"].as_u64() == Some(3), "3D");
     add(!s["periodic"].is_null(), "periodic");
+    add(!settings["shear_rate"].is_null(), "sheared box");
     add(walls.iter().any(|w| !w["a"].is_null()), "segment walls");
     add(walls.iter().any(|w| !w["normal"].is_null()), "plane walls");
     add(

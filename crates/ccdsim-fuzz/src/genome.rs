@@ -14,7 +14,7 @@
 //!   events), zero and axis-aligned velocities, equal speeds;
 //! * every feature the scene format has and their combinations: gravity (along an axis or
 //!   oblique), restitution, the TC model, resting contacts, growth, a thermostat, periodic
-//!   boxes, segment and plane walls, walls cut into collinear pieces, shelves and slopes (so
+//!   boxes, sheared periodic boxes (Lees–Edwards), segment and plane walls, walls cut into collinear pieces, shelves and slopes (so
 //!   bodies rest, slide and roll over segment ends), 3D rods, sensors, moving walls,
 //!   kinematic bodies, per-body restitution, mass and collision groups, arrivals (bodies
 //!   entering at lattice points, several at one instant, some onto bodies); and edits between
@@ -74,7 +74,7 @@ pub struct Genome {
     /// Box sides, in whole metres beyond 3.
     sides: [u8; 3],
     /// 0: segments (2D) or planes (3D); 1: planes; 2: periodic; 3: sides cut into collinear
-    /// pieces; 4: no walls at all (an open world).
+    /// pieces; 4: no walls at all (an open world); 5: periodic and sheared (Lees–Edwards).
     boundary: u8,
     /// 0: none; 1: −9.81 along the last axis; 2: −1; 3: oblique; 4: along the first axis;
     /// 5: −4 along the last axis.
@@ -149,7 +149,7 @@ pub fn genome(max_bodies: usize) -> impl Strategy<Value = Genome> {
         any::<bool>(),
         0u8..4,
         [0u8..10, 0u8..10, 0u8..10],
-        0u8..5,
+        0u8..6,
         prop_oneof![3 => Just(0u8), 5 => 1u8..6],
         prop_oneof![3 => Just(0u8), 1 => 1u8..4],
         0u8..3,
@@ -271,13 +271,13 @@ impl<'a, const D: usize> Builder<'a, D> {
             2 => 0.25,
             _ => side[d] / divisor,
         }));
-        let periodic = g.boundary == 2;
+        let periodic = g.boundary == 2 || g.boundary == 5;
         Builder {
             g,
             side,
             step,
             periodic,
-            walled: g.boundary != 2 && g.boundary != 4,
+            walled: !periodic && g.boundary != 4,
         }
     }
 
@@ -335,6 +335,9 @@ impl<'a, const D: usize> Builder<'a, D> {
             s.growth = Some(ccdsim::Growth {
                 rate: [0.0, 0.05, 0.5][g.growth as usize % 3],
             });
+        }
+        if g.boundary == 5 && s.growth.is_none() {
+            s.shear_rate = Some([0.5, -2.0, 0.25][g.sides[1] as usize % 3]);
         }
         if g.thermostat != 0 && self.periodic {
             s.thermostat = Some(ccdsim::thermostat::Thermostat {

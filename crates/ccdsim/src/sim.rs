@@ -258,14 +258,27 @@ impl<const D: usize> Simulation<D> {
         )
     }
 
-    /// Position of body `i` at the current time (in a periodic world, inside the box).
+    /// Position of body `i` at the current time (in a periodic world, inside the box; in a
+    /// sheared one, on a y face at most).
     #[must_use]
     pub fn position(&self, i: usize) -> Vector<D> {
         let p = self.world.position_at(i, self.world.now());
-        match self.world.periodic() {
-            Some(size) => wrap_point(p, &size),
-            None => p,
+        self.wrapped(p)
+    }
+
+    /// `p` moved into the periodic box by whole periods, if the world has one. In a sheared
+    /// box only along x and z: folding across a y face moves a body to another layer, whose
+    /// velocity differs (see [`crate::contact::lees_edwards`]), and the stored position, which
+    /// goes with the stored velocity, is already in the box up to rounding.
+    fn wrapped(&self, p: Vector<D>) -> Vector<D> {
+        let Some(size) = self.world.periodic() else {
+            return p;
+        };
+        let mut w = wrap_point(p, &size);
+        if self.world.shear().is_some() {
+            w[1] = p[1];
         }
+        w
     }
 
     /// The periodic image of body `i` now: the whole periods `k` such that
@@ -277,7 +290,7 @@ impl<const D: usize> Simulation<D> {
             return [0; D];
         };
         let raw = self.world.position_at(i, self.world.now());
-        let wrapped = wrap_point(raw, &size);
+        let wrapped = self.wrapped(raw);
         let mut k = self.images.get(i);
         for d in 0..D {
             // `raw − wrapped` is a whole number of periods, up to the rounding of the wrap.
@@ -287,7 +300,8 @@ impl<const D: usize> Simulation<D> {
     }
 
     /// Unwrapped position of body `i` now, metres: its position plus the periods it crossed
-    /// (see [`Simulation::image`]); the position itself in a world without a periodic box.
+    /// (see [`Simulation::image`]), and in a sheared box the strain of the layers it crossed
+    /// along y (`k_y γ̇ L_y t` along x); the position itself in a world without a periodic box.
     #[must_use]
     pub fn unwrapped_position(&self, i: usize) -> Vector<D> {
         let mut p = self.position(i);
@@ -295,6 +309,10 @@ impl<const D: usize> Simulation<D> {
             let k = self.image(i);
             for d in 0..D {
                 p[d] += k[d] as f64 * size[d];
+            }
+            if let Some(bx) = self.world.shear() {
+                // The layers above slide: a body `k_y` layers up has moved with them.
+                p[0] += bx.unwrapped_shift(k[1], self.world.now());
             }
         }
         p
@@ -560,10 +578,14 @@ impl<const D: usize> Simulation<D> {
         }
         self.world.set_now(e.time.max(self.world.now()));
         let face = e.b as usize - self.world.walls().len();
-        resolve_exit(&mut self.world, e.a as usize, face, e.time);
-        // `resolve_exit` moved the body back by one period through face `face`.
+        let x_periods = resolve_exit(&mut self.world, e.a as usize, face, e.time);
+        // `resolve_exit` moved the body back by one period through face `face` (and in a
+        // sheared box along x, by `x_periods` periods beyond the strain).
         let step = if face % 2 == 1 { 1 } else { -1 };
         self.images.shift(e.a as usize, face / 2, step);
+        if x_periods != 0 {
+            self.images.add(e.a as usize, 0, x_periods);
+        }
         self.bodies_changed(&[e.a as usize]);
         if let Some(s) = &mut self.sensors {
             s.body_wrapped(&self.world, e.a as usize);
@@ -1190,9 +1212,10 @@ impl<const D: usize> Simulation<D> {
                 return false;
             }
             let d = self.world.position_at(j, t) - pos;
-            let d = match self.world.periodic() {
-                Some(size) => crate::contact::periodic::min_image(d, &size),
-                None => d,
+            let d = match (self.world.periodic(), self.world.shear()) {
+                (Some(_), Some(bx)) => bx.nearest_image(d, t).0,
+                (Some(size), None) => crate::contact::periodic::min_image(d, &size),
+                (None, _) => d,
             };
             d.norm() < r + self.world.radius_at(j, t)
         })

@@ -7,6 +7,10 @@
 //! for every finder, so thermostatted runs stay bit for bit identical across finders, and
 //! `verify` regenerates it to check a run file's resets.
 //!
+//! In a sheared box (see [`crate::contact::lees_edwards`]) the draw is the body's peculiar
+//! velocity: the imposed flow where it is, `γ̇ (y − L_y/2)` along x, is added to it, so the
+//! thermostat removes the heat the shear makes.
+//!
 //! Reset times are `t_{k+1} = t_k + Exp(ν N)` from the scene's start time; the reset's body is
 //! uniform over the `N` bodies. A reset at the same time as a collision comes after it.
 //!

@@ -152,6 +152,10 @@ struct GasArgs {
     /// The TC model's time (`settings.tc`), seconds: keeps an inelastic gas from collapsing.
     #[arg(long)]
     tc: Option<f64>,
+    /// Lees–Edwards shear at this rate γ̇ (`settings.shear_rate`, 1/s; flow along x, gradient
+    /// along y) of a --periodic box; the bodies start in the flow γ̇ (y − L_y/2).
+    #[arg(long, allow_negative_numbers = true)]
+    shear_rate: Option<f64>,
 }
 
 /// Lattices of `--lattice`.
@@ -308,6 +312,7 @@ pub fn run(args: Args) -> Result<ExitCode> {
             }
             settings.tangential_restitution = g.tangential_restitution;
             settings.tc = g.tc;
+            settings.shear_rate = g.shear_rate;
             if g.dim == 2 {
                 with_settings(gas::<2>(&cfg)?, settings)?.into()
             } else {
@@ -400,11 +405,17 @@ fn with_gravity(scene: AnyScene, g: &[f64]) -> Result<AnyScene> {
 }
 
 /// `scene` with the collision settings of `settings` (restitution, tangential restitution,
-/// TC time), validated.
+/// TC time, shear rate: the bodies then start in the flow), validated.
 fn with_settings<const D: usize>(mut scene: Scene<D>, settings: Settings) -> Result<Scene<D>> {
     scene.settings.restitution = settings.restitution;
     scene.settings.tangential_restitution = settings.tangential_restitution;
     scene.settings.tc = settings.tc;
+    scene.settings.shear_rate = settings.shear_rate;
+    if let (Some(rate), Some(size)) = (settings.shear_rate, scene.periodic) {
+        for b in &mut scene.bodies {
+            b.vel[0] += rate * (b.pos[1] - 0.5 * size[1]);
+        }
+    }
     scene.validate().context("gas")?;
     Ok(scene)
 }

@@ -5,7 +5,7 @@ use crate::number::{num, sig};
 use crate::progress::Progress;
 use anyhow::{Context, Result};
 use ccdsim::generate::{rack, RackConfig};
-use ccdsim::observables::EnergyBalance;
+use ccdsim::observables::{EnergyBalance, PressureTensor};
 use ccdsim::record::RunWriter;
 use ccdsim::trajectory::{Frame, SampleTimes, TrajectoryFormat, TrajectoryWriter};
 use ccdsim::{make_finder, AnyScene, Scene, Simulation};
@@ -123,6 +123,12 @@ struct Summary {
     arrival_energy: f64,
     /// What the scene's `histogram` bins hold at the end, or null without one.
     histogram: Option<HistogramSummary>,
+    /// Sheared boxes (`settings.shear_rate`): the shear stress −P_xy over the run (collision
+    /// virial plus kinetic part in peculiar velocities), or null without shear.
+    shear_stress: Option<f64>,
+    /// Sheared boxes: the shear viscosity η = −P_xy / γ̇ over the run, or null (no shear, or
+    /// a rate of 0).
+    viscosity: Option<f64>,
 }
 
 /// The `--json` summary's `histogram`: the bins' edges and what each holds at the end.
@@ -250,6 +256,10 @@ fn simulate<const D: usize>(scene: &Scene<D>, args: &Args) -> Result<Summary> {
             None => None,
         },
         error: None,
+        stress: match sim.world().shear() {
+            Some(_) => Some(PressureTensor::new(&sim).map_err(anyhow::Error::msg)?),
+            None => None,
+        },
     };
     let rotational = sim.world().is_rotational();
     let mut trajectory = match &frames {
@@ -383,6 +393,15 @@ fn simulate<const D: usize>(scene: &Scene<D>, args: &Args) -> Result<Summary> {
     }
     let stats = *sim.stats();
     let observables = sim.observables();
+    let shear_stress = sink.stress.as_ref().map(|p| {
+        let t = p.tensor(sim.time());
+        -0.5 * (t[0][1] + t[1][0])
+    });
+    let viscosity = sim
+        .world()
+        .shear()
+        .zip(shear_stress)
+        .and_then(|(bx, s)| (bx.rate != 0.0).then(|| s / bx.rate));
     let ke_end = sim.world().kinetic_energy_at(sim.time());
     let potential_end = sim.world().potential_energy_at(sim.time());
     // The one relative drift (`ccdsim verify` prints the same): what the collisions changed
@@ -467,6 +486,8 @@ fn simulate<const D: usize>(scene: &Scene<D>, args: &Args) -> Result<Summary> {
                 outside: held.outside,
             }
         }),
+        shear_stress,
+        viscosity,
     })
 }
 
@@ -474,6 +495,8 @@ fn simulate<const D: usize>(scene: &Scene<D>, args: &Args) -> Result<Summary> {
 struct Sink<const D: usize> {
     writer: Option<RunWriter<std::fs::File, D>>,
     error: Option<ccdsim::record::RecordError>,
+    /// Sheared boxes: the pressure tensor over the run, for the shear stress.
+    stress: Option<PressureTensor<D>>,
 }
 
 impl<const D: usize> Sink<D> {
@@ -485,6 +508,9 @@ impl<const D: usize> Sink<D> {
     }
 
     fn take(&mut self, c: &ccdsim::Collision<D>) {
+        if let Some(p) = self.stress.as_mut() {
+            p.observe(c);
+        }
         if let (Some(w), None) = (self.writer.as_mut(), &self.error) {
             if let Err(e) = w.write_event(c) {
                 self.error = Some(e);
@@ -549,6 +575,16 @@ fn print_summary(s: &Summary, builtin: bool) -> std::io::Result<()> {
     match (s.pressure, s.compressibility) {
         (Some(p), Some(z)) => outln!("; pressure {}, compressibility factor Z {}", num(p), num(z))?,
         _ => outln!()?,
+    }
+    if let Some(stress) = s.shear_stress {
+        match s.viscosity {
+            Some(eta) => outln!(
+                "sheared box: shear stress −P_xy {}, viscosity {} (temperature from peculiar velocities)",
+                num(stress),
+                num(eta)
+            )?,
+            None => outln!("sheared box: shear stress −P_xy {}", num(stress))?,
+        }
     }
     if let Some(r) = &s.record {
         outln!("run file written to {r}")?;

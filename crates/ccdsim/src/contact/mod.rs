@@ -11,7 +11,8 @@
 //! - [`growth`]: radii growing linearly in time; [`falling_growth`]: both together;
 //! - [`accelerated_contact`]: the certified first root of a relative parabola's quartic,
 //!   which [`rod`] (3D segments under gravity) and the end points of segments build on;
-//! - [`periodic`]: the nearest image in a periodic box, and leaving the box;
+//! - [`periodic`]: the nearest image in a periodic box, and leaving the box; [`lees_edwards`]
+//!   the same in a sheared box;
 //! - [`resting`], [`ledge`], [`pivot_contact`] and [`pivot_end`]: a body resting on a wall,
 //!   sliding off a segment's end, and turning about that end point;
 //! - [`sensor_crossing`]: a body entering and leaving a sensor's ball.
@@ -26,6 +27,7 @@ mod falling_segment;
 pub mod gravity;
 pub mod growth;
 pub mod ledge;
+pub mod lees_edwards;
 pub mod narrow;
 pub(crate) mod narrow_lanes;
 pub mod periodic;

@@ -1,6 +1,7 @@
 //! The naive all-pairs finder: the reference every other finder is tested against.
 
 use super::{finite_event, Finder, FinderError};
+use crate::contact::lees_edwards::toi_bodies_sheared;
 use crate::contact::periodic::{toi_bodies_periodic, toi_box_exit};
 use crate::event::Event;
 use crate::world::World;
@@ -24,7 +25,8 @@ impl AllPairs {
 ///
 /// In a periodic world (see [`crate::contact::periodic`]) a pair's time is
 /// [`crate::contact::periodic::toi_circle_circle_periodic`], and every body's box exit is an event too (a wall event
-/// naming face `f` as wall `walls.len() + f`). Pairs whose collision filters keep them apart
+/// naming face `f` as wall `walls.len() + f`); in a sheared one (see
+/// [`crate::contact::lees_edwards`]) it is [`toi_bodies_sheared`]. Pairs whose collision filters keep them apart
 /// ([`World::collides`]) have no event. In a growing world (see [`crate::contact::growth`]) the
 /// functions are the growing forms ([`toi_pair`](crate::contact::toi_pair),
 /// [`toi_bodies_periodic`], [`toi_body_wall`](crate::contact::toi_body_wall)).
@@ -42,7 +44,11 @@ pub fn all_pairs_next_event<const D: usize>(world: &World<D>) -> Option<Event> {
                     continue;
                 }
                 let bodies = world.bodies();
-                if let Some(t) = toi_bodies_periodic(&bodies[i], &bodies[j], &size, laws) {
+                let t = match world.shear() {
+                    None => toi_bodies_periodic(&bodies[i], &bodies[j], &size, laws),
+                    Some(bx) => toi_bodies_sheared(&bodies[i], &bodies[j], &bx, laws),
+                };
+                if let Some(t) = t {
                     best = Event::earliest(best, Some(Event::body(t, i, j)));
                 }
             }

@@ -24,6 +24,7 @@
 //! (wall `walls.len() + face`): it depends on the body's state alone, like a wall event.
 
 use super::{finite_event, Finder, FinderError, FinderMemory};
+use crate::contact::lees_edwards::toi_bodies_sheared;
 use crate::contact::periodic::{toi_bodies_periodic, toi_box_exit};
 use crate::event::{Event, EventKind};
 use crate::world::World;
@@ -152,18 +153,22 @@ impl Sedgewick {
     ) {
         let mi = world.motion(i);
         let ci = world.change_count(i);
-        let period = world.periodic();
+        let (period, shear) = (world.periodic(), world.shear());
         for j in 0..world.len() {
             if j == i || skip(j) || !world.collides(i, j) {
                 continue;
             }
             // The oracle's argument order: lower index first.
             let (a, b) = if i < j { (i, j) } else { (j, i) };
-            let t = match &period {
-                None => toi_bodies_in(world, a, b),
-                Some(size) => {
+            let t = match (&period, &shear) {
+                (None, _) => toi_bodies_in(world, a, b),
+                (Some(size), None) => {
                     let bodies = world.bodies();
                     toi_bodies_periodic(&bodies[a], &bodies[b], size, world.laws())
+                }
+                (Some(_), Some(bx)) => {
+                    let bodies = world.bodies();
+                    toi_bodies_sheared(&bodies[a], &bodies[b], bx, world.laws())
                 }
             };
             if let Some(t) = t {

@@ -6,7 +6,9 @@
 //!
 //! * **Temperature** `kT = 2K / (D N)`, from the kinetic energy `K` of the `N` bodies. In a
 //!   periodic world, where total momentum is conserved, `K` is measured in the frame of the
-//!   centre of mass; in a walled world, in the walls' frame.
+//!   centre of mass; in a walled world, in the walls' frame; in a sheared box, in the frame
+//!   of the imposed flow (peculiar velocities, see
+//!   [`ShearedBox::flow`](crate::contact::lees_edwards::ShearedBox::flow)).
 //! * **Collision rate** `2C / (N t)`: body–body collisions `C` per body per unit time (every
 //!   collision involves two bodies) over a duration `t`.
 //! * **Pressure** from the virial theorem for hard bodies,
@@ -20,6 +22,7 @@
 //! result is the bulk virial pressure up to wall corrections of relative order `σ / L`), and
 //! there is none for a world without walls.
 
+use crate::contact::lees_edwards::ShearedBox;
 use crate::wall::walls_bounds;
 use crate::world::World;
 
@@ -64,11 +67,28 @@ pub fn temperature<const D: usize>(world: &World<D>) -> f64 {
     if n == 0 {
         return 0.0;
     }
+    if let Some(bx) = world.shear() {
+        return 2.0 * peculiar_kinetic_energy(world, &bx) / (D as f64 * n as f64);
+    }
     let mut k = world.kinetic_energy_at(world.now());
     if world.periodic().is_some() {
         k -= 0.5 * world.momentum().norm_sq() / m;
     }
     2.0 * k.max(0.0) / (D as f64 * n as f64)
+}
+
+/// Kinetic energy of the bodies that move freely in the frame of the imposed flow of a
+/// sheared box (see [`ShearedBox::flow`]): `Σ ½ m |v − γ̇ (y − L_y/2) e_x|²`, joules.
+fn peculiar_kinetic_energy<const D: usize>(world: &World<D>, bx: &ShearedBox<D>) -> f64 {
+    let now = world.now();
+    (0..world.len())
+        .filter(|&i| !world.is_kinematic(i) && !world.is_vacant(i))
+        .map(|i| {
+            let mut v = world.velocity(i);
+            v[0] -= bx.flow(world.position_at(i, now)[1]);
+            0.5 * world.mass(i) * v.norm_sq()
+        })
+        .sum()
 }
 
 /// Rotational temperature `kT_rot = 2·K_rot / (f·N)` of the world now, joules: `K_rot` the

@@ -66,9 +66,17 @@ fn resolve_free_pair<const D: usize, const ROUGH: bool>(
         ),
     };
     let (share_i, share_j) = mass_shares(world, i, j);
-    let d = match world.periodic() {
-        Some(size) => min_image(pj - pi, &size),
-        None => pj - pi,
+    // `vj_seen`: the velocity of the image of `j` that `i` meets, which in a sheared box
+    // moves a layer's speed faster or slower than `j` (see `crate::contact::lees_edwards`).
+    let (d, vj_seen) = match world.periodic() {
+        Some(size) => match world.shear() {
+            None => (min_image(pj - pi, &size), vj),
+            Some(bx) => {
+                let (d, layer) = bx.nearest_image(pj - pi, t);
+                (d, bx.image_velocity(vj, layer))
+            }
+        },
+        None => (pj - pi, vj),
     };
     let dist = d.norm();
     let sigma = world.radius_at(i, t) + world.radius_at(j, t);
@@ -91,7 +99,7 @@ fn resolve_free_pair<const D: usize, const ROUGH: bool>(
         }
     } else if dist > 0.0 {
         let n = d * (1.0 / dist);
-        let vn = (vj - vi).dot(n);
+        let vn = (vj_seen - vi).dot(n);
         if vn < 0.0 {
             // Velocity changes J/mi and J/mj with J = −(1+e)·vn·mi·mj/(mi+mj), written as mass
             // fractions so that equal masses exchange normal velocities exactly (m/2m = 0.5).
@@ -103,7 +111,7 @@ fn resolve_free_pair<const D: usize, const ROUGH: bool>(
     }
     if ROUGH && collided {
         let n = d * (1.0 / dist);
-        if let Some(kick) = rough::pair_kick(world, (i, vi), (j, vj), n, t) {
+        if let Some(kick) = rough::pair_kick(world, (i, vi), (j, vj_seen), n, t) {
             vi2 += kick.dv[0];
             vj2 += kick.dv[1];
             world.set_spin(i, kick.spins[0]);
@@ -312,8 +320,17 @@ pub fn resolve_slide_end<const D: usize>(
 
 /// Applies the exit of body `i` through face `face` (see [`crate::contact::periodic`]) of the periodic
 /// box at time `t`: the body is moved to `t` and then by one period back into the box along
-/// the face's axis. Its velocity is unchanged.
-pub fn resolve_exit<const D: usize>(world: &mut World<D>, i: usize, face: usize, t: f64) {
+/// the face's axis. Its velocity is unchanged, but in a sheared box, where a body leaving
+/// through a y face also moves along x and changes its x velocity ([`ShearedBox::exit`]).
+/// Returns the whole periods to add to the body's x image count (0 but in a sheared box).
+///
+/// [`ShearedBox::exit`]: crate::contact::lees_edwards::ShearedBox::exit
+pub fn resolve_exit<const D: usize>(world: &mut World<D>, i: usize, face: usize, t: f64) -> i64 {
+    if let Some(bx) = world.shear() {
+        let (p, v, x_periods) = bx.exit(world.position_at(i, t), world.velocity(i), face, t);
+        world.set_state(i, p, v, t);
+        return x_periods;
+    }
     let size = world
         .periodic()
         .expect("box exits happen in periodic worlds only");
@@ -326,6 +343,7 @@ pub fn resolve_exit<const D: usize>(world: &mut World<D>, i: usize, face: usize,
     }
     let v = world.velocity(i);
     world.set_state(i, p, v, t);
+    0
 }
 
 /// The velocities after a collision of bodies `i` and `j` (velocities `vi`, `vj` at the

@@ -6,6 +6,7 @@
 pub mod arrival;
 
 use crate::collision_filter::CollisionFilter;
+use crate::contact::lees_edwards::ShearedBox;
 use crate::geom::{ball_volume, Vector};
 use crate::histogram::Histogram;
 use crate::motion::Gravity;
@@ -242,6 +243,12 @@ pub struct Settings {
     /// `tangential_restitution`, makes the world keep each body's angular velocity.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub tangential_restitution: Option<f64>,
+    /// Lees–Edwards shear rate `γ̇ = ∂v_x/∂y`, 1/s, of a periodic scene: the copies of the
+    /// box stacked along y slide past each other along x at `γ̇ L_y` (see
+    /// [`crate::contact::lees_edwards`]). Velocities stay lab-frame ones: bodies start with the
+    /// velocities the scene gives them (add the flow `γ̇ (y − L_y/2)` to start in it).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub shear_rate: Option<f64>,
 }
 
 fn one() -> f64 {
@@ -258,6 +265,7 @@ impl Default for Settings {
             tc: None,
             rest_speed: None,
             tangential_restitution: None,
+            shear_rate: None,
         }
     }
 }
@@ -543,6 +551,7 @@ impl<const D: usize> Scene<D> {
             check_magnitudes(|| "settings.growth.rate".into(), &[g.rate])?;
         }
         self.validate_gravity()?;
+        self.validate_shear()?;
         if let Some(tc) = self.settings.tc {
             if !tc.is_finite() {
                 return Err(SceneError::NonFinite("settings.tc".into()));
@@ -586,7 +595,9 @@ impl<const D: usize> Scene<D> {
             self.validate_periodic(size)?;
         }
         self.validate_sensors()?;
-        if let Some((a, b, depth)) = first_overlap(&self.bodies, self.periodic) {
+        if let Some((a, b, depth)) =
+            first_overlap(&self.bodies, self.periodic, self.shear(), self.start_time)
+        {
             return Err(SceneError::Overlap {
                 a: self.name(a),
                 b: self.name(b),
@@ -697,6 +708,45 @@ impl<const D: usize> Scene<D> {
     #[must_use]
     pub fn gravity(&self) -> Option<Vector<D>> {
         self.settings.gravity.and_then(|g| g.vector::<D>())
+    }
+
+    /// The sheared periodic box of a scene with `settings.shear_rate` and a periodic box.
+    #[must_use]
+    pub fn shear(&self) -> Option<ShearedBox<D>> {
+        let rate = self.settings.shear_rate?;
+        self.periodic.map(|size| ShearedBox { size, rate })
+    }
+
+    /// `settings.shear_rate`: finite, on a periodic scene without growing radii or sensors.
+    fn validate_shear(&self) -> Result<(), SceneError> {
+        let Some(rate) = self.settings.shear_rate else {
+            return Ok(());
+        };
+        let field = "settings.shear_rate";
+        if !rate.is_finite() {
+            return Err(SceneError::NonFinite(field.into()));
+        }
+        check_magnitudes(|| field.into(), &[rate])?;
+        let unsupported = |why: &str| {
+            Err(SceneError::Unsupported {
+                field: field.into(),
+                why: why.into(),
+            })
+        };
+        if self.periodic.is_none() {
+            return unsupported(
+                "shear (Lees–Edwards boundaries) needs a periodic box: set `periodic`",
+            );
+        }
+        if self.settings.growth.is_some() {
+            return unsupported(
+                "a sheared box cannot be combined with growing radii (`settings.growth`)",
+            );
+        }
+        if !self.sensors.is_empty() {
+            return unsupported("a sheared box cannot be combined with sensors");
+        }
+        Ok(())
     }
 
     /// `settings.gravity`: one finite component per dimension, and no periodic box, which it
@@ -1210,10 +1260,13 @@ fn validate_wall<const D: usize>(w: usize, wall: &Wall<D>) -> Result<(), SceneEr
 
 /// The first overlapping pair `(i, j)`, `i < j`, in lexicographic order, with its depth,
 /// among pairs that collide (see [`crate::collision_filter`]); in a periodic box of sides
-/// `period`, distances are between nearest images.
+/// `period`, distances are between nearest images, and in a sheared one (`shear`) between
+/// the nearest images at time `time` (see [`crate::contact::lees_edwards`]).
 fn first_overlap<const D: usize>(
     bodies: &[BodySpec<D>],
     period: Option<Vector<D>>,
+    shear: Option<ShearedBox<D>>,
+    time: f64,
 ) -> Option<(usize, usize, f64)> {
     let max_r = bodies.iter().map(|b| b.radius).fold(0.0, f64::max);
     if bodies.len() < 2 || max_r <= 0.0 {
@@ -1251,21 +1304,46 @@ fn first_overlap<const D: usize>(
         let to = from + grid[from..].partition_point(|e| e.0 == *k);
         grid[from..to].iter().map(|e| e.1)
     };
-    let neighbours = 3usize.pow(D as u32);
+    let mut neighbours: Vec<[i64; D]> = Vec::with_capacity(27);
     for (i, bi) in bodies.iter().enumerate() {
         let k = key(bi.pos);
-        let mut best: Option<(usize, f64)> = None;
-        for code in 0..neighbours {
+        neighbours.clear();
+        for code in 0..3usize.pow(D as u32) {
             let mut nk = k;
             let mut c = code;
+            let mut across = false;
             for (d, slot) in nk.iter_mut().enumerate() {
                 *slot += (c % 3) as i64 - 1;
+                across |= d == 1 && !(0..cells[1]).contains(slot);
                 if period.is_some() {
                     *slot = slot.rem_euclid(cells[d]);
                 }
                 c /= 3;
             }
-            for j in cell(&nk) {
+            // In a sheared box the row across a y face slides: its whole row is added below.
+            if !(across && shear.is_some()) {
+                neighbours.push(nk);
+            }
+        }
+        if shear.is_some() && (k[1] == 0 || k[1] == cells[1] - 1) {
+            let opposite = if k[1] == 0 { cells[1] - 1 } else { 0 };
+            for x in 0..cells[0] {
+                for dz in if D == 3 { -1..=1 } else { 0..=0 } {
+                    let mut nk = k;
+                    nk[0] = x;
+                    nk[1] = opposite;
+                    if D == 3 {
+                        nk[D - 1] = (k[D - 1] + dz).rem_euclid(cells[D - 1]);
+                    }
+                    neighbours.push(nk);
+                }
+            }
+        }
+        neighbours.sort_unstable();
+        neighbours.dedup();
+        let mut best: Option<(usize, f64)> = None;
+        for nk in &neighbours {
+            for j in cell(nk) {
                 let j = j as usize;
                 if j <= i {
                     continue;
@@ -1277,9 +1355,10 @@ fn first_overlap<const D: usize>(
                 }
                 let sum = bi.radius + bj.radius;
                 let dp = bi.pos - bj.pos;
-                let d = match period {
-                    Some(p) => crate::contact::periodic::min_image(dp, &p).norm(),
-                    None => dp.norm(),
+                let d = match (period, shear) {
+                    (_, Some(bx)) => bx.nearest_image(dp, time).0.norm(),
+                    (Some(p), None) => crate::contact::periodic::min_image(dp, &p).norm(),
+                    (None, None) => dp.norm(),
                 };
                 if d < sum && best.is_none_or(|(bj0, _)| j < bj0) {
                     best = Some((j, sum - d));

@@ -70,6 +70,14 @@ impl<const D: usize> ImageCounts<D> {
         }
     }
 
+    /// Adds `periods` to slot `i`'s count on `axis` (a sheared box's exits move bodies along
+    /// x by the strain's whole periods, any number of them).
+    pub(crate) fn add(&mut self, i: usize, axis: usize, periods: i64) {
+        let mut k = self.get(i);
+        k[axis] += periods;
+        self.set(i, k);
+    }
+
     /// Moves slot `i`'s count on `axis` plus `step` into the carry (it would leave `i32`).
     #[cold]
     #[inline(never)]

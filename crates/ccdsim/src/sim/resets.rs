@@ -44,13 +44,17 @@ impl<const D: usize> Simulation<D> {
             .as_mut()
             .expect("resets come from a thermostat");
         let i = clock.next_body();
-        let reset = clock.take::<D>(self.world.mass(i));
+        let mut reset = clock.take::<D>(self.world.mass(i));
         debug_assert_eq!((reset.time, reset.body), (time, i));
+        let p = self.world.position_at(i, time);
+        if let Some(bx) = self.world.shear() {
+            // In a sheared box the draw is the peculiar velocity: the flow is added.
+            reset.velocity[0] += bx.flow(p[1]);
+        }
         let added = 0.5
             * self.world.mass(i)
             * (reset.velocity.norm_sq() - self.world.velocity_at(i, time).norm_sq());
         self.guard.add_energy(added);
-        let p = self.world.position_at(i, time);
         self.world.set_state(i, p, reset.velocity, time);
         self.bodies_changed(&[i]);
         self.sensors_changed(i);

@@ -45,6 +45,7 @@ mod slots;
 mod spins;
 
 use crate::collision_filter::CollisionFilter;
+use crate::contact::lees_edwards::ShearedBox;
 use crate::contact::narrow::wall_normal;
 use crate::contact::periodic::min_image;
 use crate::contact::pivot_contact::{first_contact_points, toi_pivot_wall, Parabola};
@@ -165,6 +166,8 @@ pub struct Verifier<const D: usize> {
     moving: Vec<Wall<D>>,
     wall_motion: Vec<crate::motion::WallMotion<D>>,
     period: Option<Vector<D>>,
+    /// The periodic box's Lees–Edwards shear, in a sheared scene.
+    shear: Option<ShearedBox<D>>,
     /// Each collision's coefficient of restitution, as the simulation chooses it.
     restitutions: Restitutions,
     /// Which bodies are kinematic (infinite mass, straight lines, no walls, no other
@@ -257,6 +260,9 @@ impl<const D: usize> Verifier<D> {
         let slab = slab_length(r_max, mean_speed, gravity).unwrap_or(f64::MAX);
         let pe = potential_energy(&motion, &mass, gravity, scene.start_time);
         let mut grid = Proximity::new(&radius, scene.periodic, scene.start_time);
+        // A sheared box moves the neighbours across its y faces, which the grid does not
+        // follow: every pair is checked instead.
+        let sheared = scene.shear().is_some();
         grid.start_slab(scene.start_time, slab_end(scene.start_time, slab));
         let grown = growth.map_or(1.0, |g| g.scale(grid.end));
         for (i, m) in motion.iter().enumerate() {
@@ -284,7 +290,7 @@ impl<const D: usize> Verifier<D> {
             gravity,
             vacant: Vec::new(),
             pending_add: None,
-            grid: Some(grid),
+            grid: (!sheared).then_some(grid),
             slab,
             motion,
             radius,
@@ -294,6 +300,7 @@ impl<const D: usize> Verifier<D> {
             moving: scene.moving_walls.iter().map(|m| m.wall).collect(),
             wall_motion: crate::motion::start_motions(&scene.moving_walls, scene.start_time),
             period: scene.periodic,
+            shear: scene.shear(),
             restitutions: Restitutions::new(scene),
             kinematic,
             filters: scene.filters(),
@@ -472,7 +479,7 @@ impl<const D: usize> Verifier<D> {
             let fall = self.g(i).map_or(0.0, |g| 0.5 * g.norm() * dt * dt);
             let scale = 1.0 + expect.norm() + self.motion[i].vel.norm() * dt + fall;
             // A motion that cannot reach `t` (a position beyond the largest float) fails too.
-            let off = self.image(c.pos[s] - expect).norm();
+            let off = self.image(c.pos[s] - expect, t).norm();
             if beyond(off, 1e-9 * scale) || !expect.is_finite() {
                 return Err(self.fail(
                     t,
@@ -519,6 +526,27 @@ impl<const D: usize> Verifier<D> {
 
     fn check_pair(&mut self, c: &Collision<D>, i: usize, j: usize) -> Result<(), Violation> {
         let t = c.event.time;
+        let seen;
+        let mut before = (self.vel_of(i, t), self.vel_of(j, t));
+        let c = match self.shear {
+            None => c,
+            Some(bx) => {
+                // Every check below on the images that met: `i`'s record, and `j`'s image
+                // next to it, moving a layer's speed faster or slower (see
+                // `crate::contact::lees_edwards`); velocities before, in the same frames.
+                let (vi, vj) = before;
+                let (d, layer) = bx.nearest_image(c.pos[1] - c.pos[0], t);
+                let mut image = *c;
+                image.pos[1] = c.pos[0] + d;
+                image.vel[1] = bx.image_velocity(c.vel[1], layer);
+                before = (
+                    self.record_frame(vi, i, c.pos[0], t),
+                    bx.image_velocity(self.record_frame(vj, j, c.pos[1], t), layer),
+                );
+                seen = image;
+                &seen
+            }
+        };
         if !self.filters.is_empty() && !self.filters[i].collides(&self.filters[j]) {
             return Err(self.fail(
                 t,
@@ -526,7 +554,7 @@ impl<const D: usize> Verifier<D> {
             ));
         }
         let sigma = self.radius_at(i, t) + self.radius_at(j, t);
-        let gap = (self.image(c.pos[1] - c.pos[0]).norm() - sigma) / sigma;
+        let gap = (self.image(c.pos[1] - c.pos[0], t).norm() - sigma) / sigma;
         if beyond(gap, OVERLAP_TOLERANCE) {
             return Err(self.fail(
                 t,
@@ -539,7 +567,7 @@ impl<const D: usize> Verifier<D> {
         self.report.max_overlap = self.report.max_overlap.max(-gap);
         let (mi, mj) = (self.mass[i], self.mass[j]);
         // Just before the collision: under gravity the stored velocities have changed since.
-        let (vi, vj) = (self.vel_of(i, t), self.vel_of(j, t));
+        let (vi, vj) = before;
         // Chosen before the collision counts for the TC model, as the simulation does.
         let e = self.restitutions.pair(i, j, t);
         self.restitutions.note(i, t);
@@ -705,7 +733,10 @@ impl<const D: usize> Verifier<D> {
             return Err(self.fail(t, "a thermostat reset in a run without a thermostat".into()));
         };
         let (due, body) = (clock.next_time(), clock.next_body());
-        let expect = clock.take::<D>(mass);
+        let mut expect = clock.take::<D>(mass);
+        if let Some(bx) = self.shear {
+            expect.velocity[0] += bx.flow(c.pos[0][1]);
+        }
         if (due, body) != (t, i) || expect.velocity != c.vel[0] {
             return Err(self.fail(
                 t,
@@ -751,7 +782,7 @@ impl<const D: usize> Verifier<D> {
                 continue;
             }
             let sigma = r + self.radius_at(j, t);
-            let d = self.image(self.pos_of(j, t) - pos).norm();
+            let d = self.image(self.pos_of(j, t) - pos, t).norm();
             if (sigma - d) / sigma > OVERLAP_TOLERANCE {
                 return Err(self.fail(
                     t,
@@ -1152,7 +1183,7 @@ impl<const D: usize> Verifier<D> {
     ) -> Result<(), Violation> {
         let (i, j) = (c.event.a as usize, c.event.b as usize);
         // From the second body towards the first, as the rule takes it.
-        let n = self.image(c.pos[0] - c.pos[1]);
+        let n = self.image(c.pos[0] - c.pos[1], c.event.time);
         // Rounding is relative to the bodies' own speeds, not only to their relative one: a
         // body riding along with a kinematic one, or two falling side by side.
         let lab = magnitude(vi) + magnitude(vj) + magnitude(c.vel[0]) + magnitude(c.vel[1]);
@@ -1261,8 +1292,17 @@ impl<const D: usize> Verifier<D> {
         let (pj, vj) = (self.pos_at(&mj, t0, gj), self.vel_at(&mj, t0, gj));
         let acc = gj.unwrap_or(Vector::ZERO) - gi.unwrap_or(Vector::ZERO);
         let span = (t1 - t0).max(0.0);
-        let travel = (vj - vi).norm() * span + 0.5 * acc.norm() * span * span;
-        if self.image(pj - pi).norm() - travel > sigma1 * (1.0 + 1e-6) {
+        let mut travel = (vj - vi).norm() * span + 0.5 * acc.norm() * span * span;
+        if let Some(bx) = self.shear {
+            // Images of other layers move faster by the layers' speed; those more than a
+            // layer from the nearest cannot come near while y moves less than half a box.
+            let layer = bx.nearest_image(pj - pi, t0).1;
+            travel += bx.layer_speed().abs() * (layer.abs() + 1.0) * span;
+            if (vj[1] - vi[1]).abs() * span >= 0.5 * bx.size[1] {
+                travel = f64::INFINITY;
+            }
+        }
+        if self.image(pj - pi, t0).norm() - travel > sigma1 * (1.0 + 1e-6) {
             // Cheap bound: they stay apart (the distance to any image changes no faster than
             // the relative motion).
             return Ok(None);
@@ -1280,7 +1320,7 @@ impl<const D: usize> Verifier<D> {
         // `d` is the distance less what the contact distance grew by since `t0`. Under
         // gravity the relative motion of two falling bodies is linear from the states at `t0`.
         let (d, at) = self
-            .approach(pi, vi, pj, vj, t1 - t0, grow)
+            .approach(pi, vi, pj, vj, (t0, t1 - t0), grow)
             .ok_or_else(|| {
                 format!(
                 "bodies {i} and {j} move apart by more than {MAX_PIECES} quarter periodic boxes \
@@ -1544,8 +1584,11 @@ impl<const D: usize> Verifier<D> {
         Path::new(*m, g).velocity(t)
     }
 
-    /// The displacement `dp` itself, or its nearest image in a periodic scene.
-    fn image(&self, dp: Vector<D>) -> Vector<D> {
+    /// The displacement `dp` itself, or its nearest image at time `t` in a periodic scene.
+    fn image(&self, dp: Vector<D>, t: f64) -> Vector<D> {
+        if let Some(bx) = self.shear {
+            return bx.nearest_image(dp, t).0;
+        }
         match self.period {
             Some(size) => min_image(dp, &size),
             None => dp,
@@ -1563,7 +1606,7 @@ impl<const D: usize> Verifier<D> {
         va: Vector<D>,
         pb: Vector<D>,
         vb: Vector<D>,
-        span: f64,
+        (t0, span): (f64, f64),
         grow: f64,
     ) -> Option<(f64, f64)> {
         let closest = |dp: Vector<D>, dv: Vector<D>, span: f64| {
@@ -1573,6 +1616,9 @@ impl<const D: usize> Verifier<D> {
                 closest_approach(Vector::ZERO, Vector::ZERO, dp, dv, span)
             }
         };
+        if let Some(bx) = self.shear {
+            return self.approach_sheared(&bx, pb - pa, vb - va, (t0, span), closest);
+        }
         let Some(size) = self.period else {
             return Some(closest(pb - pa, vb - va, span));
         };
@@ -1606,6 +1652,71 @@ impl<const D: usize> Verifier<D> {
             }
         }
         Some(best)
+    }
+
+    /// [`Verifier::approach`] in a sheared box, for the relative motion `dp + dv·τ` from time
+    /// `t0`: the images of other layers move faster along x by the layers' speed, so the
+    /// pieces are short enough for the fastest image that can come near to cross a quarter
+    /// box, and in each the images next to the nearest one in each of the three nearest
+    /// layers are tried, each with its own relative velocity.
+    fn approach_sheared(
+        &self,
+        bx: &ShearedBox<D>,
+        dp: Vector<D>,
+        dv: Vector<D>,
+        (t0, span): (f64, f64),
+        closest: impl Fn(Vector<D>, Vector<D>, f64) -> (f64, f64),
+    ) -> Option<(f64, f64)> {
+        let size = bx.size;
+        let side = (0..D).map(|d| size[d]).fold(f64::INFINITY, f64::min);
+        let span = span.max(0.0);
+        let layers = (dp[1].abs() + dv[1].abs() * span) / size[1] + 2.0;
+        let speed = dv.norm() + bx.layer_speed().abs() * layers;
+        let pieces = ((speed * span) / (0.25 * side)).ceil().max(1.0);
+        if beyond(pieces, MAX_PIECES as f64) {
+            return None;
+        }
+        let pieces = pieces as u64;
+        let mut best = (f64::INFINITY, 0.0);
+        for k in 0..pieces {
+            let s0 = span * k as f64 / pieces as f64;
+            let s1 = span * (k + 1) as f64 / pieces as f64;
+            let at = t0 + s0;
+            let (start, layer) = bx.nearest_image(dp + dv * s0, at);
+            for up in [-1.0, 0.0, 1.0] {
+                // The layer `up` above the nearest: shifted by the offset, then brought to its
+                // nearest x image.
+                let mut base = start;
+                base[1] += up * size[1];
+                base[0] += up * bx.offset(at);
+                base[0] -= size[0] * (base[0] / size[0]).round();
+                let vel = bx.image_velocity(dv, layer + up);
+                for code in 0..3usize.pow(D as u32 - 1) {
+                    let mut p = base;
+                    let mut c = code;
+                    for d in (0..D).filter(|&d| d != 1) {
+                        p[d] += ((c % 3) as f64 - 1.0) * size[d];
+                        c /= 3;
+                    }
+                    let (dist, when) = closest(p, vel, s1 - s0);
+                    if dist < best.0 {
+                        best = (dist, s0 + when);
+                    }
+                }
+            }
+        }
+        Some(best)
+    }
+
+    /// Velocity `v` of body `i`'s motion (its state since its last event, continued past any
+    /// exit from a sheared box) in the frame of the image of it recorded at `recorded` at
+    /// time `t`: the layers between them change the velocity by the layers' speed.
+    fn record_frame(&self, v: Vector<D>, i: usize, recorded: Vector<D>, t: f64) -> Vector<D> {
+        let Some(bx) = self.shear else {
+            return v;
+        };
+        let layer = bx.nearest_image(recorded - self.pos_of(i, t), t).1;
+        bx.image_velocity(v, -layer)
     }
 }
 

@@ -148,7 +148,7 @@ impl<const D: usize> Verifier<D> {
         let t = c.event.time;
         let (ri, rj) = (self.radius_at(i, t), self.radius_at(j, t));
         let (mi, mj) = (self.mass[i], self.mass[j]);
-        let d = self.image(c.pos[1] - c.pos[0]);
+        let d = self.image(c.pos[1] - c.pos[0], t);
         let Some(s) = &self.spins else {
             return Ok(Turned::default());
         };

@@ -18,6 +18,7 @@ pub use time_of_impact::{
 };
 
 use crate::collision_filter::CollisionFilter;
+use crate::contact::lees_edwards::ShearedBox;
 use crate::geom::Vector;
 use crate::motion::{start_motions, translated, Body, GrowthLaw, Laws, Motion, Path, WallMotion};
 use crate::scene::{BodySpec, Scene, SceneError};
@@ -96,6 +97,8 @@ pub struct World<const D: usize> {
     /// Where each moving wall is and how it moves.
     wall_motions: Vec<WallMotion<D>>,
     periodic: Option<Vector<D>>,
+    /// The periodic box's Lees–Edwards shear, if the scene shears it.
+    shear: Option<ShearedBox<D>>,
     restitution: f64,
     /// Per-body restitution, by body index; empty when every body has the scene's.
     restitutions: Vec<f64>,
@@ -177,6 +180,7 @@ impl<const D: usize> World<D> {
             moving_walls: scene.moving_walls.iter().map(|m| m.wall).collect(),
             wall_motions: start_motions(&scene.moving_walls, scene.start_time),
             periodic: scene.periodic,
+            shear: scene.shear(),
             restitution: scene.settings.restitution,
             restitutions: if scene.bodies.iter().any(|b| b.restitution.is_some()) {
                 scene
@@ -1014,6 +1018,14 @@ impl<const D: usize> World<D> {
     #[must_use]
     pub fn periodic(&self) -> Option<Vector<D>> {
         self.periodic
+    }
+
+    /// The periodic box with its Lees–Edwards shear, for sheared worlds (see
+    /// [`crate::contact::lees_edwards`]); `None` otherwise.
+    #[must_use]
+    #[inline]
+    pub fn shear(&self) -> Option<ShearedBox<D>> {
+        self.shear
     }
 
     /// The scene's coefficient of restitution (`settings.restitution`): every collision's,

@@ -291,7 +291,15 @@ impl<const D: usize> Finder<D> for BvhFinder<D> {
         "bvh"
     }
 
-    fn init(&mut self, _world: &World<D>) -> Result<(), FinderError> {
+    fn init(&mut self, world: &World<D>) -> Result<(), FinderError> {
+        if world.shear().is_some() {
+            return Err(FinderError::Unsupported {
+                finder: "bvh",
+                why: "sheared (Lees–Edwards) boxes are served by `cells`, `sedgewick` and \
+                      `all-pairs`"
+                    .into(),
+            });
+        }
         self.delta = self.initial_dt;
         self.tree = SweptTree::default();
         self.walls.clear();

@@ -98,6 +98,16 @@
 //! axis too short for three cells is a single cell whose three images are all scanned, like
 //! the oracle does.
 //!
+//! A sheared box ([`crate::contact::lees_edwards`]) slides the rows of cells along its y faces
+//! past each other, so which cells neighbour a border row across those faces changes with
+//! time. There, the cells of a body's neighbourhood reached across a y face are replaced by
+//! the whole opposite row (every x, the neighbouring z), every pair is evaluated by the
+//! oracle's sheared function over all images
+//! ([`toi_bodies_sheared`](crate::contact::lees_edwards::toi_bodies_sheared)), a crossing
+//! rescans the whole new neighbourhood, and neighbour lists are not used: the argument above
+//! holds with "neighbours" read as these sets, since two bodies that touch across a y face
+//! are both in border rows and in neighbouring z layers.
+//!
 //! A scan of an interior block (every cell present, zero shift) gathers the bodies of its
 //! cells from their slots and evaluates them four at a time ([`gather`]): each lane is the
 //! oracle's function on its pair's states in the oracle's order, bit for bit, and the offers
@@ -269,6 +279,7 @@ mod slots;
 mod tournament;
 
 use super::{DebugBox, Finder, FinderError, FinderMemory, FinderOptions};
+use crate::contact::lees_edwards::ShearedBox;
 use crate::event::Event;
 use crate::geom::{Aabb, Vector};
 use crate::prefetch::prefetch;
@@ -374,6 +385,8 @@ pub struct Cells<const D: usize> {
     queue: TournamentQueue,
     /// The world is periodic.
     periodic: bool,
+    /// The sheared box, in a sheared world (see the module docs).
+    shear: Option<ShearedBox<D>>,
     /// Wall index of the first periodic face (the number of walls).
     faces_from: usize,
     /// Crossings processed since the last `update`: body, code, time.
@@ -435,6 +448,7 @@ impl<const D: usize> Cells<D> {
             cached: Vec::new(),
             queue: TournamentQueue::default(),
             periodic: false,
+            shear: None,
             faces_from: 0,
             log: Vec::new(),
             clock: 0.0,
@@ -696,6 +710,7 @@ impl<const D: usize> Finder<D> for Cells<D> {
         let sigma_max = if n >= 2 { r1 + r2 } else { 2.0 * r1.max(0.5) };
         let period = world.periodic();
         self.periodic = period.is_some();
+        self.shear = world.shear();
         self.faces_from = world.walls().len();
         let (mut lo, mut hi) = (Vector::ZERO, Vector::ZERO);
         if period.is_none() {
@@ -731,7 +746,8 @@ impl<const D: usize> Finder<D> for Cells<D> {
             }
             _ => self.skin,
         };
-        let list_mode = relative_skin > 0.0 && period.is_some() && n < MAX_LIST_BODIES;
+        let list_mode =
+            relative_skin > 0.0 && period.is_some() && self.shear.is_none() && n < MAX_LIST_BODIES;
         let skin = if list_mode {
             relative_skin * sigma_max
         } else {

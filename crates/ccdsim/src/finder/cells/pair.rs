@@ -61,7 +61,7 @@ impl<const D: usize> Cells<D> {
     /// same or neighbours. Returns false, having done nothing, otherwise.
     #[inline(always)]
     pub(super) fn recompute_pair(&mut self, world: &World<D>, i: usize, j: usize) -> bool {
-        if matches!(self.mode, Mode::Lists(_)) || i == j {
+        if matches!(self.mode, Mode::Lists(_)) || i == j || self.shear.is_some() {
             return false;
         }
         let (pi, pj) = (Probe::of(world, i), Probe::of(world, j));

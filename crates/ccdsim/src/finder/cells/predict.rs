@@ -8,6 +8,7 @@ use super::grid::Grid;
 use super::key::{ordered, Key};
 use super::{Cells, Mode, NO_CROSSING, SECOND_KNOWN};
 use crate::collision_filter::{pair_collides, CollisionFilter};
+use crate::contact::lees_edwards::toi_bodies_sheared;
 use crate::contact::narrow_lanes::Side;
 use crate::contact::periodic::toi_box_exit;
 use crate::contact::{toi_bodies_shifted, toi_body_wall_of, toi_pair_accelerated, toi_pair_bodies};
@@ -86,6 +87,9 @@ impl<const D: usize> Cells<D> {
             let (ga, gb) = (&self.accels[i.min(j)], &self.accels[i.max(j)]);
             return toi_pair_accelerated(a, ga, b, gb);
         }
+        if let Some(bx) = &self.shear {
+            return toi_bodies_sheared(a, b, bx, self.laws.as_ref());
+        }
         if self.periodic {
             let s = if i < j { *shift } else { Vector::ZERO - *shift };
             toi_bodies_shifted(a, b, s, self.laws.as_ref())
@@ -144,6 +148,10 @@ impl<const D: usize> Cells<D> {
     /// register saves per recompute.
     #[inline(always)]
     pub(super) fn scan_neighbours(&self, world: &World<D>, p: &Probe<D>, best: &mut Best) {
+        if self.shear.is_some() {
+            self.scan_sheared(world, p, best);
+            return;
+        }
         let k = self.cached[p.i].coords;
         let bodies = world.bodies();
         if let Some(cells) = self.grid.interior_neighbours(&k) {
@@ -170,6 +178,12 @@ impl<const D: usize> Cells<D> {
         up: bool,
         best: &mut Best,
     ) {
+        if self.shear.is_some() {
+            // The cells across a y face that neighbour a border row change as the rows slide:
+            // the whole new neighbourhood is scanned.
+            self.scan_sheared(world, p, best);
+            return;
+        }
         let k = self.cached[p.i].coords;
         let bodies = world.bodies();
         if let Some(cells) = self.grid.interior_entered_layer(&k, axis, up) {
@@ -184,6 +198,65 @@ impl<const D: usize> Cells<D> {
                     n += 1;
                 });
             self.scan_listed(bodies, p, &cells[..n], best);
+        }
+    }
+
+    /// Sheared boxes: the cells whose bodies can touch a body filed at coordinates `k` before
+    /// it leaves its cell: its neighbours not across a y face and, for a body in the first or
+    /// last row along y, every cell of the opposite row in its own and the neighbouring z
+    /// layers (see the module docs). Sorted, each once.
+    fn sheared_neighbours(&self, k: &[u32; D]) -> Vec<u32> {
+        let mut cells = Vec::with_capacity(27);
+        self.grid.visit_neighbours(k, |cell, shift, _| {
+            if shift[1] == 0.0 {
+                cells.push(cell);
+            }
+        });
+        let dims = self.grid.dims();
+        let last = dims[1] as u32 - 1;
+        if k[1] == 0 || k[1] == last {
+            let opposite = if k[1] == 0 { last } else { 0 };
+            let layers: Vec<u32> = if D == 3 {
+                let nz = dims[D - 1] as i64;
+                (-1..=1)
+                    .map(|dz| (i64::from(k[D - 1]) + dz).rem_euclid(nz) as u32)
+                    .collect()
+            } else {
+                vec![0]
+            };
+            for x in 0..dims[0] as u32 {
+                for &z in &layers {
+                    let mut c = *k;
+                    c[0] = x;
+                    c[1] = opposite;
+                    if D == 3 {
+                        c[D - 1] = z;
+                    }
+                    cells.push(self.grid.cell_at(&c));
+                }
+            }
+        }
+        cells.sort_unstable();
+        cells.dedup();
+        cells
+    }
+
+    /// Sheared boxes: offers body `p` every pair with a body of its neighbourhood
+    /// ([`Cells::sheared_neighbours`]), each by the oracle's sheared function.
+    #[inline(never)]
+    fn scan_sheared(&self, world: &World<D>, p: &Probe<D>, best: &mut Best) {
+        let bodies = world.bodies();
+        let zero = Vector::ZERO;
+        for c in self.sheared_neighbours(&self.cached[p.i].coords) {
+            for j in self.grid.bodies_in(c) {
+                let j = j as usize;
+                if j == p.i {
+                    continue;
+                }
+                if let Some(t) = self.pair_toi(p, j, &bodies[j], &zero) {
+                    offer_time(best, p.i, j, t, Grid::<D>::ZERO_IMAGE);
+                }
+            }
         }
     }
 

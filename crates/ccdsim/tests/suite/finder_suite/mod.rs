@@ -29,6 +29,7 @@ mod growth;
 mod periodic;
 mod resting;
 mod rough;
+mod shear;
 mod special_scenes;
 mod steering;
 
