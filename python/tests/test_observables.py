@@ -93,6 +93,29 @@ def test_pressure_tensor_traces_to_the_scalar_pressure():
     assert p[0, 0] == pytest.approx(p[1, 1], rel=0.05)
 
 
+def test_a_sheared_box_has_a_shear_stress_near_enskogs_viscosity():
+    # Lees–Edwards shear at a small rate: the pressure tensor's kinetic part is taken in
+    # peculiar velocities, and -P_xy / rate is the viscosity (Enskog: 0.2232 in units of
+    # sqrt(m kT) / sigma^2 at packing 0.1, m = pi/6 here).
+    rate = 0.15
+    scene = ccdsim.generate.gas(n=1500, packing=0.1, dim=3, periodic=True, temperature=1.0,
+                                radius_min=0.5, radius_max=0.5, seed=3)
+    ly = scene["periodic"][1]
+    scene["settings"]["shear_rate"] = rate
+    for b in scene["bodies"]:
+        b["vel"][0] += rate * (b["pos"][1] - ly / 2)
+    sim = ccdsim.Simulation(scene)
+    sim.run_events(20 * 1500)
+    kt0 = sim.observables()["temperature"]
+    p = sim.run_until_pressure_tensor(sim.time + 40)
+    kt = 0.5 * (kt0 + sim.observables()["temperature"])
+    np.testing.assert_allclose(p, p.T, rtol=0, atol=1e-9 * np.trace(p))
+    eta = -p[0, 1] / rate / np.sqrt(np.pi / 6 * kt)
+    assert eta == pytest.approx(0.2232, rel=0.2)
+    # The temperature is the peculiar one: the flow's kinetic energy is left out.
+    assert 0.9 < kt < 1.6
+
+
 def test_bad_frames_are_refused():
     with pytest.raises(ValueError, match="F x N x 2"):
         ccdsim.observables.msd(np.zeros((3, 4, 5)))

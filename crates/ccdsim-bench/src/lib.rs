@@ -2,7 +2,8 @@
 //! number of bodies for every finder), Table 5.2 (the exact simulation against a
 //! discrete-time stepper and the collisions it misses) and the gas workload (collisions per
 //! second and the equation of state of hard discs and spheres), the rough-sphere cooling
-//! check (rotational against translational temperature, against kinetic theory) and the pool
+//! check (rotational against translational temperature, against kinetic theory), the shear
+//! check (Lees–Edwards viscosity against Enskog's, a granular gas's heat balance) and the pool
 //! break (breaks per second, beside pooltool's). They print tables and return data; the
 //! command-line tool adds the files and plots.
 //!
@@ -17,6 +18,7 @@ mod discrete;
 mod gas;
 mod pool_break;
 mod rough_cooling;
+mod shear;
 mod thesis;
 
 pub use budget::{CellStatus, Planner};
@@ -29,6 +31,10 @@ pub use pool_break::{pool_break, BreakLayout, BreakReport};
 pub use rough_cooling::{
     cooling_coefficients, cooling_decay, default_settle, huthmann_zippelius_ratio,
     ratio_relaxation, rough_cooling, CoolingConfig, CoolingError, CoolingReport, CoolingSample,
+};
+pub use shear::{
+    contact_value, enskog_viscosity, granular_temperature, least_squares, shear_run, ShearConfig,
+    ShearError, ShearReport,
 };
 pub use thesis::{
     fmt_seconds, run_thesis_bench, run_thesis_once, thesis_row, ThesisBenchConfig,

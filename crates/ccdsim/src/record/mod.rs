@@ -116,13 +116,21 @@ pub const VERSION_PIVOTS: u32 = 13;
 /// collision's impulse (`m·Δv`), applied at the contact point, so that a reader replays them
 /// exactly as `verify` does. Bodies never rest on walls in these scenes.
 pub const VERSION_ROUGH: u32 = 14;
+/// Format version of run files of sheared periodic scenes (`settings.shear_rate`, see
+/// [`crate::contact::lees_edwards`]): version 14's records, whose positions lie in the box
+/// after exits through a y face that moved the body along x by the strain offset and
+/// changed its x velocity by `γ̇ L_y`, and whose collisions meet between images of
+/// neighbouring layers. No rest or turn flags (a sheared box has no walls).
+pub const VERSION_SHEARED: u32 = 15;
 /// The newest format version this build reads.
-pub const VERSION_NEWEST: u32 = VERSION_ROUGH;
+pub const VERSION_NEWEST: u32 = VERSION_SHEARED;
 
 /// The format version a run of `scene` is written in.
 #[must_use]
 pub fn version_for<const D: usize>(scene: &crate::scene::Scene<D>) -> u32 {
-    if scene.is_rotational() {
+    if scene.shear().is_some() {
+        VERSION_SHEARED
+    } else if scene.is_rotational() {
         VERSION_ROUGH
     } else if crate::scene::slides(scene)
         .iter()

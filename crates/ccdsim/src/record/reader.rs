@@ -4,7 +4,7 @@ use super::{
     fnv1a, record_len, RecordError, RunRecord, MAGIC, PIVOT_A, PIVOT_B, PREAMBLE_LEN, REST_A,
     REST_B, TAG_BODY, TAG_EDIT, TAG_END, TAG_RESET, TAG_WALL, VERSION, VERSION_EDITS,
     VERSION_MOVING_WALLS, VERSION_NEWEST, VERSION_PIVOTS, VERSION_RESTING, VERSION_ROUGH,
-    VERSION_SLOTS,
+    VERSION_SHEARED, VERSION_SLOTS,
 };
 use crate::event::Event;
 use crate::geom::Vector;
@@ -624,8 +624,8 @@ fn decode<const D: usize>(buf: &[u8], version: u32) -> Result<RunRecord<D>, Stri
         pivots: [buf[0] & PIVOT_A != 0, buf[0] & PIVOT_B != 0],
     };
     let flags = match version {
-        // Bodies of rotational scenes never rest on walls.
-        VERSION_ROUGH => 0,
+        // Bodies of rotational and sheared scenes never rest on walls.
+        VERSION_ROUGH | VERSION_SHEARED => 0,
         v if v >= VERSION_PIVOTS => REST_A | REST_B | PIVOT_A | PIVOT_B,
         v if v >= VERSION_RESTING => REST_A | REST_B,
         _ => 0,

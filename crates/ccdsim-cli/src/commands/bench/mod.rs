@@ -6,6 +6,7 @@ mod gas;
 mod plot;
 mod pool_break;
 mod rough_cooling;
+mod shear;
 mod thesis;
 
 use anyhow::{anyhow, Context, Result};
@@ -33,6 +34,9 @@ enum Workload {
     /// Homogeneous cooling gases of rough spheres: the ratio of rotational to translational
     /// temperature and Haff's law against the Huthmann–Zippelius theory.
     RoughCooling(rough_cooling::Args),
+    /// Hard spheres in simple shear (Lees–Edwards): the viscosity against Enskog's,
+    /// extrapolated to zero rate, and granular gases' heat balance.
+    Shear(shear::Args),
     /// A racked pool table broken again and again: the median time per break and breaks
     /// per second (beside pooltool's, with a layout from scripts/pool-break-compare).
     PoolBreak(pool_break::Args),
@@ -45,6 +49,7 @@ pub fn run(args: Args) -> Result<ExitCode> {
         Workload::Discrete(a) => discrete::run(a),
         Workload::Gas(a) => gas::run(a),
         Workload::RoughCooling(a) => rough_cooling::run(a),
+        Workload::Shear(a) => shear::run(a),
         Workload::PoolBreak(a) => pool_break::run(a),
     }
 }
