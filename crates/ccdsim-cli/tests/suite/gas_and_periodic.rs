@@ -142,3 +142,89 @@ fn open_scene_has_no_pressure() {
     assert!(v["pressure"].is_null() && v["compressibility"].is_null());
     assert!(v["temperature"].as_f64().unwrap() > 0.0);
 }
+
+/// A sheared box end to end: `gen gas --shear-rate` starts the gas in the flow, `run --json`
+/// reports the shear stress and viscosity (a positive rate gives positive ones), the run file
+/// verifies, `bvh` refuses the scene with a reason, and a shear without a periodic box is
+/// refused by name.
+#[test]
+fn a_sheared_box_reports_its_viscosity_and_verifies() {
+    let scene = tmp("sheared.json");
+    let record = tmp("sheared.ccd");
+    run_ok(
+        ccdsim()
+            .args([
+                "gen",
+                "gas",
+                "--dim",
+                "3",
+                "--n",
+                "500",
+                "--packing",
+                "0.15",
+            ])
+            .args([
+                "--periodic",
+                "--temperature",
+                "1",
+                "--shear-rate",
+                "0.3",
+                "--out",
+                scene.to_str().unwrap(),
+            ]),
+    );
+    let written: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&scene).unwrap()).unwrap();
+    assert_eq!(written["settings"]["shear_rate"], 0.3);
+    let out = run_ok(ccdsim().args([
+        "run",
+        scene.to_str().unwrap(),
+        "--events",
+        "20000",
+        "--record",
+        record.to_str().unwrap(),
+        "--json",
+        "-q",
+    ]));
+    let v = json(&out);
+    let stress = v["shear_stress"].as_f64().unwrap();
+    let eta = v["viscosity"].as_f64().unwrap();
+    assert!(
+        stress > 0.0 && (eta - stress / 0.3).abs() < 1e-12 * eta,
+        "{v}"
+    );
+    assert!(
+        v["temperature"].as_f64().unwrap() < 2.0,
+        "peculiar, not lab: {v}"
+    );
+    let out = run_ok(ccdsim().args(["verify", record.to_str().unwrap()]));
+    assert!(
+        String::from_utf8_lossy(&out.stdout).contains("OK"),
+        "{out:?}"
+    );
+    let out = ccdsim()
+        .args([
+            "run",
+            scene.to_str().unwrap(),
+            "--finder",
+            "bvh",
+            "--events",
+            "10",
+        ])
+        .output()
+        .unwrap();
+    assert!(!out.status.success());
+    assert!(
+        String::from_utf8_lossy(&out.stderr).contains("Lees–Edwards"),
+        "{out:?}"
+    );
+    let out = ccdsim()
+        .args(["gen", "gas", "--n", "50", "--shear-rate", "1"])
+        .output()
+        .unwrap();
+    assert!(!out.status.success());
+    assert!(
+        String::from_utf8_lossy(&out.stderr).contains("settings.shear_rate"),
+        "{out:?}"
+    );
+}
