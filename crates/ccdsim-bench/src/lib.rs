@@ -16,6 +16,7 @@
 mod budget;
 mod discrete;
 mod gas;
+mod line_fit;
 mod pool_break;
 mod rough_cooling;
 mod shear;
@@ -27,14 +28,15 @@ pub use gas::{
     carnahan_starling_z, enskog_collision_rate, eos_z, gas_bench, henderson_z, standard_error,
     GasBenchConfig, GasBenchError, GasBenchReport,
 };
+pub use line_fit::{line_fit, LineFit};
 pub use pool_break::{pool_break, BreakLayout, BreakReport};
 pub use rough_cooling::{
     cooling_coefficients, cooling_decay, default_settle, huthmann_zippelius_ratio,
     ratio_relaxation, rough_cooling, CoolingConfig, CoolingError, CoolingReport, CoolingSample,
 };
 pub use shear::{
-    contact_value, enskog_viscosity, granular_temperature, least_squares, shear_run, ShearConfig,
-    ShearError, ShearReport,
+    contact_value, enskog_viscosity, granular_temperature, shear_run, ShearConfig, ShearError,
+    ShearReport,
 };
 pub use thesis::{
     fmt_seconds, run_thesis_bench, run_thesis_once, thesis_row, ThesisBenchConfig,

@@ -26,6 +26,7 @@
 //! to `ln T_tr` against `τ` there, and Haff's law checked by the straightness (R²) of
 //! `1/√T_tr` against `t` over the same stretch.
 
+use crate::line_fit::line_fit;
 use ccdsim::generate::{gas, GasConfig, GenerateError};
 use ccdsim::motion::Spin;
 use ccdsim::observables::{rotational_temperature, temperature};
@@ -200,23 +201,6 @@ pub fn default_settle(e: f64, beta: f64, q: f64) -> f64 {
     }
 }
 
-/// Least-squares line through `(x, y)`: slope and R².
-fn fit(points: &[(f64, f64)]) -> (f64, f64) {
-    let n = points.len() as f64;
-    let mx = points.iter().map(|p| p.0).sum::<f64>() / n;
-    let my = points.iter().map(|p| p.1).sum::<f64>() / n;
-    let sxx: f64 = points.iter().map(|p| (p.0 - mx).powi(2)).sum();
-    let sxy: f64 = points.iter().map(|p| (p.0 - mx) * (p.1 - my)).sum();
-    let syy: f64 = points.iter().map(|p| (p.1 - my).powi(2)).sum();
-    let slope = sxy / sxx;
-    let r2 = if syy > 0.0 {
-        sxy * sxy / (sxx * syy)
-    } else {
-        1.0
-    };
-    (slope, r2)
-}
-
 /// The scene: `n` spheres at random positions, Maxwell velocities and spins at kT = 1.
 fn cooling_scene(cfg: &CoolingConfig) -> Result<Scene<3>, CoolingError> {
     let gas_of = |seed| {
@@ -322,9 +306,9 @@ pub fn rough_cooling(
         inertia: q,
         ratio,
         ratio_theory: huthmann_zippelius_ratio(e, beta, q),
-        decay: -fit(&by_collisions).0,
+        decay: -line_fit(&by_collisions).slope,
         decay_theory: cooling_decay(e, beta, q),
-        haff_r2: fit(&by_time).1,
+        haff_r2: line_fit(&by_time).r2,
         energy_change: (energy(&sim) - e0) / e0,
         collisions: sim.stats().body_collisions,
         seconds: start.elapsed().as_secs_f64(),

@@ -25,6 +25,7 @@
 //! * The velocity profile: the mean `v_x` in ten slabs along y, sampled after every block,
 //!   and its least-squares slope against the imposed `γ̇`.
 
+use crate::line_fit::line_fit;
 use ccdsim::contact::lees_edwards::ShearedBox;
 use ccdsim::generate::{gas, GasConfig, GenerateError};
 use ccdsim::observables::{temperature, PressureTensor};
@@ -333,7 +334,7 @@ pub fn shear_run(
             )
         })
         .collect();
-    let (slope, _) = least_squares(&profile);
+    let slope = line_fit(&profile).slope;
     let deviation = profile
         .iter()
         .map(|&(y, v)| (v - bx.flow(y)).abs())
@@ -363,18 +364,6 @@ pub fn shear_run(
         collisions: sim.stats().body_collisions - settled.min(sim.stats().body_collisions),
         seconds: start.elapsed().as_secs_f64(),
     })
-}
-
-/// Least-squares line through `(x, y)`: slope and intercept.
-#[must_use]
-pub fn least_squares(points: &[(f64, f64)]) -> (f64, f64) {
-    let n = points.len() as f64;
-    let mx = points.iter().map(|p| p.0).sum::<f64>() / n;
-    let my = points.iter().map(|p| p.1).sum::<f64>() / n;
-    let sxx: f64 = points.iter().map(|p| (p.0 - mx).powi(2)).sum();
-    let sxy: f64 = points.iter().map(|p| (p.0 - mx) * (p.1 - my)).sum();
-    let slope = sxy / sxx;
-    (slope, my - slope * mx)
 }
 
 #[cfg(test)]

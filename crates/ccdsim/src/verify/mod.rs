@@ -1625,13 +1625,8 @@ impl<const D: usize> Verifier<D> {
         // Pieces short enough that the relative motion crosses a quarter box at most; in each,
         // every image next to the nearest one at its start is tried.
         let dv = vb - va;
-        let side = (0..D).map(|d| size[d]).fold(f64::INFINITY, f64::min);
         let span = span.max(0.0);
-        let pieces = ((dv.norm() * span) / (0.25 * side)).ceil().max(1.0);
-        if beyond(pieces, MAX_PIECES as f64) {
-            return None;
-        }
-        let pieces = pieces as u64;
+        let pieces = quarter_box_pieces(dv.norm(), span, &size)?;
         let mut best = (f64::INFINITY, 0.0);
         for k in 0..pieces {
             let s0 = span * k as f64 / pieces as f64;
@@ -1668,15 +1663,10 @@ impl<const D: usize> Verifier<D> {
         closest: impl Fn(Vector<D>, Vector<D>, f64) -> (f64, f64),
     ) -> Option<(f64, f64)> {
         let size = bx.size;
-        let side = (0..D).map(|d| size[d]).fold(f64::INFINITY, f64::min);
         let span = span.max(0.0);
         let layers = (dp[1].abs() + dv[1].abs() * span) / size[1] + 2.0;
         let speed = dv.norm() + bx.layer_speed().abs() * layers;
-        let pieces = ((speed * span) / (0.25 * side)).ceil().max(1.0);
-        if beyond(pieces, MAX_PIECES as f64) {
-            return None;
-        }
-        let pieces = pieces as u64;
+        let pieces = quarter_box_pieces(speed, span, &size)?;
         let mut best = (f64::INFINITY, 0.0);
         for k in 0..pieces {
             let s0 = span * k as f64 / pieces as f64;
@@ -1718,6 +1708,15 @@ impl<const D: usize> Verifier<D> {
         let layer = bx.nearest_image(recorded - self.pos_of(i, t), t).1;
         bx.image_velocity(v, -layer)
     }
+}
+
+/// How many pieces a relative motion at `speed` over `span` seconds is cut into so that each
+/// crosses a quarter of the smallest side of the box `size` at most; `None` beyond
+/// [`MAX_PIECES`] (the work grows with the count, which a corrupt time could make any size).
+fn quarter_box_pieces<const D: usize>(speed: f64, span: f64, size: &Vector<D>) -> Option<u64> {
+    let side = (0..D).map(|d| size[d]).fold(f64::INFINITY, f64::min);
+    let pieces = ((speed * span) / (0.25 * side)).ceil().max(1.0);
+    (!beyond(pieces, MAX_PIECES as f64)).then_some(pieces as u64)
 }
 
 /// The length of a slab of the proximity grid, seconds: the time a body at the mean speed

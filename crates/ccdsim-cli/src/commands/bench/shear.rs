@@ -7,7 +7,7 @@ use super::{parse_list, write_file};
 use crate::number::sig;
 use crate::progress::Progress;
 use anyhow::{anyhow, Result};
-use ccdsim_bench::{least_squares, shear_run, ShearConfig, ShearReport};
+use ccdsim_bench::{line_fit, shear_run, ShearConfig, ShearReport};
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -103,7 +103,7 @@ pub fn run(args: Args) -> Result<ExitCode> {
             let viscosity = match points.len() {
                 0 => return None,
                 1 => points[0].1,
-                _ => least_squares(&points).1,
+                _ => line_fit(&points).intercept,
             };
             Some(Extrapolated {
                 packing: phi,
