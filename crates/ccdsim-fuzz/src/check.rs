@@ -74,13 +74,6 @@ pub fn variants() -> Vec<(&'static str, FinderOptions)> {
     out
 }
 
-/// True unless finder `name` refuses `scene` for a reason of its own: `bvh` does not serve
-/// sheared boxes (it says so at `init`, see `ccdsim::finder`); every other finder serves every
-/// scene.
-fn serves<const D: usize>(name: &str, scene: &Scene<D>) -> bool {
-    !(name == "bvh" && scene.settings.shear_rate.is_some())
-}
-
 /// Runs `case`'s scene with finder `name` and `options`, recording it.
 pub fn run<const D: usize>(
     case: &Case,
@@ -204,10 +197,7 @@ pub fn check_scene<const D: usize>(
     verify: bool,
 ) -> Result<Checked, Failure> {
     let oracle = run(case, scene, "all-pairs", &FinderOptions::default());
-    let variants: Vec<_> = variants()
-        .into_iter()
-        .filter(|(name, _)| serves(name, scene))
-        .collect();
+    let variants = variants();
     for (name, options) in &variants {
         let got = run(case, scene, name, options);
         if got != oracle {

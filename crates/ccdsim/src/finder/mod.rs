@@ -16,8 +16,10 @@
 //! In a periodic world ([`World::periodic`]) the pair function is
 //! [`toi_circle_circle_periodic`](crate::contact::periodic::toi_circle_circle_periodic) and each body's
 //! exit from the box ([`toi_box_exit`](crate::contact::periodic::toi_box_exit)) is an event too, a wall
-//! event naming face `f` as wall `walls.len() + f`; the simulation applies exits silently. Every
-//! finder of this crate serves periodic worlds; a finder that cannot would refuse them in
+//! event naming face `f` as wall `walls.len() + f`; the simulation applies exits silently. In a
+//! sheared periodic world ([`World::shear`]) the pair function is
+//! [`toi_bodies_sheared`](crate::contact::lees_edwards::toi_bodies_sheared). Every finder of
+//! this crate serves periodic and sheared worlds; a finder that cannot would refuse them in
 //! `init` with [`FinderError::Unsupported`].
 
 mod all_pairs;

@@ -76,12 +76,23 @@
 //! covers the few ε of `L` that the shift adds to the box and to the narrow phase's
 //! displacement thousands of times over.
 //!
+//! In a sheared box ([`crate::contact::lees_edwards`]) the layers above and below slide along
+//! x, so only the shifts within the layer (`k_y = 0`) are fixed. The tree is also checked
+//! against the layer above (`k_y = 1`, so a pair touching through the layer below is found
+//! from its other body): for each `k_z` and every x image `k_x` whose box can meet the tree's,
+//! a box shifted by `L_y` along y and along x by anything from the strain offset at the
+//! build plus `k_x L_x` to that plus how far the layer slides until the horizon, which holds
+//! the image at every instant of the interval. Pairs are evaluated by the oracle's sheared
+//! function. When the layer would slide past more than 64 periods over the interval, every
+//! pair is checked instead.
+//!
 //! # Termination
 //!
 //! With no event left to happen, Δ would grow for ever. The search is bounded instead:
 //!
 //! - fewer than two bodies, or no body moving (every pair then has a zero relative velocity
-//!   and never approaches): the answer is `W` at once (`None` when nothing moves);
+//!   and never approaches): the answer is `W` at once (`None` when nothing moves); in a
+//!   sheared box the layers' speed counts as motion (bodies at rest meet images that slide);
 //! - otherwise Δ grows at most up to [`FAR_FACTOR`] times the time the fastest body needs to
 //!   cross the current extent of all bodies (or for [`MAX_GROWTHS`] steps); if nothing is
 //!   found by then, every pair is checked once (O(n²)) and the exact minimum returned, `None`
@@ -106,6 +117,7 @@ pub use options::OPTIONS;
 pub use validate::InvalidTree;
 
 use super::{finite_event, DebugBox, Finder, FinderError, FinderOptions};
+use crate::contact::lees_edwards::toi_bodies_sheared;
 use crate::contact::periodic::toi_bodies_periodic;
 use crate::event::Event;
 use crate::world::toi_bodies_in;
@@ -221,12 +233,16 @@ impl<const D: usize> BvhFinder<D> {
         self.stats.searches += 1;
         // Under gravity the stored velocities hold at different times: take them now.
         let now = world.now();
-        let v_max = match world.gravity() {
+        let mut v_max = match world.gravity() {
             None => world.velocities().map(l1).fold(0.0, f64::max),
             Some(_) => (0..world.len())
                 .map(|i| l1(world.stored_velocity_at(i, now)))
                 .fold(0.0, f64::max),
         };
+        if let Some(bx) = world.shear() {
+            // The layers above and below slide past: bodies at rest still meet their images.
+            v_max += bx.layer_speed().abs();
+        }
         // Under gravity bodies at rest now still fall into each other, and growing ones grow
         // into each other.
         if world.len() < 2
@@ -244,6 +260,9 @@ impl<const D: usize> BvhFinder<D> {
                 break self.exhaustive(world);
             }
             let found = self.tree.earliest_body_event(world);
+            if found.too_wide {
+                break self.exhaustive(world);
+            }
             self.stats.narrow_calls += found.narrow_calls;
             if found.best.is_some() {
                 break found.best;
@@ -273,9 +292,14 @@ impl<const D: usize> BvhFinder<D> {
                     continue;
                 }
                 let bodies = world.bodies();
-                let t = match world.periodic() {
-                    None => toi_bodies_in(world, i, j),
-                    Some(size) => toi_bodies_periodic(&bodies[i], &bodies[j], &size, world.laws()),
+                let t = match (world.periodic(), world.shear()) {
+                    (None, _) => toi_bodies_in(world, i, j),
+                    (Some(size), None) => {
+                        toi_bodies_periodic(&bodies[i], &bodies[j], &size, world.laws())
+                    }
+                    (Some(_), Some(bx)) => {
+                        toi_bodies_sheared(&bodies[i], &bodies[j], &bx, world.laws())
+                    }
                 };
                 if let Some(t) = t {
                     best = Event::earliest(best, Some(Event::body(t, i, j)));
@@ -291,15 +315,7 @@ impl<const D: usize> Finder<D> for BvhFinder<D> {
         "bvh"
     }
 
-    fn init(&mut self, world: &World<D>) -> Result<(), FinderError> {
-        if world.shear().is_some() {
-            return Err(FinderError::Unsupported {
-                finder: "bvh",
-                why: "sheared (Lees–Edwards) boxes are served by `cells`, `sedgewick` and \
-                      `all-pairs`"
-                    .into(),
-            });
-        }
+    fn init(&mut self, _world: &World<D>) -> Result<(), FinderError> {
         self.delta = self.initial_dt;
         self.tree = SweptTree::default();
         self.walls.clear();

@@ -3,7 +3,7 @@
 //! bodies at rest that only the sliding layers bring together, integer coordinates on cell
 //! faces, pairs touching across the sheared face, boxes too short for three cells, with a
 //! thermostat, inelastic, rough and kinematic bodies, kicks and frames — and `verify` accepts
-//! the oracle's runs. `bvh` refuses sheared boxes with a reason.
+//! the oracle's runs.
 
 use super::*;
 
@@ -32,8 +32,8 @@ fn across_the_faces<const D: usize>(scene: &Scene<D>, run: &Recorded) -> usize {
         .count()
 }
 
-/// Runs the sheared `scene` through every finder that serves sheared boxes (`bvh` must refuse
-/// it), driven by `drive`, and verifies the oracle's run; returns that run.
+/// Runs the sheared `scene` through every finder, driven by `drive`, and verifies the oracle's
+/// run; returns that run.
 fn check_sheared<const D: usize>(
     label: &str,
     scene: &Scene<D>,
@@ -42,15 +42,6 @@ fn check_sheared<const D: usize>(
 ) -> Recorded {
     let oracle = reference(label, scene, max_events, drive);
     for (name, options) in variants() {
-        if name == "bvh" {
-            let refused = Simulation::with_finder(scene, make_finder::<D>(name, &options).unwrap());
-            let why = refused
-                .err()
-                .expect("bvh refuses sheared boxes")
-                .to_string();
-            assert!(why.contains("Lees–Edwards"), "{why}");
-            continue;
-        }
         let label = format!("{label} (cells_skin {:?})", options.cells_skin);
         check_run(&label, scene, name, &options, max_events, drive, &oracle);
     }
