@@ -129,6 +129,50 @@ struct Summary {
     /// Sheared boxes: the shear viscosity η = −P_xy / γ̇ over the run, or null (no shear, or
     /// a rate of 0).
     viscosity: Option<f64>,
+    /// Sheared boxes: the velocity profile, `[y, mean v_x]` for ten slabs along y (their
+    /// centres, m, and m/s), sampled every 4096 events and at the end; null without shear.
+    velocity_profile: Option<Vec<[f64; 2]>>,
+}
+
+/// Slabs of a sheared run's velocity profile.
+const PROFILE_SLABS: usize = 10;
+
+/// A sheared run's velocity profile: per slab along y, the sum of `v_x` and the count of
+/// bodies over the samples taken.
+struct Profile {
+    slabs: [(f64, u64); PROFILE_SLABS],
+    height: f64,
+}
+
+impl Profile {
+    fn of<const D: usize>(sim: &Simulation<D>) -> Option<Self> {
+        let bx = sim.world().shear()?;
+        Some(Profile {
+            slabs: [(0.0, 0); PROFILE_SLABS],
+            height: bx.size[1],
+        })
+    }
+
+    /// Adds the bodies' `v_x` where they are now.
+    fn sample<const D: usize>(&mut self, sim: &Simulation<D>) {
+        let w = sim.world();
+        for i in (0..w.len()).filter(|&i| !w.is_vacant(i) && !w.is_kinematic(i)) {
+            let y = sim.position(i)[1] / self.height;
+            let k = ((y * PROFILE_SLABS as f64) as usize).min(PROFILE_SLABS - 1);
+            self.slabs[k].0 += w.velocity(i)[0];
+            self.slabs[k].1 += 1;
+        }
+    }
+
+    fn mean(&self) -> Vec<[f64; 2]> {
+        (0..PROFILE_SLABS)
+            .map(|k| {
+                let (sum, count) = self.slabs[k];
+                let y = (k as f64 + 0.5) / PROFILE_SLABS as f64 * self.height;
+                [y, if count > 0 { sum / count as f64 } else { 0.0 }]
+            })
+            .collect()
+    }
 }
 
 /// The `--json` summary's `histogram`: the bins' edges and what each holds at the end.
@@ -249,6 +293,7 @@ fn simulate<const D: usize>(scene: &Scene<D>, args: &Args) -> Result<Summary> {
     // Everything is validated before the run file is created: bad input leaves no file.
     // Arrivals are recorded as the additions they are: a steered run file.
     let steered = !scene.arrivals.is_empty();
+    let mut profile = Profile::of(&sim);
     let mut sink = Sink {
         writer: match &args.record {
             Some(path) if steered => Some(RunWriter::record_steered(&mut sim, path, scene)?),
@@ -317,6 +362,9 @@ fn simulate<const D: usize>(scene: &Scene<D>, args: &Args) -> Result<Summary> {
                 };
                 count += done;
                 progress.set(count);
+                if let Some(p) = profile.as_mut() {
+                    p.sample(&sim);
+                }
                 SensorLog::drain(&mut sensor_log, &mut sim)?;
                 if done < batch || sink.error.is_some() {
                     break;
@@ -346,6 +394,9 @@ fn simulate<const D: usize>(scene: &Scene<D>, args: &Args) -> Result<Summary> {
                     sink.take(&c);
                     count += 1;
                     if count % 4096 == 0 {
+                        if let Some(p) = profile.as_mut() {
+                            p.sample(&sim);
+                        }
                         SensorLog::drain(&mut sensor_log, &mut sim)?;
                         if span > 0.0 {
                             progress.set(((sim.time() - t0) / span * 1000.0) as u64);
@@ -393,6 +444,9 @@ fn simulate<const D: usize>(scene: &Scene<D>, args: &Args) -> Result<Summary> {
     }
     let stats = *sim.stats();
     let observables = sim.observables();
+    if let Some(p) = profile.as_mut() {
+        p.sample(&sim);
+    }
     let shear_stress = sink.stress.as_ref().map(|p| {
         let t = p.tensor(sim.time());
         -0.5 * (t[0][1] + t[1][0])
@@ -488,6 +542,7 @@ fn simulate<const D: usize>(scene: &Scene<D>, args: &Args) -> Result<Summary> {
         }),
         shear_stress,
         viscosity,
+        velocity_profile: profile.map(|p| p.mean()),
     })
 }
 

@@ -192,6 +192,14 @@ fn a_sheared_box_reports_its_viscosity_and_verifies() {
         stress > 0.0 && (eta - stress / 0.3).abs() < 1e-12 * eta,
         "{v}"
     );
+    // The profile follows the imposed flow 0.3 (y − L/2) within the noise of 500 spheres.
+    let l = written["periodic"][1].as_f64().unwrap();
+    let profile = v["velocity_profile"].as_array().unwrap();
+    assert_eq!(profile.len(), 10);
+    for slab in profile {
+        let (y, vx) = (slab[0].as_f64().unwrap(), slab[1].as_f64().unwrap());
+        assert!((vx - 0.3 * (y - l / 2.0)).abs() < 0.5, "{slab} in {v}");
+    }
     assert!(
         v["temperature"].as_f64().unwrap() < 2.0,
         "peculiar, not lab: {v}"
