@@ -17,10 +17,11 @@
 //! [`toi_circle_circle_sheared`] is the pair function every finder evaluates in a sheared
 //! box: a pure function of the stored states, like every narrow phase, so finders agree bit
 //! for bit. Between exits of either body both centres stay in the box, so the layers
-//! `s ∈ {−1, 0, 1}` and `k_z ∈ {−1, 0, 1}` hold every contact; along x, though, an image of
-//! another layer sweeps past at `γ̇ L_y` and any `k_x` can come: they are visited in the
-//! order they pass, starting from the first one that can still touch, and only where the
-//! closest approach (a quadratic in `k_x`) comes within the contact distance.
+//! `s ∈ {−1, 0, 1}` and `k_z ∈ {−1, 0, 1}` hold every contact, and within the layer (`s = 0`)
+//! `k_x ∈ {−1, 0, 1}` as in an unsheared box; along x, though, an image of another layer
+//! sweeps past at `γ̇ L_y` and any `k_x` can come: they are visited in the order they pass,
+//! starting from the first one that can still touch, and only where the closest approach (a
+//! quadratic in `k_x`) comes within the contact distance.
 
 use crate::contact::narrow::first_contact;
 use crate::geom::Vector;
@@ -162,17 +163,18 @@ pub fn toi_circle_circle_sheared<const D: usize>(
     let sigma = ra + rb;
     let reach = sigma * (1.0 + 1e-3);
     let size = bx.size;
-    let (delta, speed) = (bx.offset(t0), bx.layer_speed());
     let mut best: Option<f64> = None;
     for s in [-1.0, 0.0, 1.0] {
         let mut dp = raw;
         dp[1] += s * size[1];
-        dp[0] += s * delta;
-        let mut vel = dv;
-        vel[0] += s * speed;
-        let Some((lo, hi)) = window(dp[1], vel[1], reach) else {
+        let Some((lo, hi)) = window(dp[1], dv[1], reach) else {
             continue;
         };
+        let mut vel = dv;
+        if s != 0.0 {
+            dp[0] += s * bx.offset(t0);
+            vel[0] += s * bx.layer_speed();
+        }
         // The images along the axes after y: each of {−1, 0, 1}, where it can come close.
         let mut code = 0usize;
         'images: while code < 3usize.pow(D.saturating_sub(2) as u32) {
@@ -194,7 +196,12 @@ pub fn toi_circle_circle_sheared<const D: usize>(
                 continue;
             }
             let limit = best.map_or(hi, |b| hi.min(b - t0));
-            if let Some(dt) = earliest_x_image(img, vel, sigma, reach, size[0], lo, limit) {
+            let found = if s == 0.0 {
+                layer_x_image(img, vel, sigma, reach, size[0], lo, hi)
+            } else {
+                earliest_x_image(img, vel, sigma, reach, size[0], lo, limit)
+            };
+            if let Some(dt) = found {
                 let t = t0 + dt;
                 if best.is_none_or(|bt| t.total_cmp(&bt).is_lt()) {
                     best = Some(t);
@@ -216,6 +223,39 @@ fn window(x: f64, v: f64, reach: f64) -> Option<(f64, f64)> {
     let (s1, s2) = ((-reach - x) * inv, (reach - x) * inv);
     let (lo, hi) = (s1.min(s2).max(0.0), s1.max(s2));
     (lo <= hi).then_some((lo, hi))
+}
+
+/// Within the layer (`s = 0`): the earliest contact offset of the images `dp + k·L_x e_x`,
+/// `k ∈ {−1, 0, 1}`, moving at `vel`, among those within `reach` along x at some offset of
+/// `[lo, hi]`. As in an unsheared box, both centres stay in the box until either leaves it,
+/// so no other x image of the same layer touches before an exit.
+#[inline]
+fn layer_x_image<const D: usize>(
+    dp: Vector<D>,
+    vel: Vector<D>,
+    sigma: f64,
+    reach: f64,
+    lx: f64,
+    lo: f64,
+    hi: f64,
+) -> Option<f64> {
+    let mut best: Option<f64> = None;
+    for k in [-1.0, 0.0, 1.0] {
+        let mut p = dp;
+        p[0] += k * lx;
+        let Some((l, h)) = window(p[0], vel[0], reach) else {
+            continue;
+        };
+        if lo.max(l) > hi.min(h) * (1.0 + 1e-9) {
+            continue;
+        }
+        if let Some(t) = first_contact(p, vel, sigma) {
+            if best.is_none_or(|b| t.total_cmp(&b).is_lt()) {
+                best = Some(t);
+            }
+        }
+    }
+    best
 }
 
 /// The earliest contact offset of the images `dp + k·L_x e_x` (`k ∈ ℤ`) moving at `vel`
@@ -378,7 +418,9 @@ mod tests {
         let raw = b.at(t0) - a.at(t0);
         let mut best: Option<f64> = None;
         for s in [-1.0, 0.0, 1.0] {
-            for kx in -60..=60 {
+            // Within the layer only the x images next to the box, as in an unsheared one.
+            let reach = if s == 0.0 { 1 } else { 60 };
+            for kx in -reach..=reach {
                 for code in 0..3usize.pow(D as u32 - 2) {
                     let mut dp = raw;
                     dp[1] += s * bx.size[1];

@@ -104,7 +104,8 @@
 //! the whole opposite row (every x, the neighbouring z), every pair is evaluated by the
 //! oracle's sheared function over all images
 //! ([`toi_bodies_sheared`](crate::contact::lees_edwards::toi_bodies_sheared)), a crossing
-//! rescans the whole new neighbourhood, and neighbour lists are not used: the argument above
+//! into a border row rescans the whole new neighbourhood (elsewhere the layer entered, which
+//! lies off the y faces), and neighbour lists are not used: the argument above
 //! holds with "neighbours" read as these sets, since two bodies that touch across a y face
 //! are both in border rows and in neighbouring z layers.
 //!

@@ -179,9 +179,24 @@ impl<const D: usize> Cells<D> {
         best: &mut Best,
     ) {
         if self.shear.is_some() {
-            // The cells across a y face that neighbour a border row change as the rows slide:
-            // the whole new neighbourhood is scanned.
-            self.scan_sheared(world, p, best);
+            let k = self.cached[p.i].coords;
+            let last = self.grid.dims()[1] as u32 - 1;
+            if k[1] == 0 || k[1] == last {
+                // The cells across a y face that neighbour a border row change as the rows
+                // slide: the whole new neighbourhood is scanned.
+                self.scan_sheared(world, p, best);
+            } else {
+                // Off the border rows the layer entered is the unsheared one, none of it
+                // across a y face.
+                let mut cells = Vec::with_capacity(9);
+                self.grid
+                    .visit_entered_layer(&k, axis, up, |cell, shift, _| {
+                        if shift[1] == 0.0 {
+                            cells.push(cell);
+                        }
+                    });
+                self.scan_sheared_cells(world, p, &cells, best);
+            }
             return;
         }
         let k = self.cached[p.i].coords;
@@ -245,9 +260,16 @@ impl<const D: usize> Cells<D> {
     /// ([`Cells::sheared_neighbours`]), each by the oracle's sheared function.
     #[inline(never)]
     fn scan_sheared(&self, world: &World<D>, p: &Probe<D>, best: &mut Best) {
+        let cells = self.sheared_neighbours(&self.cached[p.i].coords);
+        self.scan_sheared_cells(world, p, &cells, best);
+    }
+
+    /// Sheared boxes: offers body `p` every pair with a body of the cells `cells`, each by
+    /// the oracle's sheared function.
+    fn scan_sheared_cells(&self, world: &World<D>, p: &Probe<D>, cells: &[u32], best: &mut Best) {
         let bodies = world.bodies();
         let zero = Vector::ZERO;
-        for c in self.sheared_neighbours(&self.cached[p.i].coords) {
+        for &c in cells {
             for j in self.grid.bodies_in(c) {
                 let j = j as usize;
                 if j == p.i {
