@@ -94,6 +94,7 @@ fn rdf<'py>(
                 ids: Vec::new(),
                 positions,
                 images: Vec::new(),
+                strain: 0.0,
                 velocities: Vec::new(),
                 radii: vec![0.0; n],
                 masses: Vec::new(),

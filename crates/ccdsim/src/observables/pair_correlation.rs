@@ -293,6 +293,7 @@ mod tests {
             },
             ids: (0..n as u64).collect(),
             images: vec![[0; D]; n],
+            strain: 0.0,
             velocities: vec![Vector([0.0; D]); n],
             radii: vec![0.1; n],
             masses: vec![1.0; n],

@@ -44,8 +44,12 @@ pub struct Frame<const D: usize> {
     /// Positions, metres; inside `[0, L)` in a periodic box.
     pub positions: Vec<Vector<D>>,
     /// Periodic images: `positions[i] + images[i] · L` is body `i`'s unwrapped position (all
-    /// zeros without a periodic box).
+    /// zeros without a periodic box), plus `images[i][1] · strain` along x in a sheared box.
     pub images: Vec<[i64; D]>,
+    /// In a sheared box (see [`crate::contact::lees_edwards`]), how far along x the layer
+    /// above has slid since `t = 0`, `γ̇ L_y t`, metres: a body `k_y` layers up has slid
+    /// `k_y` times that with it. 0 otherwise.
+    pub strain: f64,
     /// Velocities, metres per second.
     pub velocities: Vec<Vector<D>>,
     /// Radii, metres.
@@ -78,6 +82,9 @@ impl<const D: usize> Frame<D> {
             ids: slots.iter().map(|&i| world.id(i)).collect(),
             positions: each(&|i| sim.position(i)),
             images: slots.iter().map(|&i| sim.image(i)).collect(),
+            strain: world
+                .shear()
+                .map_or(0.0, |bx| bx.unwrapped_shift(1, sim.time())),
             // At the frame's time: under gravity the stored velocities hold only at each
             // body's reference time.
             velocities: each(&|i| world.velocity_at(i, sim.time())),
@@ -104,8 +111,9 @@ impl<const D: usize> Frame<D> {
         self.positions.is_empty()
     }
 
-    /// Unwrapped positions (`position + image · L`), metres: the paths the bodies travelled,
-    /// for displacements over many box lengths.
+    /// Unwrapped positions (`position + image · L`, and in a sheared box the strain of the
+    /// layers crossed, [`Frame::strain`]), metres: the paths the bodies travelled, for
+    /// displacements over many box lengths.
     #[must_use]
     pub fn unwrapped_positions(&self) -> Vec<Vector<D>> {
         let Cell::Periodic(size) = self.cell else {
@@ -118,6 +126,9 @@ impl<const D: usize> Frame<D> {
                 let mut u = *p;
                 for d in 0..D {
                     u[d] += k[d] as f64 * size[d];
+                }
+                if self.strain != 0.0 {
+                    u[0] += k[1] as f64 * self.strain;
                 }
                 u
             })

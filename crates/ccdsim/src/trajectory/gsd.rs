@@ -433,6 +433,7 @@ mod tests {
             ids: vec![3, 5],
             positions: vec![Vector([1.0, 2.0, 3.0]), Vector([0.0, 0.5, 5.5])],
             images: vec![[0, 1, -2], [4, 0, 0]],
+            strain: 0.0,
             velocities: vec![Vector([1.0, 0.0, 0.0]), Vector([0.0, -1.0, 0.25])],
             radii: vec![0.5, 0.25],
             masses: vec![1.0, 1.5],

@@ -151,6 +151,7 @@ mod tests {
             ids: vec![7, 9],
             positions: vec![Vector([0.5, 1.0]), Vector([3.25, 1e-300])],
             images: vec![[1, -1], [0, 2]],
+            strain: 0.0,
             velocities: vec![Vector([1.0, 0.0]), Vector([-0.1, 2.5e20])],
             radii: vec![0.25, 0.25],
             masses: vec![1.0, 2.0],

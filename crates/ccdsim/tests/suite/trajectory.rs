@@ -124,3 +124,50 @@ fn every_finder_writes_the_same_trajectory_bytes() {
         assert!(bytes == &files[0].1, "{name} differs from {}", files[0].0);
     }
 }
+
+/// In a sheared box a body that crossed a y face has slid with its layer: a frame's
+/// unwrapped positions carry that strain, as `Simulation::unwrapped_position` does, and
+/// follow each body's continuous path.
+#[test]
+fn sheared_frames_unwrap_with_the_strain() {
+    let mut scene = ccdsim::generate::gas::<2>(&ccdsim::generate::GasConfig {
+        n: 200,
+        packing: 0.3,
+        periodic: true,
+        temperature: Some(1.0),
+        seed: 4,
+        ..Default::default()
+    })
+    .unwrap();
+    scene.settings.shear_rate = Some(0.2);
+    let mut sim = ccdsim::Simulation::new(&scene, "cells").unwrap();
+    // Over short stretches no unwrapped path jumps (a wrong strain would move it by up to a
+    // box length), though bodies cross the sliding faces (the layer speed is about 5 m/s
+    // here; a body a layer or two up moves that much faster).
+    let mut crossed = 0;
+    for k in 1..=600 {
+        let before: Vec<_> = (0..200)
+            .map(|i| (sim.unwrapped_position(i), sim.image(i)))
+            .collect();
+        sim.run_until(0.05 * k as f64);
+        for (i, (p, image)) in before.iter().enumerate() {
+            let moved = (sim.unwrapped_position(i) - *p).norm();
+            assert!(moved < 3.0, "body {i} jumps {moved} at t = {}", sim.time());
+            crossed += usize::from(sim.image(i)[1] != image[1]);
+        }
+    }
+    assert!(crossed > 50, "{crossed} crossings of the sliding faces");
+    let frame = ccdsim::trajectory::Frame::of(&sim);
+    assert!(frame.strain > 0.0);
+    assert!(
+        frame.images.iter().any(|k| k[1] != 0),
+        "no body crossed a y face"
+    );
+    for (i, u) in frame.unwrapped_positions().iter().enumerate() {
+        let want = sim.unwrapped_position(i);
+        assert!(
+            (*u - want).norm() < 1e-9 * (1.0 + want.norm()),
+            "{i}: {u:?} {want:?}"
+        );
+    }
+}
