@@ -40,11 +40,7 @@ fn check_sheared<const D: usize>(
     max_events: u64,
     drive: Drive,
 ) -> Recorded {
-    let oracle = reference(label, scene, max_events, drive);
-    for (name, options) in variants() {
-        let label = format!("{label} (cells_skin {:?})", options.cells_skin);
-        check_run(&label, scene, name, &options, max_events, drive, &oracle);
-    }
+    let oracle = check_all_driven(label, scene, max_events, drive);
     verifies(label, scene, &oracle);
     oracle
 }
