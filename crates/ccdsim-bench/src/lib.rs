@@ -14,6 +14,7 @@
 #![forbid(unsafe_code)]
 
 mod budget;
+mod check_error;
 mod discrete;
 mod gas;
 mod line_fit;
@@ -23,6 +24,7 @@ mod shear;
 mod thesis;
 
 pub use budget::{CellStatus, Planner};
+pub use check_error::CheckError;
 pub use discrete::{run_discrete_bench, DiscreteBenchConfig, DiscreteBenchReport, DiscreteRow};
 pub use gas::{
     carnahan_starling_z, enskog_collision_rate, eos_z, gas_bench, henderson_z, standard_error,

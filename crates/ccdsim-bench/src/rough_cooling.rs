@@ -26,11 +26,12 @@
 //! to `ln T_tr` against `τ` there, and Haff's law checked by the straightness (R²) of
 //! `1/√T_tr` against `t` over the same stretch.
 
+use crate::check_error::CheckError;
 use crate::line_fit::line_fit;
-use ccdsim::generate::{gas, GasConfig, GenerateError};
+use ccdsim::generate::{gas, GasConfig};
 use ccdsim::motion::Spin;
 use ccdsim::observables::{rotational_temperature, temperature};
-use ccdsim::sim::{SimError, Simulation};
+use ccdsim::sim::Simulation;
 use ccdsim::Scene;
 
 /// Parameters of [`rough_cooling`].
@@ -127,19 +128,8 @@ pub struct CoolingReport {
     pub seconds: f64,
 }
 
-/// Why the check could not run.
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
-pub enum CoolingError {
-    /// The scene could not be generated.
-    #[error(transparent)]
-    Generate(#[from] GenerateError),
-    /// The simulation could not be set up.
-    #[error(transparent)]
-    Sim(#[from] SimError),
-    /// A parameter is out of range, or the gas stopped.
-    #[error("{0}")]
-    Param(String),
-}
+/// Why the check could not run (see [`CheckError`]).
+pub type CoolingError = CheckError;
 
 /// The coefficients `(A, B, C)` of the theory for restitution `e`, tangential restitution
 /// `β` and inertia factor `q` (see the module docs).

@@ -25,11 +25,12 @@
 //! * The velocity profile: the mean `v_x` in ten slabs along y, sampled after every block,
 //!   and its least-squares slope against the imposed `γ̇`.
 
+use crate::check_error::CheckError;
 use crate::line_fit::line_fit;
 use ccdsim::contact::lees_edwards::ShearedBox;
-use ccdsim::generate::{gas, GasConfig, GenerateError};
+use ccdsim::generate::{gas, GasConfig};
 use ccdsim::observables::{temperature, PressureTensor};
-use ccdsim::sim::{SimError, Simulation};
+use ccdsim::sim::Simulation;
 use ccdsim::{Collision, EventKind, Vector};
 
 /// Mass of a sphere of diameter 1 at unit density.
@@ -115,19 +116,8 @@ pub struct ShearReport {
     pub seconds: f64,
 }
 
-/// Why a run could not be made.
-#[derive(Debug, thiserror::Error)]
-pub enum ShearError {
-    /// The gas could not be generated.
-    #[error(transparent)]
-    Generate(#[from] GenerateError),
-    /// The simulation refused it.
-    #[error(transparent)]
-    Sim(#[from] SimError),
-    /// A parameter is out of range, or the run stalled.
-    #[error("{0}")]
-    Param(String),
-}
+/// Why the check could not run (see [`CheckError`]).
+pub type ShearError = CheckError;
 
 /// The Carnahan–Starling contact value of the pair correlation at volume fraction `phi`.
 #[must_use]
