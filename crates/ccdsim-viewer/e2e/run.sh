@@ -37,4 +37,4 @@ cd "$here"
 npm ci --no-audit --no-fund
 CCDSIM_BIN="$bin" SLOT_RUN_BIN="$slot_run" WALL_RUN_BIN="$wall_run" REST_RUN_BIN="$rest_run" \
   node --test viewer.test.mjs viewer3d.test.mjs slots.test.mjs sensors.test.mjs walls.test.mjs \
-  resting.test.mjs pivots.test.mjs
+  resting.test.mjs pivots.test.mjs pool.test.mjs

@@ -10,7 +10,7 @@ pub struct Asset {
     pub body: &'static [u8],
 }
 
-/// Every file the page loads; `/` serves `index.html`.
+/// Every file the pages load; `/` serves `index.html` (`pool.html` for a pool shot).
 pub const ASSETS: &[Asset] = &[
     Asset {
         path: "/index.html",
@@ -26,6 +26,16 @@ pub const ASSETS: &[Asset] = &[
         path: "/viewer.js",
         content_type: "text/javascript; charset=utf-8",
         body: include_bytes!("../assets/viewer.js"),
+    },
+    Asset {
+        path: "/pool.html",
+        content_type: "text/html; charset=utf-8",
+        body: include_bytes!("../assets/pool.html"),
+    },
+    Asset {
+        path: "/pool.js",
+        content_type: "text/javascript; charset=utf-8",
+        body: include_bytes!("../assets/pool.js"),
     },
     Asset {
         path: "/raster.js",

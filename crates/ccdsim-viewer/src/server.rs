@@ -8,7 +8,9 @@ use crate::assets;
 use crate::error::ViewerError;
 use crate::keyframes::KeyframeOptions;
 use crate::playback::{AnyPlayback, Playback};
+use crate::pool::PoolPlayback;
 use crate::wire;
+use ccdsim::record::{run_file_version, VERSION_POOL};
 use ccdsim::FinderOptions;
 use std::path::Path;
 use std::sync::Arc;
@@ -41,9 +43,19 @@ impl Default for ServeOptions {
 /// A viewer bound to its port, ready to [`ViewerServer::run`].
 pub struct ViewerServer {
     http: Arc<tiny_http::Server>,
-    playback: AnyPlayback,
+    playback: Served,
     options: ServeOptions,
     port: u16,
+}
+
+/// What a viewer serves: a scene's run (the run page) or a pool shot (the pool page).
+enum Served {
+    Run(Box<AnyPlayback>),
+    Pool {
+        page: Box<PoolPlayback>,
+        /// The pool page's JSON, built on its first request.
+        json: Option<Vec<u8>>,
+    },
 }
 
 /// Stops a running [`ViewerServer`] from another thread.
@@ -71,7 +83,14 @@ pub fn serve(
         why: e.to_string(),
     })?;
     let port = http.server_addr().to_ip().map_or(port, |a| a.port());
-    let playback = AnyPlayback::open(run_path, &options.keyframes)?;
+    let playback = if run_file_version(run_path)? == VERSION_POOL {
+        Served::Pool {
+            page: Box::new(PoolPlayback::open(run_path)?),
+            json: None,
+        }
+    } else {
+        Served::Run(Box::new(AnyPlayback::open(run_path, &options.keyframes)?))
+    };
     Ok(ViewerServer {
         http: Arc::new(http),
         playback,
@@ -114,6 +133,9 @@ impl ViewerServer {
             return error(405, "only GET is served");
         }
         let (path, query) = req.url().split_once('?').unwrap_or((req.url(), ""));
+        if let Served::Pool { page, json } = &mut self.playback {
+            return pool_answer(page, json, path);
+        }
         if let Some(a) = assets::find(path) {
             return Response::from_data(a.body.to_vec())
                 .with_header(header("Content-Type", a.content_type));
@@ -122,7 +144,10 @@ impl ViewerServer {
             return error(404, &format!("no such page: {path}"));
         };
         let q = Query::parse(query);
-        let result = match &mut self.playback {
+        let Served::Run(playback) = &mut self.playback else {
+            unreachable!("a pool shot is answered above")
+        };
+        let result = match playback.as_mut() {
             AnyPlayback::D2(p) => api(p, &self.options, route, &q),
             AnyPlayback::D3(p) => api(p, &self.options, route, &q),
         };
@@ -136,6 +161,30 @@ impl ViewerServer {
             Ok(None) => error(404, &format!("no such API: /api/{route}")),
             Err(e) => error(400, &e.to_string()),
         }
+    }
+}
+
+/// The pool page: `/` is `pool.html`, `/api/pool` its JSON ([`PoolPlayback::page_json`]).
+fn pool_answer(
+    page: &PoolPlayback,
+    json: &mut Option<Vec<u8>>,
+    path: &str,
+) -> Response<std::io::Cursor<Vec<u8>>> {
+    if path == "/api/pool" {
+        let body = json.get_or_insert_with(|| page.page_json().to_string().into_bytes());
+        return Response::from_data(body.clone())
+            .with_header(header("Content-Type", "application/json"))
+            .with_header(header("Cache-Control", "no-store"));
+    }
+    let path = if path == "/" { "/pool.html" } else { path };
+    match assets::find(path) {
+        Some(a) => {
+            Response::from_data(a.body.to_vec()).with_header(header("Content-Type", a.content_type))
+        }
+        None => error(
+            404,
+            &format!("no such page: {path} (a pool shot is served at / and /api/pool)"),
+        ),
     }
 }
 

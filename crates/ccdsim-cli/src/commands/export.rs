@@ -1,7 +1,8 @@
 //! `ccdsim export`: convert a run file to JSON Lines.
 
 use anyhow::{Context, Result};
-use ccdsim::record::{export_jsonl, open_run, AnyRunReader};
+use ccdsim::billiards::{export_pool_jsonl, open_pool_run};
+use ccdsim::record::{export_jsonl, open_run, run_file_version, AnyRunReader, VERSION_POOL};
 use std::io::{BufWriter, Write};
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -37,7 +38,12 @@ pub fn run(args: Args) -> Result<ExitCode> {
 
 fn export(args: &Args) -> Result<ExitCode> {
     let Format::Jsonl = args.format;
-    let mut reader = open_run(&args.file)?;
+    let pool = run_file_version(&args.file)? == VERSION_POOL;
+    let mut reader = if pool {
+        Err(open_pool_run(&args.file)?)
+    } else {
+        Ok(open_run(&args.file)?)
+    };
     let mut out: Box<dyn Write> = match &args.out {
         Some(p) => {
             Box::new(std::fs::File::create(p).with_context(|| format!("creating {}", p.display()))?)
@@ -46,11 +52,15 @@ fn export(args: &Args) -> Result<ExitCode> {
     };
     let mut out = BufWriter::new(&mut out);
     let tail = match &mut reader {
-        AnyRunReader::D2(r) => {
+        Err(r) => {
+            export_pool_jsonl(r, &mut out)?;
+            r.tail()
+        }
+        Ok(AnyRunReader::D2(r)) => {
             export_jsonl(r, &mut out)?;
             r.tail()
         }
-        AnyRunReader::D3(r) => {
+        Ok(AnyRunReader::D3(r)) => {
             export_jsonl(r, &mut out)?;
             r.tail()
         }

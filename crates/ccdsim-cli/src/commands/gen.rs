@@ -1,10 +1,7 @@
 //! `ccdsim gen`: write a generated scene as JSON.
 
 use anyhow::{Context, Result};
-use ccdsim::billiards::{
-    self, BallParams, Game, PocketTableSpecs, PoolBall, PoolBallBall, PoolScene, PoolSetup,
-    PoolShot, Table,
-};
+use ccdsim::billiards::{Game, PoolBallBall, PoolScene};
 use ccdsim::generate::{
     galton, galton_duration, gas, pegs, rack, thesis, GaltonConfig, GasConfig, Lattice, PegsConfig,
     RackConfig, ThesisConfig,
@@ -217,49 +214,25 @@ fn pool_table(t: &TableArgs) -> Result<PoolScene> {
         GameArg::NineBall => Game::NineBall,
         GameArg::EightBall => Game::EightBall,
     };
-    let table = Table::pool(&PocketTableSpecs::default());
-    let balls = billiards::rack(game, &table, BallParams::default().radius(), t.seed);
-    let (speed, phi, theta, a, b) = match t.shot.as_deref() {
-        None => {
-            let d = balls[1].1 - balls[0].1;
-            (
-                8.0,
-                d[1].atan2(d[0]).to_degrees().rem_euclid(360.0),
-                0.0,
-                0.0,
-                0.0,
-            )
+    let mut scene = PoolScene::racked(game, t.seed);
+    let shot = &mut scene.pool.shot;
+    match t.shot.as_deref() {
+        None => {}
+        Some(&[v, phi]) => (shot.speed, shot.phi) = (v, phi),
+        Some(&[v, phi, theta, a, b]) => {
+            (shot.speed, shot.phi, shot.theta, shot.a, shot.b) = (v, phi, theta, a, b);
         }
-        Some(&[v, phi]) => (v, phi, 0.0, 0.0, 0.0),
-        Some(&[v, phi, theta, a, b]) => (v, phi, theta, a, b),
         Some(other) => anyhow::bail!(
             "--shot takes V0,phi or V0,phi,theta,a,b; {} numbers given",
             other.len()
         ),
-    };
-    let scene = PoolScene {
-        pool: PoolSetup {
-            balls: balls
-                .iter()
-                .map(|(name, p)| PoolBall {
-                    name: name.clone(),
-                    pos: p.0,
-                })
-                .collect(),
-            shot: PoolShot {
-                ball: "cue".into(),
-                speed,
-                phi,
-                theta,
-                a,
-                b,
-            },
-            ball_ball: t.frictional.then_some(PoolBallBall {
-                restitution: 0.95,
-                friction: None,
-            }),
-        },
-    };
+    }
+    if t.frictional {
+        scene.pool.ball_ball = Some(PoolBallBall {
+            restitution: 0.95,
+            friction: None,
+        });
+    }
     // Refuse a shot that cannot be played (a tip that misses, a speed that is not finite).
     scene.shot().context("--shot")?;
     Ok(scene)

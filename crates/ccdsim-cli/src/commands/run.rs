@@ -229,7 +229,6 @@ pub fn run(args: Args) -> Result<ExitCode> {
                 ("--finder", args.finder != "cells"),
                 ("--until", args.until.is_some()),
                 ("--events", args.events.is_some()),
-                ("--record", args.record.is_some()),
                 ("--frames", args.frames.is_some()),
                 ("--sensor-log", args.sensor_log.is_some()),
             ];
@@ -240,7 +239,7 @@ pub fn run(args: Args) -> Result<ExitCode> {
                     .map(|(f, _)| *f)
                     .collect(),
             );
-            super::run_pool::run(&text, &unsupported, args.json)
+            super::run_pool::run(&text, &unsupported, args.record.as_deref(), args.json)
                 .with_context(|| format!("{}", path.display()))?;
             return Ok(ExitCode::SUCCESS);
         }

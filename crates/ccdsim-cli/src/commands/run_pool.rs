@@ -1,8 +1,10 @@
 //! `ccdsim run` on a pool scene (`ccdsim gen table`): the shot played until every ball rests
 //! or is pocketed, and what happened.
 
+use std::path::Path;
+
 use anyhow::{bail, Result};
-use ccdsim::billiards::{PoolScene, ShotEventKind};
+use ccdsim::billiards::{record_shot, PoolRunWriter, PoolScene, ShotEventKind};
 use serde::Serialize;
 
 /// The `--json` summary of a pool shot; field names are an interface: extend, never rename.
@@ -20,23 +22,49 @@ struct PoolSummary {
     pocketed: Vec<[String; 2]>,
     /// Each ball's final position (a pocketed ball at its pocket's centre), metres.
     positions: Vec<(String, [f64; 2])>,
+    /// The run file written (`--record`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    record: Option<String>,
 }
 
 /// The options of `ccdsim run` a pool scene has no use for yet, by flag name, when given.
 pub struct Unsupported<'a>(pub Vec<&'a str>);
 
-/// Plays the pool scene `json` and prints its summary.
-pub fn run(json: &str, unsupported: &Unsupported<'_>, as_json: bool) -> Result<()> {
+/// Most events a shot may take.
+const MAX_EVENTS: usize = 1_000_000;
+
+/// Plays the pool scene `json` and prints its summary; with `record`, writes its run file
+/// there as it goes (kept, with its end record, when the shot stops short).
+pub fn run(
+    json: &str,
+    unsupported: &Unsupported<'_>,
+    record: Option<&Path>,
+    as_json: bool,
+) -> Result<()> {
     if let Some(flag) = unsupported.0.first() {
-        bail!("{flag} is not available for pool scenes yet (run files, trajectories, sensors and finders are for ccdsim scenes)");
+        bail!("{flag} is not available for pool scenes yet (trajectories, sensors, time limits and other finders are for ccdsim scenes)");
     }
     let scene = PoolScene::from_json(json)?;
-    let mut shot = scene.shot()?;
     let names = scene.names();
-    if let Err(e) = shot.run(1_000_000) {
+    let (shot, played) = match record {
+        Some(path) => {
+            let out = PoolRunWriter::create(path, &scene)?;
+            record_shot(&scene, out, MAX_EVENTS)?
+        }
+        None => {
+            let mut shot = scene.shot()?;
+            let played = shot.run(MAX_EVENTS);
+            (shot, played)
+        }
+    };
+    if let Err(e) = played {
         bail!(
-            "the shot could not be played to the end (docs/model.md, Pool): {}",
-            e.describe(&names)
+            "the shot could not be played to the end (docs/model.md, Pool): {}{}",
+            e.describe(&names),
+            record.map_or(String::new(), |p| format!(
+                "; {} holds the shot up to there",
+                p.display()
+            ))
         );
     }
     let count = |f: fn(&ShotEventKind) -> bool| shot.events().iter().filter(|e| f(&e.kind)).count();
@@ -60,6 +88,7 @@ pub fn run(json: &str, unsupported: &Unsupported<'_>, as_json: bool) -> Result<(
             .enumerate()
             .map(|(i, n)| (n.clone(), shot.balls()[i].ball.pos.0))
             .collect(),
+        record: record.map(|p| p.display().to_string()),
     };
     if as_json {
         outln!("{}", serde_json::to_string(&summary)?)?;
@@ -82,6 +111,9 @@ pub fn run(json: &str, unsupported: &Unsupported<'_>, as_json: bool) -> Result<(
             .map(|[b, p]| format!("{b} ({p})"))
             .collect();
         outln!("pocketed: {}", list.join(", "))?;
+    }
+    if let Some(path) = &summary.record {
+        outln!("run file written to {path}")?;
     }
     Ok(())
 }

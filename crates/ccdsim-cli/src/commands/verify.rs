@@ -3,9 +3,12 @@
 use crate::number::{num, sig};
 use crate::progress::Progress;
 use anyhow::Result;
+use ccdsim::billiards::{open_pool_run, PoolRecord};
 use ccdsim::observables::EnergyBalance;
-use ccdsim::record::{open_run, AnyRunReader, RunReader, RunRecord};
-use ccdsim::verify::Verifier;
+use ccdsim::record::{
+    open_run, run_file_version, AnyRunReader, RunReader, RunRecord, VERSION_POOL,
+};
+use ccdsim::verify::{PoolVerifier, Verifier};
 use std::io::Read;
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -22,6 +25,9 @@ pub struct Args {
 
 /// Runs the command: exit status 0 when the run keeps every rule, 1 at the first violation.
 pub fn run(args: Args) -> Result<ExitCode> {
+    if run_file_version(&args.file)? == VERSION_POOL {
+        return check_pool(&args.file);
+    }
     let size = std::fs::metadata(&args.file).map(|m| m.len()).unwrap_or(0);
     match open_run(&args.file)? {
         AnyRunReader::D2(r) => check(r, size, args.quiet),
@@ -97,6 +103,53 @@ fn check<R: Read, const D: usize>(
                 sig(end, 10),
                 sig(report.max_overlap, 3),
                 sig(drift, 3)
+            )?;
+            Ok(ExitCode::SUCCESS)
+        }
+        Err(v) => {
+            outln!("FAIL {}: {v}", reader.path())?;
+            Ok(ExitCode::from(1))
+        }
+    }
+}
+
+/// Verifies a pool shot's run file (format version 16; see `ccdsim::verify::PoolVerifier`).
+fn check_pool(path: &std::path::Path) -> Result<ExitCode> {
+    let mut reader = open_pool_run(path)?;
+    let mut verifier = PoolVerifier::new(reader.scene()).map_err(anyhow::Error::msg)?;
+    let mut end = 0.0;
+    while let Some(rec) = reader.next_record()? {
+        end = rec.time();
+        if let Err(v) = verifier.check(&rec) {
+            outln!("FAIL {}: {v}", reader.path())?;
+            return Ok(ExitCode::from(1));
+        }
+        if let PoolRecord::End(_) = rec {
+            break;
+        }
+    }
+    match verifier.finish(end) {
+        Ok(r) => {
+            if let Some(warning) = reader.tail().warning() {
+                eprintln!("warning: {warning}");
+            }
+            let ending = if r.still {
+                "every ball at rest or pocketed"
+            } else {
+                "balls still moving (the shot stopped short)"
+            };
+            outln!(
+                "OK {}: pool shot, {} events ({} ball-ball, {} cushion, {} pocketed, {} state changes) up to t = {}, {ending}; largest overlap {}; energy {} J after the strike, {} J at the end",
+                reader.path(),
+                r.events,
+                r.ball_ball,
+                r.cushion,
+                r.pocketed,
+                r.transitions,
+                sig(end, 10),
+                sig(r.max_overlap, 3),
+                sig(r.energy_start, 6),
+                sig(r.energy_end, 6)
             )?;
             Ok(ExitCode::SUCCESS)
         }

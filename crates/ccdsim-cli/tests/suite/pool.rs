@@ -59,11 +59,11 @@ fn pool_scenes_refuse_what_they_cannot_do_with_the_reason() {
     let out = ccdsim()
         .arg("run")
         .arg(&scene)
-        .args(["--record", "x.ccd"])
+        .args(["--frames", "0.1", "--trajectory", "x.xyz"])
         .output()
         .unwrap();
     assert!(!out.status.success());
-    assert!(String::from_utf8_lossy(&out.stderr).contains("--record is not available"));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("--frames is not available"));
     for bad in ["1,2,3", "1,90,0,2,2"] {
         let out = ccdsim()
             .args(["gen", "table", "--shot", bad])
@@ -81,4 +81,82 @@ fn pool_scenes_refuse_what_they_cannot_do_with_the_reason() {
     let out = ccdsim().arg("run").arg(&scene).output().unwrap();
     assert!(!out.status.success());
     assert!(String::from_utf8_lossy(&out.stderr).contains("not on the table"));
+}
+
+#[test]
+fn a_recorded_shot_verifies_exports_and_fails_when_tampered_with() {
+    let scene = common::scratch_file("pool-record", "break.json");
+    let run = common::scratch_file("pool-record", "break.ccd");
+    run_ok(ccdsim().args(["gen", "table", "--out"]).arg(&scene));
+    let out = run_ok(
+        ccdsim()
+            .arg("run")
+            .arg(&scene)
+            .arg("--record")
+            .arg(&run)
+            .arg("--json"),
+    );
+    let summary: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let events = summary["events"].as_u64().unwrap();
+    assert_eq!(summary["record"], run.display().to_string());
+    let text = String::from_utf8(run_ok(ccdsim().arg("verify").arg(&run)).stdout).unwrap();
+    assert!(
+        text.starts_with("OK ") && text.contains(&format!("pool shot, {events} events")),
+        "{text}"
+    );
+    assert!(text.contains("every ball at rest or pocketed"), "{text}");
+
+    // JSON Lines: the header, the strike, every event, the end.
+    let lines = String::from_utf8(run_ok(ccdsim().arg("export").arg(&run)).stdout).unwrap();
+    let lines: Vec<serde_json::Value> = lines
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap())
+        .collect();
+    assert_eq!(lines.len() as u64, events + 3);
+    assert_eq!(lines[0]["version"], 16);
+    assert_eq!(lines[1]["type"], "strike");
+    assert_eq!(lines.last().unwrap()["type"], "end");
+    assert_eq!(lines[2]["type"], "ball_ball");
+
+    // PNG and GIF are for scenes' runs; the message says what plays a shot.
+    let out = ccdsim()
+        .arg("render")
+        .arg(&run)
+        .args(["--at", "1", "--out", "x.png"])
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("ccdsim view"));
+
+    // A record whose time moved (checksum made good): the physics fails, status 1.
+    let bytes = std::fs::read(&run).unwrap();
+    let header = u64::from_le_bytes(bytes[16..24].try_into().unwrap()) as usize;
+    let at = 24 + header + 3 * ccdsim::billiards::run_file::POOL_RECORD_LEN;
+    let mut moved = bytes.clone();
+    let t = f64::from_le_bytes(moved[at + 9..at + 17].try_into().unwrap());
+    moved[at + 9..at + 17].copy_from_slice(&(t + 1e-4).to_le_bytes());
+    let end = at + ccdsim::billiards::run_file::POOL_RECORD_LEN - 4;
+    let sum = fnv1a(&moved[at..end]);
+    moved[end..end + 4].copy_from_slice(&sum.to_le_bytes());
+    let bad = common::scratch_file("pool-record", "moved.ccd");
+    std::fs::write(&bad, &moved).unwrap();
+    let out = ccdsim().arg("verify").arg(&bad).output().unwrap();
+    assert_eq!(out.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&out.stdout).starts_with("FAIL "));
+    // A flipped byte in the middle: the reader refuses it, status 2.
+    let mut flipped = bytes;
+    flipped[at + 30] ^= 0x10;
+    std::fs::write(&bad, &flipped).unwrap();
+    let out = ccdsim().arg("verify").arg(&bad).output().unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("record 3 is corrupt"));
+}
+
+fn fnv1a(bytes: &[u8]) -> u32 {
+    let mut h: u32 = 0x811c_9dc5;
+    for &b in bytes {
+        h ^= u32::from(b);
+        h = h.wrapping_mul(0x0100_0193);
+    }
+    h
 }

@@ -31,11 +31,17 @@ pub mod cushion_impact;
 mod params;
 pub mod pool_scene;
 pub mod rack;
+pub mod run_export;
+pub mod run_file;
 mod shot;
 pub mod table;
 
 pub use params::{BallBallModel, BallFriction, BallParams};
 pub use pool_scene::{PoolBall, PoolBallBall, PoolScene, PoolSceneError, PoolSetup, PoolShot};
 pub use rack::{rack, rack_at, Game};
+pub use run_export::export_pool_jsonl;
+pub use run_file::{
+    open_pool_run, record_shot, BallAfter, PoolRecord, PoolRunReader, PoolRunWriter,
+};
 pub use shot::{Shot, ShotError, ShotEvent, ShotEventKind, TableBall};
 pub use table::{Jaw, LinearCushion, Pocket, PocketTableSpecs, Table};

@@ -16,6 +16,7 @@ use serde::{Deserialize, Serialize};
 use thiserror::Error;
 
 use super::params::{BallBallModel, BallFriction, BallParams};
+use super::rack::Game;
 use super::shot::{Shot, ShotError};
 use super::table::{PocketTableSpecs, Table};
 use crate::geom::Vector;
@@ -160,6 +161,36 @@ impl PoolScene {
     #[must_use]
     pub fn to_json(&self) -> String {
         serde_json::to_string_pretty(self).expect("a pool scene serialises") + "\n"
+    }
+
+    /// `game`'s rack on pooltool's default table (seeded: [`super::rack`]) with the break:
+    /// the cue ball struck at 8 m/s straight at the first object ball, without friction
+    /// between the balls.
+    #[must_use]
+    pub fn racked(game: Game, seed: u64) -> PoolScene {
+        let table = Table::pool(&PocketTableSpecs::default());
+        let balls = super::rack(game, &table, BallParams::default().radius(), seed);
+        let d = balls[1].1 - balls[0].1;
+        PoolScene {
+            pool: PoolSetup {
+                balls: balls
+                    .iter()
+                    .map(|(name, p)| PoolBall {
+                        name: name.clone(),
+                        pos: p.0,
+                    })
+                    .collect(),
+                shot: PoolShot {
+                    ball: balls[0].0.clone(),
+                    speed: 8.0,
+                    phi: d[1].atan2(d[0]).to_degrees().rem_euclid(360.0),
+                    theta: 0.0,
+                    a: 0.0,
+                    b: 0.0,
+                },
+                ball_ball: None,
+            },
+        }
     }
 
     /// The balls' names, in order.

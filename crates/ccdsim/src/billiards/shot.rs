@@ -108,10 +108,9 @@ impl ShotEventKind {
     pub fn names(&self, table: &Table, ball_names: &[String]) -> (String, Vec<String>) {
         let ball = |i: usize| ball_names[i].clone();
         match *self {
-            ShotEventKind::Transition { ball: i, from, to } => (
-                format!("{}_{}", state_name(from), state_name(to)),
-                vec![ball(i)],
-            ),
+            ShotEventKind::Transition { ball: i, from, to } => {
+                (format!("{}_{}", from.name(), to.name()), vec![ball(i)])
+            }
             ShotEventKind::Balls { a, b } => ("ball_ball".into(), vec![ball(a), ball(b)]),
             ShotEventKind::Cushion { ball: i, cushion } => (
                 "ball_linear_cushion".into(),
@@ -126,16 +125,6 @@ impl ShotEventKind {
                 vec![ball(i), table.pockets[pocket].id.clone()],
             ),
         }
-    }
-}
-
-/// pooltool's name for a motion state.
-fn state_name(s: ClothState) -> &'static str {
-    match s {
-        ClothState::Stationary => "stationary",
-        ClothState::Spinning => "spinning",
-        ClothState::Sliding => "sliding",
-        ClothState::Rolling => "rolling",
     }
 }
 
@@ -505,12 +494,26 @@ impl Shot {
     /// [`ShotError::Pressed`] as soon as two balls meet without approaching (see
     /// [`Shot::pressed`]).
     pub fn run(&mut self, max_events: usize) -> Result<usize, ShotError> {
+        self.run_with(max_events, |_, _| {})
+    }
+
+    /// [`Shot::run`], calling `after` with the shot and each event as soon as it is played
+    /// (to record it: the balls' states are the event's outcome then).
+    ///
+    /// # Errors
+    /// As [`Shot::run`].
+    pub fn run_with(
+        &mut self,
+        max_events: usize,
+        mut after: impl FnMut(&Shot, &ShotEvent),
+    ) -> Result<usize, ShotError> {
         for played in 0..max_events {
             if let Some((a, b, t)) = self.pressed {
                 return Err(ShotError::Pressed(a, b, t));
             }
-            if self.step().is_none() {
-                return Ok(played);
+            match self.step() {
+                Some(event) => after(self, &event),
+                None => return Ok(played),
             }
         }
         if self.next_event().is_some() {

@@ -70,6 +70,19 @@ pub enum ClothState {
     Rolling,
 }
 
+impl ClothState {
+    /// pooltool's name for the state: "stationary", "spinning", "sliding" or "rolling".
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        match self {
+            ClothState::Stationary => "stationary",
+            ClothState::Spinning => "spinning",
+            ClothState::Sliding => "sliding",
+            ClothState::Rolling => "rolling",
+        }
+    }
+}
+
 /// A ball's kinematic state on the table at one instant.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ClothBall {

@@ -68,7 +68,8 @@ mod reader;
 mod writer;
 
 pub use export::{export_jsonl, ExportError};
-pub use reader::{open_run, AnyRunReader, RunReader, Tail};
+pub(crate) use reader::{checksum_ok, more_follows, read_full, read_header};
+pub use reader::{open_run, run_file_version, AnyRunReader, RunReader, Tail};
 pub use writer::RunWriter;
 
 /// First 8 bytes of every run file.
@@ -122,8 +123,13 @@ pub const VERSION_ROUGH: u32 = 14;
 /// changed its x velocity by `γ̇ L_y`, and whose collisions meet between images of
 /// neighbouring layers. No rest or turn flags (a sheared box has no walls).
 pub const VERSION_SHEARED: u32 = 15;
-/// The newest format version this build reads.
+/// The newest format version of runs of ccdsim scenes this build reads (pool shots have a
+/// format of their own, [`VERSION_POOL`]).
 pub const VERSION_NEWEST: u32 = VERSION_SHEARED;
+/// Format version of run files of pool shots (`ccdsim::billiards::PoolRunWriter`): the same
+/// preamble, a pool scene as the header and records of their own (see
+/// `ccdsim::billiards::run_file`); [`open_run`] refuses them and says where to read them.
+pub const VERSION_POOL: u32 = 16;
 
 /// The format version a run of `scene` is written in.
 #[must_use]

@@ -3,8 +3,8 @@
 use super::{
     fnv1a, record_len, RecordError, RunRecord, MAGIC, PIVOT_A, PIVOT_B, PREAMBLE_LEN, REST_A,
     REST_B, TAG_BODY, TAG_EDIT, TAG_END, TAG_RESET, TAG_WALL, VERSION, VERSION_EDITS,
-    VERSION_MOVING_WALLS, VERSION_NEWEST, VERSION_PIVOTS, VERSION_RESTING, VERSION_ROUGH,
-    VERSION_SHEARED, VERSION_SLOTS,
+    VERSION_MOVING_WALLS, VERSION_NEWEST, VERSION_PIVOTS, VERSION_POOL, VERSION_RESTING,
+    VERSION_ROUGH, VERSION_SHEARED, VERSION_SLOTS,
 };
 use crate::event::Event;
 use crate::geom::Vector;
@@ -99,6 +99,7 @@ pub fn open_run(path: &Path) -> Result<AnyRunReader, RecordError> {
     let size = file.metadata().map_err(io)?.len();
     let mut file = BufReader::with_capacity(1 << 16, file);
     let (version, dim, json) = read_header(&mut file, &name, Some(size))?;
+    refuse_pool(version, &name)?;
     let data_start = (PREAMBLE_LEN + json.len()) as u64;
     Ok(match dim {
         2 => AnyRunReader::D2(RunReader::from_parts(
@@ -116,10 +117,65 @@ pub fn open_run(path: &Path) -> Result<AnyRunReader, RecordError> {
     })
 }
 
+/// The format version of the run file at `path`, from its preamble: tells a pool shot's run
+/// file ([`VERSION_POOL`], read by `ccdsim::billiards::open_pool_run`) from a scene's
+/// ([`open_run`]).
+///
+/// # Errors
+/// The file cannot be read, is not a run file, or has a version this build does not read.
+pub fn run_file_version(path: &Path) -> Result<u32, RecordError> {
+    let name = path.display().to_string();
+    let io = |source| RecordError::Io {
+        path: name.clone(),
+        source,
+    };
+    let mut file = File::open(path).map_err(io)?;
+    let mut pre = [0u8; PREAMBLE_LEN];
+    let got = read_full(&mut file, &mut pre).map_err(io)?;
+    if got < 8 || pre[..8] != MAGIC {
+        return Err(RecordError::NotARunFile(name));
+    }
+    if got < 12 {
+        return Err(RecordError::Header {
+            path: name,
+            why: "file ends inside the preamble".into(),
+        });
+    }
+    let version = u32::from_le_bytes(pre[8..12].try_into().expect("4 bytes"));
+    check_version(version, &name)?;
+    Ok(version)
+}
+
+fn check_version(version: u32, name: &str) -> Result<(), RecordError> {
+    if (VERSION..=VERSION_NEWEST).contains(&version) || version == VERSION_POOL {
+        Ok(())
+    } else {
+        Err(RecordError::Version {
+            path: name.into(),
+            found: version,
+            supported: VERSION_NEWEST,
+        })
+    }
+}
+
+/// A pool shot's run file read as a scene's: an error that says what it is.
+fn refuse_pool(version: u32, name: &str) -> Result<(), RecordError> {
+    if version == VERSION_POOL {
+        return Err(RecordError::Header {
+            path: name.into(),
+            why: format!(
+                "format version {VERSION_POOL} is a pool shot's run file \
+                 (read it with ccdsim::billiards::open_pool_run)"
+            ),
+        });
+    }
+    Ok(())
+}
+
 /// Reads the preamble and the scene JSON. `size`, when the input's length is known, bounds the
 /// header length; either way the header is read as it arrives, never into a buffer of a length
 /// the file claims (a corrupt length of 2³⁶ must be an error, not an allocation failure).
-fn read_header<R: Read>(
+pub(crate) fn read_header<R: Read>(
     input: &mut R,
     name: &str,
     size: Option<u64>,
@@ -139,13 +195,7 @@ fn read_header<R: Read>(
         });
     }
     let version = u32::from_le_bytes(pre[8..12].try_into().expect("4 bytes"));
-    if !(VERSION..=VERSION_NEWEST).contains(&version) {
-        return Err(RecordError::Version {
-            path: name.into(),
-            found: version,
-            supported: VERSION_NEWEST,
-        });
-    }
+    check_version(version, name)?;
     let dim = u32::from_le_bytes(pre[12..16].try_into().expect("4 bytes"));
     let len = u64::from_le_bytes(pre[16..24].try_into().expect("8 bytes"));
     if let Some(size) = size {
@@ -184,7 +234,18 @@ fn read_header<R: Read>(
     Ok((version, dim, json))
 }
 
-fn read_full<R: Read>(input: &mut R, buf: &mut [u8]) -> std::io::Result<usize> {
+/// Whether any byte follows what has been read from `input` (it consumes one byte if so);
+/// `path` names the file in errors.
+pub(crate) fn more_follows<R: Read>(input: &mut R, path: &str) -> Result<bool, RecordError> {
+    let mut probe = [0u8; 1];
+    let more = read_full(input, &mut probe).map_err(|source| RecordError::Io {
+        path: path.into(),
+        source,
+    })?;
+    Ok(more > 0)
+}
+
+pub(crate) fn read_full<R: Read>(input: &mut R, buf: &mut [u8]) -> std::io::Result<usize> {
     let mut got = 0;
     while got < buf.len() {
         match input.read(&mut buf[got..]) {
@@ -201,6 +262,7 @@ impl<R: Read, const D: usize> RunReader<R, D> {
     /// Reads the header of a `D`-dimensional run from `input`; `name` is used in errors.
     pub fn new(mut input: R, name: String) -> Result<Self, RecordError> {
         let (version, dim, json) = read_header(&mut input, &name, None)?;
+        refuse_pool(version, &name)?;
         if dim as usize != D {
             return Err(RecordError::Header {
                 path: name,
@@ -346,14 +408,8 @@ impl<R: Read, const D: usize> RunReader<R, D> {
         Ok(Some(rec))
     }
 
-    /// Whether any byte follows what has been read (it consumes one byte if so).
     fn more_follows(&mut self) -> Result<bool, RecordError> {
-        let mut probe = [0u8; 1];
-        let more = read_full(&mut self.input, &mut probe).map_err(|source| RecordError::Io {
-            path: self.path.clone(),
-            source,
-        })?;
-        Ok(more > 0)
+        more_follows(&mut self.input, &self.path)
     }
 
     fn corrupt(&self, why: String) -> RecordError {
@@ -478,7 +534,7 @@ impl<R: Read + Seek, const D: usize> RunReader<R, D> {
 }
 
 /// True when a record's last four bytes are the FNV-1a checksum of the others.
-fn checksum_ok(buf: &[u8]) -> bool {
+pub(crate) fn checksum_ok(buf: &[u8]) -> bool {
     let n = buf.len();
     let sum = u32::from_le_bytes(buf[n - 4..].try_into().expect("4 bytes"));
     fnv1a(&buf[..n - 4]) == sum

@@ -39,6 +39,7 @@
 mod closest;
 mod falling;
 mod moving_walls;
+mod pool;
 mod proximity;
 mod restitution;
 mod slots;
@@ -61,6 +62,7 @@ use crate::wall::{wall_clearance, Wall};
 use crate::world::{from_2d, to_2d, wall_2d};
 use closest::{closest_approach, closest_approach_growing, closest_to_wall};
 use falling::{closest_to_point_falling, closest_to_wall_falling};
+pub use pool::{PoolReport, PoolVerifier};
 use proximity::Proximity;
 use restitution::Restitutions;
 use spins::Spins;
