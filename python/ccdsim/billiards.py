@@ -37,13 +37,18 @@ class Shot:
     ``"ball_pocket"``, and transitions such as ``"sliding_rolling"``) and agents (ball names,
     cushion, jaw and pocket ids); ``positions``: each ball's final position (a pocketed ball
     at its pocket's centre); ``pocketed``: ball name to pocket id, in the order they
-    dropped; ``time``: when the last ball stopped, in seconds.
+    dropped; ``time``: when the last ball stopped, in seconds; ``pressings``: collisions of
+    balls their decelerations pressed together, parted at the speed a contact's duration asks
+    for (docs/model.md, "Balls pressed together"), and ``pressing_energy`` the joules that
+    added.
     """
 
     events: list[tuple[float, str, list[str]]]
     positions: dict[str, tuple[float, float]]
     pocketed: dict[str, str]
     time: float
+    pressings: int = 0
+    pressing_energy: float = 0.0
 
 
 def rack(game: str = "nine-ball", seed: int = 1) -> list[Ball]:
@@ -106,4 +111,6 @@ def shot(
         positions={k: tuple(v) for k, v in d["positions"].items()},
         pocketed=dict(d["pocketed"]),
         time=d["time"],
+        pressings=d["pressings"],
+        pressing_energy=d["pressing_energy"],
     )

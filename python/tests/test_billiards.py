@@ -57,3 +57,13 @@ def test_the_frictional_model_throws_a_cut_ball():
         billiards.shot(balls, speed=2.0, phi=88.0, ball_ball={"restitution": 2.0})
     with pytest.raises(ValueError, match="unknown keys"):
         billiards.shot(balls, speed=2.0, phi=88.0, ball_ball={"mu": 0.1})
+
+
+def test_eight_ball_breaks_whose_balls_press_together_play_to_the_end():
+    pressed = 0
+    for seed in range(1, 9):
+        balls = billiards.rack("eight-ball", seed=seed)
+        result = billiards.shot(balls, speed=8.0, phi=billiards.aim(balls, "1"))
+        assert result.time > 0 and result.pressing_energy < 1e-5
+        pressed += result.pressings
+    assert pressed > 0

@@ -112,5 +112,8 @@ pub fn pool_shot<'py>(
     }
     out.set_item("pocketed", pocketed)?;
     out.set_item("time", shot.time())?;
+    let (pressings, pressing_energy) = shot.pressings();
+    out.set_item("pressings", pressings)?;
+    out.set_item("pressing_energy", pressing_energy)?;
     Ok(out)
 }

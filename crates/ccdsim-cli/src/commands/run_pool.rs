@@ -22,6 +22,11 @@ struct PoolSummary {
     pocketed: Vec<[String; 2]>,
     /// Each ball's final position (a pocketed ball at its pocket's centre), metres.
     positions: Vec<(String, [f64; 2])>,
+    /// Collisions of balls pressed together by their decelerations, parted at the speed the
+    /// contact time asks for (docs/model.md, "Balls pressed together").
+    pressings: usize,
+    /// The kinetic energy those partings added, joules.
+    pressing_energy: f64,
     /// The run file written (`--record`).
     #[serde(skip_serializing_if = "Option::is_none")]
     record: Option<String>,
@@ -88,6 +93,8 @@ pub fn run(
             .enumerate()
             .map(|(i, n)| (n.clone(), shot.balls()[i].ball.pos.0))
             .collect(),
+        pressings: shot.pressings().0,
+        pressing_energy: shot.pressings().1,
         record: record.map(|p| p.display().to_string()),
     };
     if as_json {
@@ -111,6 +118,13 @@ pub fn run(
             .map(|[b, p]| format!("{b} ({p})"))
             .collect();
         outln!("pocketed: {}", list.join(", "))?;
+    }
+    if summary.pressings > 0 {
+        outln!(
+            "balls pressed together: {} collisions parted at the contact time's speed, adding {:.3e} J",
+            summary.pressings,
+            summary.pressing_energy
+        )?;
     }
     if let Some(path) = &summary.record {
         outln!("run file written to {path}")?;

@@ -138,8 +138,17 @@ fn check_pool(path: &std::path::Path) -> Result<ExitCode> {
             } else {
                 "balls still moving (the shot stopped short)"
             };
+            let pressed = if r.pressings > 0 {
+                format!(
+                    "; {} pressed pairs parted, adding {} J",
+                    r.pressings,
+                    sig(r.pressing_energy, 3)
+                )
+            } else {
+                String::new()
+            };
             outln!(
-                "OK {}: pool shot, {} events ({} ball-ball, {} cushion, {} pocketed, {} state changes) up to t = {}, {ending}; largest overlap {}; energy {} J after the strike, {} J at the end",
+                "OK {}: pool shot, {} events ({} ball-ball, {} cushion, {} pocketed, {} state changes) up to t = {}, {ending}; largest overlap {}; energy {} J after the strike, {} J at the end{pressed}",
                 reader.path(),
                 r.events,
                 r.ball_ball,

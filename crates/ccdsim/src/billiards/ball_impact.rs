@@ -11,9 +11,49 @@
 //!   balls leave the contact rolling on each other instead (no slip). It throws the object
 //!   ball off the line of centres and passes spin from one ball to the other.
 
+//!
+//! Then, for either model, [`part_pressed`]: balls that part more slowly than their
+//! decelerations press them back together within a real contact's duration part at the speed
+//! that keeps them apart for that long, the lasting contact resolved as bounces no shorter
+//! than a real one.
+
 use super::params::BallFriction;
 use crate::geom::Vector;
-use crate::motion::ClothBall;
+use crate::motion::{ClothBall, ClothParams};
+
+/// How two touching balls that part slowly are kept from pressing into each other, after the
+/// collision model ([`exchange`] or [`frictional`]) gave `a` and `b` their velocities: if the
+/// cloth decelerates `a` less than `b` along the line of centres by `Δa` (m/s², from each
+/// ball's motion state after the collision, [`ClothParams::acceleration`]), two rigid balls
+/// that part at a speed `w` below `½·Δa·τ` meet again within `τ` (the `contact_time`, s), and
+/// at `w = 0` at once, for ever (the lasting contact of two balls pushed together, which the
+/// collision models alone cannot resolve: docs/model.md, "Pool"). Such balls are given equal
+/// and opposite pushes along the line of centres so that they part at `½·Δa·τ`: they bounce
+/// with the period of a real contact, and on average push each other with the force `m·Δa/2`
+/// that a lasting contact would. Returns the kinetic energy per unit mass this added
+/// (m²/s²; zero when they parted fast enough, or are not pressed together).
+pub fn part_pressed(
+    a: &mut ClothBall,
+    b: &mut ClothBall,
+    cloth: &ClothParams,
+    contact_time: f64,
+) -> f64 {
+    let d = b.pos - a.pos;
+    let n = d * (1.0 / d.norm());
+    let acc = |x: &ClothBall| cloth.acceleration(x, cloth.state_of(x));
+    let pressing = (acc(a) - acc(b)).dot(n);
+    let least = 0.5 * pressing * contact_time;
+    let parting = (b.vel - a.vel).dot(n);
+    // (A NaN, from balls at one point, parts nothing.)
+    if least.partial_cmp(&parting) != Some(std::cmp::Ordering::Greater) {
+        return 0.0;
+    }
+    let before = a.vel.norm_sq() + b.vel.norm_sq();
+    let push = n * (0.5 * (least - parting));
+    a.vel -= push;
+    b.vel += push;
+    0.5 * (a.vel.norm_sq() + b.vel.norm_sq() - before)
+}
 
 /// The two balls just after they meet with centres at `a.pos` and `b.pos`: each gives the
 /// other its velocity component along the line of centres.
@@ -131,6 +171,46 @@ mod tests {
         let (c, o) = exchange(&cue, &cut);
         assert!(c.vel.dot(o.vel).abs() < 1e-12);
         assert!((c.vel + o.vel - cue.vel).norm() < 1e-12);
+    }
+
+    #[test]
+    fn balls_pressed_together_part_at_half_their_pressing_times_the_contact_time() {
+        let cloth = ClothParams::default();
+        let r = cloth.radius;
+        // Behind, a ball with topspin and no speed (it slides forward, accelerating); in
+        // front, touching it, a ball sliding away slowly without spin (decelerating).
+        let mut a = ClothBall {
+            pos: Vector([0.0, 0.0]),
+            vel: Vector::ZERO,
+            spin: Vector([0.0, 20.0, 0.0]),
+        };
+        let mut b = ClothBall {
+            pos: Vector([2.0 * r, 0.0]),
+            vel: Vector([1e-5, 0.0]),
+            spin: Vector::ZERO,
+        };
+        let mu_g = cloth.sliding_friction * cloth.gravity;
+        let added = part_pressed(&mut a, &mut b, &cloth, 2e-4);
+        // Pressed together at 2 μ_s g: they part at μ_s g τ, the momentum kept.
+        assert!(
+            ((b.vel - a.vel)[0] - mu_g * 2e-4).abs() < 1e-15,
+            "{a:?} {b:?}"
+        );
+        assert!((a.vel + b.vel - Vector([1e-5, 0.0])).norm() < 1e-18);
+        let e = 0.5 * (a.vel.norm_sq() + b.vel.norm_sq() - 1e-10);
+        assert!((added - e).abs() < 1e-18 && added > 0.0);
+        // Parting fast enough already (to rounding), or pulled apart: nothing changes.
+        let (mut c, mut d) = (a, b);
+        assert!(part_pressed(&mut c, &mut d, &cloth, 2e-4) < 1e-20);
+        assert!((c.vel - a.vel).norm() < 1e-18 && (d.vel - b.vel).norm() < 1e-18);
+        let (mut c, mut d) = (b, a);
+        c.pos = Vector([0.0, 0.0]);
+        d.pos = Vector([2.0 * r, 0.0]);
+        c.vel = Vector::ZERO;
+        d.vel = Vector::ZERO;
+        c.spin = Vector::ZERO;
+        d.spin = Vector([0.0, 20.0, 0.0]);
+        assert_eq!(part_pressed(&mut c, &mut d, &cloth, 2e-4), 0.0);
     }
 
     #[test]

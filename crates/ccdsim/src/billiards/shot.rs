@@ -8,7 +8,8 @@
 //! [`super::cushion_impact`]) or dropping into a pocket. After a collision both balls (or the
 //! one) are sliding, as pooltool sets them. Nothing is moved apart after a collision: the
 //! contact times are certified roots ([`super::contact_time`]), and a pair still touching
-//! meets again only if it turns to approach.
+//! meets again only if it turns to approach. Balls their decelerations press together part at
+//! the speed a contact's duration asks for ([`super::ball_impact::part_pressed`]).
 //!
 //! Each ball's state is stored as of its last event; the next event of every pair, of every
 //! ball against the table and of every ball's state is a pure function of the stored states,
@@ -21,7 +22,7 @@ use std::cmp::Ordering;
 
 use thiserror::Error;
 
-use super::ball_impact::{exchange, frictional};
+use super::ball_impact::{exchange, frictional, part_pressed};
 use super::contact_time::{self, Flight};
 use super::cushion_impact::bounce;
 use super::params::{BallBallModel, BallParams};
@@ -175,12 +176,12 @@ pub enum ShotError {
     /// ever smaller bounces, or a limit set too low).
     #[error("the shot did not end within {0} events")]
     TooManyEvents(usize),
-    /// Two touching balls meet without approaching, or twice at one instant: their different
-    /// decelerations press them together, a lasting contact the model does not have
-    /// (docs/model.md, "Pool").
+    /// Two touching balls meet twice at one instant with nothing to part them: pressed
+    /// together where [`super::ball_impact::part_pressed`] gives them no parting speed
+    /// (docs/model.md, "Balls pressed together").
     #[error(
-        "balls {0} and {1} press together at t = {2} s (touching, not approaching, pushed \
-         together by their decelerations): a lasting contact is not modelled yet"
+        "balls {0} and {1} press together at t = {2} s (touching, meeting again at once, \
+         nothing to part them)"
     )]
     Pressed(usize, usize, f64),
 }
@@ -203,8 +204,8 @@ impl ShotError {
             ShotError::Overlap(i, j) => format!("balls {} and {} overlap", name(i), name(j)),
             ShotError::NoSuchBall(i) => format!("there is no ball {} on the table", name(i)),
             ShotError::Pressed(a, b, t) => format!(
-                "balls {} and {} press together at t = {t} s (touching, not approaching, pushed \
-                 together by their decelerations): a lasting contact is not modelled yet",
+                "balls {} and {} press together at t = {t} s (touching, meeting again at once, \
+                 nothing to part them)",
                 name(a),
                 name(b)
             ),
@@ -233,6 +234,9 @@ pub struct Shot {
     pressed: Option<(usize, usize, f64)>,
     /// Each ball's last meeting with a higher-numbered ball: that ball and the time.
     last_meeting: Vec<Option<(usize, f64)>>,
+    /// Collisions whose balls were parted by [`part_pressed`], and the energy that added (J).
+    pressings: usize,
+    pressing_energy: f64,
 }
 
 impl Shot {
@@ -283,6 +287,8 @@ impl Shot {
             events: Vec::new(),
             pressed: None,
             last_meeting: vec![None; n],
+            pressings: 0,
+            pressing_energy: 0.0,
         };
         shot.flights = (0..n).map(|i| shot.flight_of(i)).collect();
         for i in 0..n {
@@ -361,13 +367,21 @@ impl Shot {
         self.params.cloth.evolve(&b.ball, b.state, t - b.time)
     }
 
-    /// The first two balls that met without approaching, or met twice at the same time, and
-    /// when: touching balls pressed together by their different decelerations. The elastic
-    /// model then meets them again and again at ever shorter intervals, and at last at one
-    /// instant for ever; what follows is not physics. [`Shot::run`] stops there.
+    /// The first two balls that met twice at the same time with nothing to part them, and
+    /// when: touching balls pressed together where
+    /// [`super::ball_impact::part_pressed`] found no parting speed to give them (not seen in
+    /// any shot so far). They would meet at that instant for ever; [`Shot::run`] stops there.
     #[must_use]
     pub fn pressed(&self) -> Option<(usize, usize, f64)> {
         self.pressed
+    }
+
+    /// Collisions so far whose balls parted too slowly to stay apart for a contact's duration
+    /// and were parted faster ([`super::ball_impact::part_pressed`]: balls pressed together),
+    /// and the kinetic energy that added, joules.
+    #[must_use]
+    pub fn pressings(&self) -> (usize, f64) {
+        (self.pressings, self.pressing_energy)
     }
 
     /// Whether every ball rests or is pocketed.
@@ -442,20 +456,28 @@ impl Shot {
             }
             ShotEventKind::Balls { a, b } => {
                 let (ba, bb) = (self.ball_at(a, t), self.ball_at(b, t));
-                // Not approaching, or meeting again with no time in between (the intervals
-                // of a Zeno sequence fall below the resolution of t): pressed together.
-                let again = self.last_meeting[a] == Some((b, t));
-                if again || (ba.vel - bb.vel).dot(bb.pos - ba.pos) <= 0.0 {
-                    self.pressed.get_or_insert((a, b, t));
-                }
-                self.last_meeting[a] = Some((b, t));
-                let (na, nb) = match self.params.ball_ball {
+                let (mut na, mut nb) = match self.params.ball_ball {
                     BallBallModel::FrictionlessElastic => exchange(&ba, &bb),
                     BallBallModel::FrictionalInelastic {
                         restitution,
                         friction,
                     } => frictional(&ba, &bb, self.params.radius(), restitution, &friction),
                 };
+                let p = &self.params;
+                let added = part_pressed(&mut na, &mut nb, &p.cloth, p.contact_time);
+                if added > 0.0 {
+                    self.pressing_energy += p.mass * added;
+                    self.pressings += 1;
+                }
+                // Meeting again with no time in between and nothing to part them (the
+                // intervals of a Zeno sequence fall below the resolution of t): pressed
+                // together beyond what the contact time resolves.
+                let again = self.last_meeting[a] == Some((b, t));
+                let parting = (nb.vel - na.vel).dot(nb.pos - na.pos);
+                if again && parting <= 0.0 {
+                    self.pressed.get_or_insert((a, b, t));
+                }
+                self.last_meeting[a] = Some((b, t));
                 self.set(a, na, ClothState::Sliding);
                 self.set(b, nb, ClothState::Sliding);
             }

@@ -3,8 +3,8 @@
 //! changed fails them.
 
 use ccdsim::billiards::{
-    record_shot, Game, PoolBall, PoolBallBall, PoolRecord, PoolRunReader, PoolRunWriter, PoolScene,
-    PoolSetup, PoolShot, ShotEventKind,
+    rack_at, record_shot, BallParams, Game, PocketTableSpecs, PoolBall, PoolBallBall, PoolRecord,
+    PoolRunReader, PoolRunWriter, PoolScene, PoolSetup, PoolShot, ShotEventKind, Table,
 };
 use ccdsim::record::Tail;
 use ccdsim::verify::{PoolReport, PoolVerifier, Violation};
@@ -50,9 +50,28 @@ fn reference_scenes() -> Vec<PoolScene> {
         .collect()
 }
 
-/// Breaks of both games, with and without friction between the balls.
+/// Breaks of both games, with and without friction between the balls, and pooltool #154's
+/// break (the rack's apex at 75 % of the length, the cue ball at 25 %, 3.26 m/s), whose balls
+/// press together.
 fn break_scenes() -> Vec<PoolScene> {
     let mut out = Vec::new();
+    let table = Table::pool(&PocketTableSpecs::default());
+    for seed in 0..4 {
+        let balls = rack_at(
+            Game::EightBall,
+            &table,
+            BallParams::default().radius(),
+            seed,
+            [0.5, 0.75],
+            [0.5, 0.25],
+        );
+        let mut s = PoolScene::racked(Game::EightBall, 1);
+        for (b, (name, p)) in s.pool.balls.iter_mut().zip(&balls) {
+            (b.name, b.pos) = (name.clone(), p.0);
+        }
+        (s.pool.shot.speed, s.pool.shot.phi) = (3.262213, 81.83468);
+        out.push(s);
+    }
     for game in [Game::NineBall, Game::EightBall] {
         for seed in 1..=4 {
             let mut s = PoolScene::racked(game, seed);
@@ -68,8 +87,8 @@ fn break_scenes() -> Vec<PoolScene> {
     out
 }
 
-/// The shot recorded, read back: its records.
-fn recorded(scene: &PoolScene) -> (Vec<PoolRecord>, usize) {
+/// The shot recorded, read back: its records, and how many events and pressings it had.
+fn recorded(scene: &PoolScene) -> (Vec<PoolRecord>, usize, usize) {
     let mut bytes = Vec::new();
     let w = PoolRunWriter::new(&mut bytes, "mem".into(), scene).unwrap();
     let (shot, _) = record_shot(scene, w, 100_000).unwrap();
@@ -79,7 +98,7 @@ fn recorded(scene: &PoolScene) -> (Vec<PoolRecord>, usize) {
         recs.push(rec);
     }
     assert_eq!(r.tail(), Tail::Complete);
-    (recs, shot.events().len())
+    (recs, shot.events().len(), shot.pressings().0)
 }
 
 fn verify(scene: &PoolScene, recs: &[PoolRecord]) -> Result<PoolReport, Violation> {
@@ -94,14 +113,16 @@ fn verify(scene: &PoolScene, recs: &[PoolRecord]) -> Result<PoolReport, Violatio
 
 #[test]
 fn every_recorded_shot_reads_back_and_verifies() {
-    let (mut pocketed, mut still, mut events) = (0, 0, 0);
+    let (mut pocketed, mut still, mut events, mut pressed) = (0, 0, 0, 0);
     let mut worst = 0.0f64;
     for (k, scene) in reference_scenes().iter().chain(&break_scenes()).enumerate() {
-        let (recs, played) = recorded(scene);
+        let (recs, played, pressings) = recorded(scene);
         assert_eq!(recs.len(), played + 2, "shot {k}: strike, events, end");
         let report = verify(scene, &recs)
             .unwrap_or_else(|v| panic!("shot {k}: {v}: {:?}", recs[v.index as usize]));
         assert_eq!(report.events as usize, played, "shot {k}");
+        assert_eq!(report.pressings as usize, pressings, "shot {k}");
+        pressed += pressings;
         assert!(report.energy_end <= report.energy_start, "shot {k}");
         worst = worst.max(report.max_overlap);
         pocketed += report.pocketed;
@@ -110,7 +131,8 @@ fn every_recorded_shot_reads_back_and_verifies() {
     }
     // The shots drop balls and end at rest (a pressed pair may stop a break early).
     assert!(pocketed > 20, "{pocketed} balls pocketed");
-    assert!(still >= 100, "{still} shots ended at rest");
+    assert_eq!(still, 120, "every shot ends at rest");
+    assert!(pressed > 50, "{pressed} pressings");
     assert!(events > 2000, "{events} events");
     assert!(worst <= 1e-12, "largest overlap {worst:e}");
 }
@@ -125,7 +147,7 @@ fn find(recs: &[PoolRecord], f: impl Fn(&ShotEventKind) -> bool) -> usize {
 #[test]
 fn a_record_dropped_moved_or_changed_fails_verification() {
     let scene = PoolScene::racked(Game::NineBall, 1);
-    let (recs, _) = recorded(&scene);
+    let (recs, _, _) = recorded(&scene);
     verify(&scene, &recs).unwrap();
     let fails = |recs: &[PoolRecord], says: &str| {
         let v = verify(&scene, recs).expect_err(says);
@@ -166,6 +188,47 @@ fn a_record_dropped_moved_or_changed_fails_verification() {
         after.ball.vel = after.ball.vel * 1.5;
     }
     fails(&r, "Han's model");
+    // Balls pressed together, recorded as if the collision alone had parted them.
+    let scene = &break_scenes()[0];
+    let (recs, _, pressings) = recorded(scene);
+    assert!(pressings > 0);
+    verify(scene, &recs).unwrap();
+    let mut r = recs.clone();
+    let i = r
+        .iter()
+        .position(|rec| match rec {
+            PoolRecord::Event {
+                event,
+                after,
+                after_b: Some(after_b),
+            } if matches!(event.kind, ShotEventKind::Balls { .. }) => {
+                let d = after_b.ball.pos - after.ball.pos;
+                (after_b.ball.vel - after.ball.vel).dot(d) < 1e-3 * d.norm()
+            }
+            _ => false,
+        })
+        .expect("a slow parting");
+    if let PoolRecord::Event {
+        after,
+        after_b: Some(after_b),
+        ..
+    } = &mut r[i]
+    {
+        let mean = (after.ball.vel + after_b.ball.vel) * 0.5;
+        let d = after_b.ball.pos - after.ball.pos;
+        let n = d * (1.0 / d.norm());
+        // No parting speed along the line of centres: they would press on at once.
+        after.ball.vel = after.ball.vel - n * (after.ball.vel - mean).dot(n);
+        after_b.ball.vel = after_b.ball.vel - n * (after_b.ball.vel - mean).dot(n);
+    }
+    let v = verify(scene, &r).expect_err("an unparted pressing");
+    assert!(v.index as usize <= i, "{v}");
+    let scene = PoolScene::racked(Game::NineBall, 1);
+    let (recs, _, _) = recorded(&scene);
+    let fails = |recs: &[PoolRecord], says: &str| {
+        let v = verify(&scene, recs).expect_err(says);
+        assert!(v.what.contains(says), "expected {says:?}: {v}");
+    };
     // A strike harder than the scene's.
     let mut r = recs.clone();
     if let PoolRecord::Strike { after, .. } = &mut r[0] {

@@ -6,15 +6,18 @@
 //!   45°: no ball leaves the table.
 //! - pooltool issue #154: in an 8-ball break with the rack's apex at (0.5, 0.75) and the cue
 //!   ball at (0.5, 0.25) (fractions of the table), struck with `V0 = 3.262213`,
-//!   `phi = 81.83468`, a ball went through another. On 100 seeded racks ccdsim either plays
-//!   the break to the end with no overlap, or stops where two touching balls press together
-//!   (a lasting contact the model does not have yet, docs/model.md), and says so: never a
-//!   pass-through, never an endless run.
+//!   `phi = 81.83468`, a ball went through another. Most of these racks bring two touching
+//!   balls that their decelerations press together, which the collision models alone cannot
+//!   part (ccdsim parts them at the speed a contact's duration asks for,
+//!   `billiards::ball_impact::part_pressed`). On 100 seeded racks ccdsim plays every break to
+//!   the end with no overlap and no ball off the table: never a pass-through, never an
+//!   endless run.
 //!
 //! Between consecutive events every ball is sampled at 16 times and at both ends (positions
-//! from the shot's own motion laws), and every pair checked for overlap beyond 10⁻¹² R.
+//! from the shot's own motion laws), and every pair checked for overlap beyond 10⁻¹² R; before
+//! every event the kept predictions must give the oracle's (`Shot::next_event_naive`).
 
-use ccdsim::billiards::{rack_at, BallParams, Game, PocketTableSpecs, Shot, ShotError, Table};
+use ccdsim::billiards::{rack_at, BallParams, Game, PocketTableSpecs, Shot, Table};
 use ccdsim::motion::CueStrike;
 use ccdsim::Vector;
 
@@ -27,6 +30,8 @@ fn play_and_check(mut shot: Shot, what: &str) -> Shot {
     let mut steps = 0;
     loop {
         let t0 = shot.time();
+        // The kept predictions give the oracle's next event, bit for bit.
+        assert_eq!(shot.next_event(), shot.next_event_naive(), "{what}");
         let Some(next) = shot.next_event() else { break };
         let n = shot.balls().len();
         for k in 0..=16 {
@@ -101,10 +106,10 @@ fn issue_217_a_ball_shot_into_a_corner_never_leaves_the_table() {
 }
 
 #[test]
-fn issue_154_the_break_ends_cleanly_or_stops_where_balls_press_together() {
+fn issue_154_every_break_ends_with_no_overlap_and_pressed_balls_parted() {
     let table = Table::pool(&PocketTableSpecs::default());
     let params = BallParams::default();
-    let (mut ended, mut pressed) = (0, 0);
+    let (mut pressings, mut energy) = (0, 0.0f64);
     for seed in 0..100 {
         let balls = rack_at(
             Game::EightBall,
@@ -117,24 +122,13 @@ fn issue_154_the_break_ends_cleanly_or_stops_where_balls_press_together() {
         let positions: Vec<Vector<2>> = balls.iter().map(|(_, p)| *p).collect();
         let mut shot = Shot::new(table.clone(), params, &positions).unwrap();
         shot.strike(0, &CueStrike::new(3.262213, 81.83468)).unwrap();
-        let fresh = shot.clone();
-        match shot.run(100_000) {
-            Ok(_) => {
-                play_and_check(fresh, &format!("rack seed {seed}"));
-                ended += 1;
-            }
-            Err(ShotError::Pressed(a, b, t)) => {
-                // Touching when they met, and nothing overlapped before.
-                let d = (shot.ball_at(a, t).pos - shot.ball_at(b, t).pos).norm();
-                assert!(
-                    (d - 2.0 * params.radius()).abs() < 1e-12,
-                    "seed {seed}: {d}"
-                );
-                pressed += 1;
-            }
-            Err(e) => panic!("rack seed {seed}: {e}"),
-        }
+        let shot = play_and_check(shot, &format!("rack seed {seed}"));
+        let (k, e) = shot.pressings();
+        pressings += k;
+        energy = energy.max(e);
     }
-    assert_eq!(ended + pressed, 100);
-    assert!(ended > 0, "{ended} breaks ended, {pressed} pressed");
+    // Most racks press balls together; what parting them adds is far below a millijoule
+    // (the break brings 0.9 J).
+    assert!(pressings > 1000, "{pressings} pressings");
+    assert!(energy < 1e-5, "{energy} J");
 }
