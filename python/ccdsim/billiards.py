@@ -75,6 +75,7 @@ def shot(
     cue: str = "cue",
     max_events: int = 1_000_000,
     ball_ball: Optional[Mapping[str, float]] = None,
+    record: Optional[str] = None,
 ) -> Shot:
     """Strikes ball ``cue`` (``speed`` m/s towards ``phi`` degrees; cue elevation ``theta``
     degrees; tip offsets ``a`` (side) and ``b`` (height) in ball radii) and plays the shot
@@ -84,7 +85,9 @@ def shot(
     "friction": mu}`` (0.95 and Alciatore's friction curve when left out) selects the
     frictional model. Raises ``ValueError`` for balls off the table or overlapping, for a tip
     that misses and for bad ``ball_ball`` numbers or keys, ``RuntimeError`` when the shot
-    does not end within ``max_events`` events."""
+    does not end within ``max_events`` events. With ``record``, the shot's run file is written
+    to that path as it plays (``ccdsim verify``, ``ccdsim view`` and ``ccdsim export`` read
+    it; docs/run-files.md, "Pool shots")."""
     model = None
     if ball_ball is not None:
         unknown = set(ball_ball) - {"restitution", "friction"}
@@ -105,6 +108,7 @@ def shot(
         cue,
         int(max_events),
         model,
+        None if record is None else str(record),
     )
     return Shot(
         events=[(t, k, list(agents)) for t, k, agents in d["events"]],

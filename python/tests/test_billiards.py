@@ -67,3 +67,20 @@ def test_eight_ball_breaks_whose_balls_press_together_play_to_the_end():
         assert result.time > 0 and result.pressing_energy < 1e-5
         pressed += result.pressings
     assert pressed > 0
+
+
+def test_a_recorded_shot_writes_its_run_file(tmp_path):
+    balls = billiards.rack("nine-ball", seed=1)
+    path = tmp_path / "break.ccd"
+    recorded = billiards.shot(balls, speed=8.0, phi=billiards.aim(balls, "1"), record=str(path))
+    assert recorded == billiards.shot(balls, speed=8.0, phi=billiards.aim(balls, "1"))
+    data = path.read_bytes()
+    assert data[:8] == b"CCDSIMRF" and int.from_bytes(data[8:12], "little") == 16
+    # The strike, every event and the end, 135 bytes each, after the header.
+    header = int.from_bytes(data[16:24], "little")
+    assert len(data) == 24 + header + 135 * (len(recorded.events) + 2)
+    with pytest.raises(ValueError, match="pool shot"):
+        ccdsim.read_run(str(path))
+    with pytest.raises(ValueError, match="overlap"):
+        billiards.shot([("cue", 0.5, 0.5), ("1", 0.51, 0.5)], 1.0, 0.0, record=str(tmp_path / "x"))
+    assert not (tmp_path / "x").exists()

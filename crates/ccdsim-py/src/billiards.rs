@@ -2,11 +2,10 @@
 //! (see the library's `billiards` module).
 
 use ccdsim::billiards::{
-    rack, BallBallModel, BallParams, Game, PocketTableSpecs, PoolBallBall, Shot, Table,
+    rack, record_shot, BallParams, Game, PocketTableSpecs, PoolBall, PoolBallBall, PoolRunWriter,
+    PoolScene, PoolSceneError, PoolSetup, PoolShot, Shot, Table,
 };
-use ccdsim::motion::CueStrike;
-use ccdsim::Vector;
-use pyo3::exceptions::{PyRuntimeError, PyValueError};
+use pyo3::exceptions::{PyOSError, PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
@@ -37,11 +36,13 @@ pub fn pool_rack(game: &str, seed: u64) -> PyResult<Vec<(String, f64, f64)>> {
 /// every ball rests or is pocketed (at most `max_events` events). Returns a dict: `events`
 /// (a list of `(time, type, agents)` with pooltool's type names), `positions` (name → (x, y)
 /// at the end), `pocketed` (name → pocket id, in the order they dropped), `time` (when the
-/// last ball stopped, s). `ball_ball`, `(restitution, friction or None)`, makes balls meet by
-/// the frictional model (see `ccdsim::billiards::ball_impact`); without it they meet without
-/// friction, elastically. Runs without the GIL.
+/// last ball stopped, s), `pressings` and `pressing_energy` (balls pressed together and
+/// parted, and the joules that added). `ball_ball`, `(restitution, friction or None)`, makes
+/// balls meet by the frictional model (see `ccdsim::billiards::ball_impact`); without it they
+/// meet without friction, elastically. With `record`, the shot's run file is written there
+/// (format version 16: `ccdsim verify`, `view` and `export` read it). Runs without the GIL.
 #[pyfunction]
-#[pyo3(signature = (balls, speed, phi, theta=0.0, a=0.0, b=0.0, cue="cue", max_events=1_000_000, ball_ball=None))]
+#[pyo3(signature = (balls, speed, phi, theta=0.0, a=0.0, b=0.0, cue="cue", max_events=1_000_000, ball_ball=None, record=None))]
 #[allow(clippy::too_many_arguments)]
 pub fn pool_shot<'py>(
     py: Python<'py>,
@@ -54,40 +55,64 @@ pub fn pool_shot<'py>(
     cue: &str,
     max_events: usize,
     ball_ball: Option<(f64, Option<f64>)>,
+    record: Option<std::path::PathBuf>,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let params = BallParams {
-        ball_ball: match ball_ball {
-            None => BallBallModel::FrictionlessElastic,
-            Some((restitution, friction)) => PoolBallBall {
+    let names: Vec<String> = balls.iter().map(|(n, _, _)| n.clone()).collect();
+    if !names.iter().any(|n| n == cue) {
+        return Err(PyValueError::new_err(format!("no ball named {cue:?}")));
+    }
+    let scene = PoolScene {
+        pool: PoolSetup {
+            balls: balls
+                .iter()
+                .map(|(name, x, y)| PoolBall {
+                    name: name.clone(),
+                    pos: [*x, *y],
+                })
+                .collect(),
+            shot: PoolShot {
+                ball: cue.to_string(),
+                speed,
+                phi,
+                theta,
+                a,
+                b,
+            },
+            ball_ball: ball_ball.map(|(restitution, friction)| PoolBallBall {
                 restitution,
                 friction,
-            }
-            .model()
-            .map_err(|e| PyValueError::new_err(e.to_string()))?,
+            }),
         },
-        ..BallParams::default()
     };
-    let names: Vec<String> = balls.iter().map(|(n, _, _)| n.clone()).collect();
-    let cue_index = names
-        .iter()
-        .position(|n| n == cue)
-        .ok_or_else(|| PyValueError::new_err(format!("no ball named {cue:?}")))?;
-    let positions: Vec<Vector<2>> = balls.iter().map(|&(_, x, y)| Vector([x, y])).collect();
-    let strike = CueStrike {
-        speed,
-        phi,
-        theta,
-        a,
-        b,
+    let refused = |e: PoolSceneError| PyValueError::new_err(e.to_string());
+    let writer = match &record {
+        Some(path) => {
+            scene.shot().map_err(refused)?;
+            Some(
+                PoolRunWriter::create(path, &scene)
+                    .map_err(|e| PyOSError::new_err(e.to_string()))?,
+            )
+        }
+        None => None,
     };
-    let table = Table::pool(&PocketTableSpecs::default());
-    let mut shot = Shot::new(table, params, &positions)
-        .map_err(|e| PyValueError::new_err(e.describe(&names)))?;
-    shot.strike(cue_index, &strike)
-        .map_err(|e| PyValueError::new_err(e.describe(&names)))?;
+    let shot = scene.shot().map_err(refused)?;
     let shot = py
-        .detach(move || shot.run(max_events).map(|_| shot))
-        .map_err(|e| PyRuntimeError::new_err(e.describe(&names)))?;
+        .detach(move || -> Result<Shot, String> {
+            match writer {
+                Some(w) => {
+                    let (shot, played) =
+                        record_shot(&scene, w, max_events).map_err(|e| e.to_string())?;
+                    played.map(|_| shot).map_err(|e| e.describe(&scene.names()))
+                }
+                None => {
+                    let mut shot = shot;
+                    shot.run(max_events)
+                        .map(|_| shot)
+                        .map_err(|e| e.describe(&scene.names()))
+                }
+            }
+        })
+        .map_err(PyRuntimeError::new_err)?;
     let out = PyDict::new(py);
     let events: Vec<(f64, String, Vec<String>)> = shot
         .events()

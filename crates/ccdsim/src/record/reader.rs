@@ -164,8 +164,8 @@ fn refuse_pool(version: u32, name: &str) -> Result<(), RecordError> {
         return Err(RecordError::Header {
             path: name.into(),
             why: format!(
-                "format version {VERSION_POOL} is a pool shot's run file \
-                 (read it with ccdsim::billiards::open_pool_run)"
+                "format version {VERSION_POOL} is a pool shot's run file (`ccdsim verify`, \
+                 `view` and `export` read it; in Rust, ccdsim::billiards::open_pool_run)"
             ),
         });
     }
