@@ -226,7 +226,10 @@ pub fn run(args: Args) -> Result<ExitCode> {
         let text = std::fs::read_to_string(path).with_context(|| format!("{}", path.display()))?;
         if ccdsim::billiards::PoolScene::is_pool_json(&text) {
             let given = [
-                ("--finder", args.finder != "cells"),
+                (
+                    "--finder (other than all-pairs)",
+                    args.finder != "cells" && args.finder != "all-pairs",
+                ),
                 ("--until", args.until.is_some()),
                 ("--events", args.events.is_some()),
                 ("--frames", args.frames.is_some()),
@@ -239,8 +242,15 @@ pub fn run(args: Args) -> Result<ExitCode> {
                     .map(|(f, _)| *f)
                     .collect(),
             );
-            super::run_pool::run(&text, &unsupported, args.record.as_deref(), args.json)
-                .with_context(|| format!("{}", path.display()))?;
+            let afresh = args.finder == "all-pairs";
+            super::run_pool::run(
+                &text,
+                &unsupported,
+                afresh,
+                args.record.as_deref(),
+                args.json,
+            )
+            .with_context(|| format!("{}", path.display()))?;
             return Ok(ExitCode::SUCCESS);
         }
     }

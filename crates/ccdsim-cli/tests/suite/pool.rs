@@ -118,6 +118,28 @@ fn a_recorded_shot_verifies_exports_and_fails_when_tampered_with() {
     assert_eq!(lines.last().unwrap()["type"], "end");
     assert_eq!(lines[2]["type"], "ball_ball");
 
+    // The oracle's search (every prediction afresh) writes the same file, byte for byte.
+    let oracle = common::scratch_file("pool-record", "oracle.ccd");
+    run_ok(
+        ccdsim()
+            .arg("run")
+            .arg(&scene)
+            .args(["--finder", "all-pairs", "--record"])
+            .arg(&oracle),
+    );
+    assert_eq!(
+        std::fs::read(&oracle).unwrap(),
+        std::fs::read(&run).unwrap()
+    );
+    let out = ccdsim()
+        .arg("run")
+        .arg(&scene)
+        .args(["--finder", "bvh"])
+        .output()
+        .unwrap();
+    assert!(!out.status.success());
+    assert!(String::from_utf8_lossy(&out.stderr).contains("all-pairs"));
+
     // PNG and GIF are for scenes' runs; the message says what plays a shot.
     let out = ccdsim()
         .arg("render")

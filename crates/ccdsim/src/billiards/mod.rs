@@ -41,7 +41,7 @@ pub use pool_scene::{PoolBall, PoolBallBall, PoolScene, PoolSceneError, PoolSetu
 pub use rack::{rack, rack_at, Game};
 pub use run_export::export_pool_jsonl;
 pub use run_file::{
-    open_pool_run, record_shot, BallAfter, PoolRecord, PoolRunReader, PoolRunWriter,
+    open_pool_run, record_shot, record_struck, BallAfter, PoolRecord, PoolRunReader, PoolRunWriter,
 };
 pub use shot::{Shot, ShotError, ShotEvent, ShotEventKind, TableBall};
 pub use table::{Jaw, LinearCushion, Pocket, PocketTableSpecs, Table};

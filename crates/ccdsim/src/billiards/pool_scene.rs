@@ -193,6 +193,17 @@ impl PoolScene {
         }
     }
 
+    /// The index of the ball the shot strikes (the first ball when no ball has its name: the
+    /// scene's [`PoolScene::shot`] refuses such a scene).
+    #[must_use]
+    pub fn struck_ball(&self) -> usize {
+        self.pool
+            .balls
+            .iter()
+            .position(|b| b.name == self.pool.shot.ball)
+            .unwrap_or(0)
+    }
+
     /// The balls' names, in order.
     #[must_use]
     pub fn names(&self) -> Vec<String> {

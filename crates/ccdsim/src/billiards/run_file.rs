@@ -291,17 +291,25 @@ pub fn record_shot<W: Write>(
     out: PoolRunWriter<W>,
     max_events: usize,
 ) -> Result<(Shot, Result<usize, super::ShotError>), RecordError> {
-    let mut out = out;
-    let mut shot = scene.shot().map_err(|e| RecordError::Header {
+    let shot = scene.shot().map_err(|e| RecordError::Header {
         path: out.path.clone(),
         why: e.to_string(),
     })?;
-    let names = scene.names();
-    let cue = names
-        .iter()
-        .position(|n| *n == scene.pool.shot.ball)
-        .expect("shot() found the struck ball");
-    out.write(&PoolRecord::strike(&shot, cue))?;
+    record_struck(shot, scene.struck_ball(), out, max_events)
+}
+
+/// [`record_shot`] for a shot already set up and struck (ball `struck`) from the scene `out`
+/// was created with: to play it with another search ([`Shot::search_afresh`]).
+///
+/// # Errors
+/// The file cannot be written.
+pub fn record_struck<W: Write>(
+    mut shot: Shot,
+    struck: usize,
+    mut out: PoolRunWriter<W>,
+    max_events: usize,
+) -> Result<(Shot, Result<usize, super::ShotError>), RecordError> {
+    out.write(&PoolRecord::strike(&shot, struck))?;
     let mut failed = None;
     let played = shot.run_with(max_events, |s, e| {
         if failed.is_none() {

@@ -237,6 +237,8 @@ pub struct Shot {
     /// Collisions whose balls were parted by [`part_pressed`], and the energy that added (J).
     pressings: usize,
     pressing_energy: f64,
+    /// Whether [`Shot::step`] searches with the oracle ([`Shot::search_afresh`]).
+    afresh: bool,
 }
 
 impl Shot {
@@ -289,6 +291,7 @@ impl Shot {
             last_meeting: vec![None; n],
             pressings: 0,
             pressing_energy: 0.0,
+            afresh: false,
         };
         shot.flights = (0..n).map(|i| shot.flight_of(i)).collect();
         for i in 0..n {
@@ -444,9 +447,20 @@ impl Shot {
         best
     }
 
+    /// Makes [`Shot::step`] find each event with the oracle, [`Shot::next_event_naive`] (every
+    /// prediction computed afresh: O(n²) quartics an event), instead of the kept predictions,
+    /// or back. The events are the same, bit for bit; the oracle is for checking that.
+    pub fn search_afresh(&mut self, afresh: bool) {
+        self.afresh = afresh;
+    }
+
     /// Plays the next event and returns it; `None` once every ball rests or is pocketed.
     pub fn step(&mut self) -> Option<ShotEvent> {
-        let event = self.next_event()?;
+        let event = if self.afresh {
+            self.next_event_naive()?
+        } else {
+            self.next_event()?
+        };
         let t = event.time;
         self.time = t;
         match event.kind {

@@ -1,10 +1,11 @@
 //! Run files of pool shots (format version 16) and their verification: every shot recorded
-//! reads back event for event and passes `verify`'s pool checks; a record dropped, moved or
-//! changed fails them.
+//! reads back event for event, is the file the oracle's search writes, byte for byte, and
+//! passes `verify`'s pool checks; a record dropped, moved or changed fails them.
 
 use ccdsim::billiards::{
-    rack_at, record_shot, BallParams, Game, PocketTableSpecs, PoolBall, PoolBallBall, PoolRecord,
-    PoolRunReader, PoolRunWriter, PoolScene, PoolSetup, PoolShot, ShotEventKind, Table,
+    rack_at, record_shot, record_struck, BallParams, Game, PocketTableSpecs, PoolBall,
+    PoolBallBall, PoolRecord, PoolRunReader, PoolRunWriter, PoolScene, PoolSetup, PoolShot,
+    ShotEventKind, Table,
 };
 use ccdsim::record::Tail;
 use ccdsim::verify::{PoolReport, PoolVerifier, Violation};
@@ -88,10 +89,18 @@ fn break_scenes() -> Vec<PoolScene> {
 }
 
 /// The shot recorded, read back: its records, and how many events and pressings it had.
+/// Recorded again with every event found by the oracle, the file is the same, byte for byte.
 fn recorded(scene: &PoolScene) -> (Vec<PoolRecord>, usize, usize) {
     let mut bytes = Vec::new();
     let w = PoolRunWriter::new(&mut bytes, "mem".into(), scene).unwrap();
     let (shot, _) = record_shot(scene, w, 100_000).unwrap();
+    let mut oracle = Vec::new();
+    let w = PoolRunWriter::new(&mut oracle, "mem".into(), scene).unwrap();
+    let mut afresh = scene.shot().unwrap();
+    afresh.search_afresh(true);
+    let (_, played) = record_struck(afresh, scene.struck_ball(), w, 100_000).unwrap();
+    played.unwrap();
+    assert!(oracle == bytes, "the oracle's file differs");
     let mut r = PoolRunReader::new(&bytes[..], "mem".into()).unwrap();
     let mut recs = Vec::new();
     while let Some(rec) = r.next_record().unwrap() {
