@@ -56,6 +56,9 @@ pub struct BreakReport {
     pub cushion: usize,
     /// Balls pocketed, by name, in the order they dropped.
     pub pocketed: Vec<String>,
+    /// Ball–ball collisions of balls pressed together, parted at the contact time's speed
+    /// (`ccdsim::billiards::ball_impact::part_pressed`).
+    pub pressings: usize,
     /// Simulated time until every ball rests, seconds.
     pub duration: f64,
     /// Every event of one break as pooltool names it: type, agents, time (seconds).
@@ -114,6 +117,7 @@ pub fn pool_break(layout: &BreakLayout, runs: usize) -> Result<BreakReport, Shot
         ball_ball: count(|k| matches!(k, ShotEventKind::Balls { .. })),
         cushion: count(|k| matches!(k, ShotEventKind::Cushion { .. } | ShotEventKind::Jaw { .. })),
         pocketed,
+        pressings: shot.pressings().0,
         duration: shot.time(),
         event_list,
     })

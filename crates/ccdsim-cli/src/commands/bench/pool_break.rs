@@ -192,10 +192,15 @@ pub fn run(args: Args) -> Result<ExitCode> {
         return Ok(ExitCode::SUCCESS);
     }
     outln!(
-        "{} balls, {} events ({} ball-ball, {} cushion), every ball still after {:.3} s; pocketed: {}",
+        "{} balls, {} events ({} ball-ball{}, {} cushion), every ball still after {:.3} s; pocketed: {}",
         layout.balls.len(),
         report.events,
         report.ball_ball,
+        if report.pressings > 0 {
+            format!(", {} of them pressed balls parted", report.pressings)
+        } else {
+            String::new()
+        },
         report.cushion,
         report.duration,
         if report.pocketed.is_empty() {
