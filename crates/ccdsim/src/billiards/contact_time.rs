@@ -106,7 +106,10 @@ pub fn ball_ball(a: &Flight, b: &Flight, radius: f64) -> Option<f64> {
 /// The time (seconds) a ball of radius `radius` on this flight first meets the straight
 /// cushion `c`, from either side, before its flight ends: its centre one radius from the
 /// cushion's line while approaching it, with the foot of the perpendicular on the segment.
-/// A ball already that close and approaching meets it now.
+/// Both sides are looked at: a ball may cross the line beyond the segment's end and come back
+/// to the segment from the other side (into a pocket's mouth, past a face's end). A ball
+/// already that close and approaching meets it now; one that close and leaving, but turned
+/// back by its acceleration before it gets further, meets it when it turns.
 #[must_use]
 pub fn cushion(f: &Flight, c: &LinearCushion, radius: f64) -> Option<f64> {
     if !f.moves() {
@@ -114,24 +117,39 @@ pub fn cushion(f: &Flight, c: &LinearCushion, radius: f64) -> Option<f64> {
     }
     let n = c.normal();
     let (d0, vn, an) = ((f.pos - c.p1).dot(n), f.vel.dot(n), f.acc.dot(n));
-    // Seen from the side the ball is on, its distance falls towards `radius`.
-    let (d0, vn, an) = if d0 >= 0.0 {
-        (d0, vn, an)
-    } else {
-        (-d0, -vn, -an)
-    };
-    let dt = if d0 <= radius && (vn < 0.0 || (vn == 0.0 && an < 0.0)) {
-        0.0
-    } else {
-        crossing(d0, vn, 0.5 * an, radius, true).filter(|&dt| dt >= 0.0)?
-    };
-    if f.time + dt > f.end {
-        return None;
-    }
-    let (p, _) = f.after(dt);
     let along = c.p2 - c.p1;
-    let s = (p - c.p1).dot(along) / along.norm_sq();
-    (0.0..=1.0).contains(&s).then_some(f.time + dt)
+    let on_segment = |dt: f64| {
+        let (p, _) = f.after(dt);
+        let s = (p - c.p1).dot(along) / along.norm_sq();
+        (0.0..=1.0).contains(&s)
+    };
+    // The side the ball is on first (the answer of old for a ball that does not cross the
+    // line), then the other.
+    let near = if d0 >= 0.0 { 1.0 } else { -1.0 };
+    let mut first: Option<f64> = None;
+    for side in [near, -near] {
+        // Seen from this side, the distance `e` falls towards `radius`.
+        let (e0, ev, ea) = (side * d0, side * vn, side * an);
+        let touching = (0.0..=radius).contains(&e0);
+        let dt = if touching && (ev < 0.0 || (ev == 0.0 && ea < 0.0)) {
+            Some(0.0)
+        } else {
+            match crossing(e0, ev, 0.5 * ea, radius, true).filter(|&dt| dt >= 0.0) {
+                Some(dt) => Some(dt),
+                // In contact and leaving (as rounding leaves a ball after a bounce), but
+                // turned back before it clears the contact distance: it meets the cushion
+                // as it turns to approach it.
+                None if touching && ea < 0.0 => Some(-ev / ea),
+                None => None,
+            }
+        };
+        if let Some(dt) = dt {
+            if f.time + dt <= f.end && on_segment(dt) && first.is_none_or(|t| dt < t) {
+                first = Some(dt);
+            }
+        }
+    }
+    first.map(|dt| f.time + dt)
 }
 
 /// The time (seconds) a ball of radius `radius` on this flight first meets the jaw `j`

@@ -12,12 +12,14 @@
 //! contact sticks (the slip is removed), else it slides with friction `f_c` (Han's Eqs. 14–20).
 //! The ball's vertical velocity change is dropped: it stays on the cloth.
 
+use super::ball_impact::{closing_speed, rounding_floor};
 use crate::geom::Vector;
-use crate::motion::ClothBall;
+use crate::motion::{ClothBall, ClothParams};
 
 /// The ball after bouncing off a cushion whose contact normal in the table plane is `normal`
 /// (a unit vector, either sign: it is turned to point into the cushion, along the ball's
-/// velocity), for a ball of radius `radius` (m) and mass `mass` (kg), a cushion nose at
+/// velocity; a ball that meets it without normal velocity, turning back towards it, takes
+/// `normal` as it is), for a ball of radius `radius` (m) and mass `mass` (kg), a cushion nose at
 /// `height` (m) above the cloth, restitution `e` and friction `mu`. The position is unchanged.
 #[must_use]
 pub fn bounce(
@@ -29,7 +31,7 @@ pub fn bounce(
     e: f64,
     mu: f64,
 ) -> ClothBall {
-    let n = if normal.dot(b.vel) > 0.0 {
+    let n = if normal.dot(b.vel) >= 0.0 {
         normal
     } else {
         -normal
@@ -78,6 +80,36 @@ pub fn bounce(
         vel,
         spin: Vector([w_xy[0], w_xy[1], wz]),
     }
+}
+
+/// A ball that leaves a cushion (or jaw; `toward` the unit vector from its centre to the
+/// contact) more slowly than its cloth acceleration towards the cushion, `a`, lets it stay
+/// away for a contact's duration `τ` (`contact_time`, s) leaves at `½·a·τ` instead (through
+/// any state change within `τ`, the least speed that keeps it away then, as
+/// [`super::ball_impact::part_pressed`] takes it): pressed
+/// against the cushion (by its spin, rolling along a rail), it bounces with a real contact's
+/// period instead of ever faster (Han's restitution is below 1: the bounces would come ever
+/// closer, and end at one instant for ever). The cushion's counterpart of
+/// [`super::ball_impact::part_pressed`], with the same floor for rounding. Returns the kinetic
+/// energy per unit mass this added (m²/s²) when the ball was pressed against the cushion,
+/// `None` otherwise.
+pub fn part_from_cushion(
+    b: &mut ClothBall,
+    toward: Vector<2>,
+    cloth: &ClothParams,
+    contact_time: f64,
+) -> Option<f64> {
+    let least = closing_speed(b, None, toward, cloth, contact_time);
+    let leaving = -b.vel.dot(toward);
+    let floor = rounding_floor(b.vel.norm());
+    let pressed = least > leaving && least > floor;
+    let target = if pressed { least } else { floor };
+    if target.partial_cmp(&leaving) != Some(std::cmp::Ordering::Greater) {
+        return None;
+    }
+    let before = b.vel.norm_sq();
+    b.vel -= toward * (target - leaving);
+    pressed.then(|| 0.5 * (b.vel.norm_sq() - before))
 }
 
 #[cfg(test)]

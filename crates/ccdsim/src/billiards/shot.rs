@@ -22,9 +22,9 @@ use std::cmp::Ordering;
 
 use thiserror::Error;
 
-use super::ball_impact::{exchange, frictional, part_pressed};
+use super::ball_impact::{exchange, frictional, part_pressed, rest_if_rounding};
 use super::contact_time::{self, Flight};
-use super::cushion_impact::bounce;
+use super::cushion_impact::{bounce, part_from_cushion};
 use super::params::{BallBallModel, BallParams};
 use super::table::Table;
 use crate::geom::Vector;
@@ -477,9 +477,10 @@ impl Shot {
                         friction,
                     } => frictional(&ba, &bb, self.params.radius(), restitution, &friction),
                 };
+                rest_if_rounding(&mut na, self.params.radius());
+                rest_if_rounding(&mut nb, self.params.radius());
                 let p = &self.params;
-                let added = part_pressed(&mut na, &mut nb, &p.cloth, p.contact_time);
-                if added > 0.0 {
+                if let Some(added) = part_pressed(&mut na, &mut nb, &p.cloth, p.contact_time) {
                     self.pressing_energy += p.mass * added;
                     self.pressings += 1;
                 }
@@ -497,11 +498,14 @@ impl Shot {
             }
             ShotEventKind::Cushion { ball, cushion } => {
                 let c = &self.table.cushions[cushion];
-                self.bounce_off(ball, c.normal(), c.height);
+                let n = c.normal();
+                let side = (self.ball_at(ball, t).pos - c.p1).dot(n);
+                let toward = if side >= 0.0 { -n } else { n };
+                self.bounce_off(ball, toward, c.height);
             }
             ShotEventKind::Jaw { ball, jaw } => {
                 let j = &self.table.jaws[jaw];
-                let d = self.ball_at(ball, t).pos - j.center;
+                let d = j.center - self.ball_at(ball, t).pos;
                 self.bounce_off(ball, d * (1.0 / d.norm()), j.height);
             }
             ShotEventKind::Pocket { ball, pocket } => {
@@ -558,19 +562,25 @@ impl Shot {
         Ok(max_events)
     }
 
-    /// Ball `i` bounces now off a cushion nose at `height` (m) with contact normal `normal`
-    /// (Han 2005) and slides on.
-    fn bounce_off(&mut self, i: usize, normal: Vector<2>, height: f64) {
+    /// Ball `i` bounces now off a cushion nose at `height` (m) in the direction `toward` (a
+    /// unit vector from its centre to the contact; Han 2005), parted from it if pressed
+    /// against it ([`part_from_cushion`]), and slides on.
+    fn bounce_off(&mut self, i: usize, toward: Vector<2>, height: f64) {
         let p = self.params;
-        let b = bounce(
+        let mut b = bounce(
             &self.ball_at(i, self.time),
-            normal,
+            toward,
             p.radius(),
             p.mass,
             height,
             p.cushion_restitution,
             p.cushion_friction,
         );
+        rest_if_rounding(&mut b, p.radius());
+        if let Some(added) = part_from_cushion(&mut b, toward, &p.cloth, p.contact_time) {
+            self.pressing_energy += p.mass * added;
+            self.pressings += 1;
+        }
         self.set(i, b, ClothState::Sliding);
     }
 

@@ -24,8 +24,10 @@
 //! ball's vertical velocity change and can add a few per cent of energy.)
 
 use super::Violation;
-use crate::billiards::ball_impact::{exchange, frictional, part_pressed};
-use crate::billiards::cushion_impact::bounce;
+use crate::billiards::ball_impact::{
+    exchange, frictional, part_pressed, rest_if_rounding, rounding_floor,
+};
+use crate::billiards::cushion_impact::{bounce, part_from_cushion};
 use crate::billiards::{
     BallAfter, BallBallModel, BallParams, PoolRecord, PoolScene, ShotEventKind, Table,
 };
@@ -84,6 +86,8 @@ pub struct PoolVerifier {
     time: f64,
     index: u64,
     struck: bool,
+    /// Speeds below this are rounding of the strike's (10⁻⁶ of the struck ball's speed), m/s.
+    speed_floor: f64,
     energy: f64,
     /// Energy the record being checked added by parting pressed balls, joules.
     pressed_now: f64,
@@ -133,6 +137,7 @@ impl PoolVerifier {
             time: 0.0,
             index: 0,
             struck: false,
+            speed_floor: 0.0,
             energy: 0.0,
             pressed_now: 0.0,
             report: PoolReport::default(),
@@ -244,6 +249,7 @@ impl PoolVerifier {
         }
         self.set(ball, after, t);
         self.struck = true;
+        self.speed_floor = 1e-6 * after.ball.vel.norm();
         Ok(())
     }
 
@@ -308,10 +314,20 @@ impl PoolVerifier {
             paths.push(Some((now.pos, now.vel, acc)));
         }
         let overlap = |gap: f64, sigma: f64| (sigma - gap) / sigma;
+        // How far a relative motion can take a pair in the stretch (with room for rounding):
+        // pairs further apart than that and their contact distance need no closer look.
+        let reach = |v: Vector<2>, a: Vector<2>| {
+            (v.norm() * span + 0.5 * a.norm() * span * span) * (1.0 + 1e-9)
+        };
+        let far = |gap: f64, reach: f64, sigma: f64| gap - reach > sigma * (1.0 + 1e-9);
         for i in 0..n {
             let Some((p, v, a)) = paths[i] else { continue };
+            let own = reach(v, a);
             for (j, q) in paths.iter().enumerate().skip(i + 1) {
                 let Some((pj, vj, aj)) = *q else { continue };
+                if far((pj - p).norm(), reach(vj - v, aj - a), 2.0 * r) {
+                    continue;
+                }
                 let d = least_distance(pj - p, vj - v, aj - a, span);
                 let o = overlap(d, 2.0 * r);
                 note(&mut self.report, self.index, o, t, || {
@@ -319,6 +335,9 @@ impl PoolVerifier {
                 })?;
             }
             for (k, jaw) in self.table.jaws.iter().enumerate() {
+                if far((p - jaw.center).norm(), own, r + jaw.radius) {
+                    continue;
+                }
                 let d = least_distance(p - jaw.center, v, a, span);
                 let o = overlap(d, r + jaw.radius);
                 note(&mut self.report, self.index, o, t, || {
@@ -326,6 +345,9 @@ impl PoolVerifier {
                 })?;
             }
             for (k, c) in self.table.cushions.iter().enumerate() {
+                if far((p - c.p1).dot(c.normal()).abs(), own, r) {
+                    continue;
+                }
                 let d = least_distance_to_segment(p, v, a, span, c.p1, c.p2);
                 let o = overlap(d, r);
                 note(&mut self.report, self.index, o, t, || {
@@ -337,6 +359,9 @@ impl PoolVerifier {
                 _ => false,
             };
             for (k, pocket) in self.table.pockets.iter().enumerate() {
+                if far((p - pocket.center).norm(), own, pocket.radius) {
+                    continue;
+                }
                 let d = least_distance(p - pocket.center, v, a, span);
                 if !dropping && d < pocket.radius * (1.0 - OVERLAP) {
                     return Err(self.fail(
@@ -426,7 +451,11 @@ impl PoolVerifier {
                 }
                 let n = d * (1.0 / d.norm());
                 let approach = (bb.vel - ba.vel).dot(n);
-                let scale = ba.vel.norm() + bb.vel.norm() + 1e-12;
+                let scale = ba.vel.norm()
+                    + bb.vel.norm()
+                    + after.ball.vel.norm()
+                    + after_b.ball.vel.norm()
+                    + self.speed_floor;
                 // Not approaching (to rounding): pressed together, where a shot stops.
                 if approach > CLOSE * scale {
                     return Err(self.fail(
@@ -436,7 +465,8 @@ impl PoolVerifier {
                 }
                 let (na, nb) = (after.ball, after_b.ball);
                 let momentum = (na.vel + nb.vel) - (ba.vel + bb.vel);
-                if momentum.norm() > CLOSE * scale {
+                // (Up to the rounding-level speeds a collision sets to rest.)
+                if momentum.norm() > CLOSE * scale + 2.0 * rounding_floor(0.0) {
                     return Err(self.fail(t, format!("balls {a} and {b}: momentum changes")));
                 }
                 // The model's outcome, then the push that parts balls pressed together.
@@ -448,15 +478,19 @@ impl PoolVerifier {
                         friction,
                     } => frictional(&ba, &bb, r, restitution, &friction),
                 };
-                let added = p.mass * part_pressed(&mut ea, &mut eb, &p.cloth, p.contact_time);
+                rest_if_rounding(&mut ea, r);
+                rest_if_rounding(&mut eb, r);
+                let added =
+                    part_pressed(&mut ea, &mut eb, &p.cloth, p.contact_time).map(|e| p.mass * e);
                 let tang = |v: Vector<2>| v - n * v.dot(n);
                 let kept = match p.ball_ball {
                     // Frictionless: tangential velocities and spins kept, whatever the push.
                     BallBallModel::FrictionlessElastic => {
-                        (tang(na.vel) - tang(ba.vel)).norm() <= CLOSE * scale
-                            && (tang(nb.vel) - tang(bb.vel)).norm() <= CLOSE * scale
-                            && na.spin == ba.spin
-                            && nb.spin == bb.spin
+                        let rest = CLOSE * scale + 2.0 * rounding_floor(0.0);
+                        (tang(na.vel) - tang(ba.vel)).norm() <= rest
+                            && (tang(nb.vel) - tang(bb.vel)).norm() <= rest
+                            && close3(na.spin, ba.spin)
+                            && close3(nb.spin, bb.spin)
                     }
                     BallBallModel::FrictionalInelastic { .. } => true,
                 };
@@ -477,7 +511,7 @@ impl PoolVerifier {
                         ),
                     ));
                 }
-                if added > 0.0 {
+                if let Some(added) = added {
                     self.report.pressings += 1;
                     self.report.pressing_energy += added;
                     self.pressed_now += added;
@@ -565,7 +599,7 @@ impl PoolVerifier {
         after: &BallAfter,
     ) -> Result<(), Violation> {
         let p = &self.params;
-        let han = bounce(
+        let mut han = bounce(
             b,
             toward,
             p.radius(),
@@ -574,6 +608,9 @@ impl PoolVerifier {
             p.cushion_restitution,
             p.cushion_friction,
         );
+        rest_if_rounding(&mut han, p.radius());
+        let added =
+            part_from_cushion(&mut han, toward, &p.cloth, p.contact_time).map(|e| p.mass * e);
         if !close2(after.ball.vel, han.vel) || !close3(after.ball.spin, han.spin) {
             return Err(self.fail(
                 t,
@@ -583,7 +620,7 @@ impl PoolVerifier {
                 ),
             ));
         }
-        let scale = b.vel.norm() + 1e-12;
+        let scale = b.vel.norm() + after.ball.vel.norm() + self.speed_floor;
         if b.vel.dot(toward) < -CLOSE * scale {
             return Err(self.fail(t, format!("ball {i} meets a cushion moving away from it")));
         }
@@ -595,6 +632,10 @@ impl PoolVerifier {
                     after.ball.vel
                 ),
             ));
+        }
+        if let Some(added) = added {
+            self.report.pressings += 1;
+            self.report.pressing_energy += added;
         }
         self.set(i, after, t);
         self.report.cushion += 1;
