@@ -234,7 +234,8 @@ pub struct Shot {
     pressed: Option<(usize, usize, f64)>,
     /// Each ball's last meeting with a higher-numbered ball: that ball and the time.
     last_meeting: Vec<Option<(usize, f64)>>,
-    /// Collisions whose balls were parted by [`part_pressed`], and the energy that added (J).
+    /// Collisions parted by [`part_pressed`] or [`part_from_cushion`], and the energy that
+    /// added (J).
     pressings: usize,
     pressing_energy: f64,
     /// Whether [`Shot::step`] searches with the oracle ([`Shot::search_afresh`]).
@@ -379,9 +380,10 @@ impl Shot {
         self.pressed
     }
 
-    /// Collisions so far whose balls parted too slowly to stay apart for a contact's duration
-    /// and were parted faster ([`super::ball_impact::part_pressed`]: balls pressed together),
-    /// and the kinetic energy that added, joules.
+    /// Collisions so far whose balls (or ball and cushion) parted too slowly to stay apart
+    /// for a contact's duration and were parted faster (pressed together:
+    /// [`super::ball_impact::part_pressed`], [`super::cushion_impact::part_from_cushion`]), and
+    /// the kinetic energy that added, joules.
     #[must_use]
     pub fn pressings(&self) -> (usize, f64) {
         (self.pressings, self.pressing_energy)

@@ -61,8 +61,9 @@ pub struct PoolReport {
     pub energy_end: f64,
     /// Whether every ball rests or is pocketed at the end.
     pub still: bool,
-    /// Collisions of balls pressed together, parted at the speed the contact time asks for
-    /// ([`crate::billiards::ball_impact::part_pressed`]).
+    /// Collisions of balls pressed together (or a ball pressed against a cushion), parted at
+    /// the speed the contact time asks for ([`crate::billiards::ball_impact::part_pressed`],
+    /// [`crate::billiards::cushion_impact::part_from_cushion`]).
     pub pressings: u64,
     /// The kinetic energy those partings added, joules.
     pub pressing_energy: f64,
