@@ -138,6 +138,32 @@ mod tests {
     }
 
     #[test]
+    fn a_ball_its_spin_presses_into_a_rail_leaves_at_half_its_pressing_times_the_contact_time() {
+        let cloth = ClothParams::default();
+        let mu_g = cloth.sliding_friction * cloth.gravity;
+        // At rest against a rail on its +x side, spinning so that the cloth drives it into
+        // the rail (slip along −x: friction along +x) for far longer than a contact lasts.
+        let mut b = ClothBall {
+            pos: Vector([0.5, 1.0]),
+            vel: Vector::ZERO,
+            spin: Vector([0.0, 30.0, 0.0]),
+        };
+        let toward = Vector([1.0, 0.0]);
+        let added = part_from_cushion(&mut b, toward, &cloth, 2e-4).expect("pressed");
+        let leaving = -b.vel[0];
+        assert!((leaving - 0.5 * mu_g * 2e-4).abs() < 1e-12, "{b:?}");
+        assert!((added - 0.5 * leaving * leaving).abs() < 1e-18);
+        // Leaving fast: nothing changes.
+        let mut fast = ClothBall {
+            vel: Vector([-1.0, 0.0]),
+            ..b
+        };
+        let before = fast;
+        assert_eq!(part_from_cushion(&mut fast, toward, &cloth, 2e-4), None);
+        assert_eq!(fast, before);
+    }
+
+    #[test]
     fn the_bounce_is_the_same_in_a_turned_frame() {
         let b = ClothBall {
             pos: Vector([0.0, 0.0]),
