@@ -34,8 +34,8 @@ use super::table::{PocketTableSpecs, Table};
 use crate::geom::Vector;
 use crate::motion::{ClothBall, ClothState};
 use crate::record::{
-    checksum_ok, fnv1a, more_follows, read_full, read_header, RecordError, Tail, MAGIC,
-    PREAMBLE_LEN, VERSION_POOL,
+    fnv1a, more_follows, read_frame, read_header, Frame, RecordError, Tail, MAGIC, PREAMBLE_LEN,
+    VERSION_POOL,
 };
 
 /// Bytes in one record of a pool run file.
@@ -435,25 +435,13 @@ impl<R: Read> PoolRunReader<R> {
         if self.tail != Tail::Unread {
             return Ok(None);
         }
-        let io = |source| RecordError::Io {
-            path: self.path.clone(),
-            source,
-        };
-        let got = read_full(&mut self.input, &mut self.buf).map_err(io)?;
-        if got == 0 {
-            self.tail = Tail::NoEnd;
-            return Ok(None);
-        }
-        if got < POOL_RECORD_LEN {
-            self.tail = Tail::Truncated { bytes: got as u64 };
-            return Ok(None);
-        }
-        if !checksum_ok(&self.buf) {
-            if !self.more_follows()? {
-                self.tail = Tail::Truncated { bytes: got as u64 };
+        match read_frame(&mut self.input, &mut self.buf, &self.path)? {
+            Frame::Whole => {}
+            Frame::End(tail) => {
+                self.tail = tail;
                 return Ok(None);
             }
-            return Err(self.corrupt("checksum mismatch".into()));
+            Frame::Damaged => return Err(self.corrupt("checksum mismatch".into())),
         }
         let rec = self.decode().map_err(|why| self.corrupt(why))?;
         let t = rec.time();

@@ -68,7 +68,7 @@ mod reader;
 mod writer;
 
 pub use export::{export_jsonl, ExportError};
-pub(crate) use reader::{checksum_ok, more_follows, read_full, read_header};
+pub(crate) use reader::{more_follows, read_frame, read_header, Frame};
 pub use reader::{open_run, run_file_version, AnyRunReader, RunReader, Tail};
 pub use writer::RunWriter;
 

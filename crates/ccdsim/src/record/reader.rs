@@ -234,6 +234,44 @@ pub(crate) fn read_header<R: Read>(
     Ok((version, dim, json))
 }
 
+/// What reading the next fixed-size, checksummed record of a run file found.
+pub(crate) enum Frame {
+    /// A whole record whose checksum holds, in the buffer.
+    Whole,
+    /// The end of the file: nothing more, or a cut or torn last record (ignored).
+    End(Tail),
+    /// A damaged record with more data after it: corruption.
+    Damaged,
+}
+
+/// Reads the next record of `buf.len()` bytes from `input` (`path` names the file in
+/// errors): a torn last record is a truncated tail, damage followed by data is corruption.
+pub(crate) fn read_frame<R: Read>(
+    input: &mut R,
+    buf: &mut [u8],
+    path: &str,
+) -> Result<Frame, RecordError> {
+    let got = read_full(input, buf).map_err(|source| RecordError::Io {
+        path: path.into(),
+        source,
+    })?;
+    if got == 0 {
+        return Ok(Frame::End(Tail::NoEnd));
+    }
+    let torn = Frame::End(Tail::Truncated { bytes: got as u64 });
+    if got < buf.len() {
+        return Ok(torn);
+    }
+    if !checksum_ok(buf) {
+        return Ok(if more_follows(input, path)? {
+            Frame::Damaged
+        } else {
+            torn
+        });
+    }
+    Ok(Frame::Whole)
+}
+
 /// Whether any byte follows what has been read from `input` (it consumes one byte if so);
 /// `path` names the file in errors.
 pub(crate) fn more_follows<R: Read>(input: &mut R, path: &str) -> Result<bool, RecordError> {
@@ -245,7 +283,7 @@ pub(crate) fn more_follows<R: Read>(input: &mut R, path: &str) -> Result<bool, R
     Ok(more > 0)
 }
 
-pub(crate) fn read_full<R: Read>(input: &mut R, buf: &mut [u8]) -> std::io::Result<usize> {
+fn read_full<R: Read>(input: &mut R, buf: &mut [u8]) -> std::io::Result<usize> {
     let mut got = 0;
     while got < buf.len() {
         match input.read(&mut buf[got..]) {
@@ -359,25 +397,13 @@ impl<R: Read, const D: usize> RunReader<R, D> {
         if self.tail != Tail::Unread {
             return Ok(None);
         }
-        let got = read_full(&mut self.input, &mut self.buf).map_err(|source| RecordError::Io {
-            path: self.path.clone(),
-            source,
-        })?;
-        if got == 0 {
-            self.tail = Tail::NoEnd;
-            return Ok(None);
-        }
-        if got < self.buf.len() {
-            self.tail = Tail::Truncated { bytes: got as u64 };
-            return Ok(None);
-        }
-        if !checksum_ok(&self.buf) {
-            // A torn last record is a truncated tail; damage followed by data is corruption.
-            if !self.more_follows()? {
-                self.tail = Tail::Truncated { bytes: got as u64 };
+        match read_frame(&mut self.input, &mut self.buf, &self.path)? {
+            Frame::Whole => {}
+            Frame::End(tail) => {
+                self.tail = tail;
                 return Ok(None);
             }
-            return Err(self.corrupt("checksum mismatch".into()));
+            Frame::Damaged => return Err(self.corrupt("checksum mismatch".into())),
         }
         // A record whose checksum holds was written whole: whatever is wrong with it is
         // corruption, last record or not.
