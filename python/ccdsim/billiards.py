@@ -76,6 +76,7 @@ def shot(
     max_events: int = 1_000_000,
     ball_ball: Optional[Mapping[str, float]] = None,
     record: Optional[str] = None,
+    finder: str = "cells",
 ) -> Shot:
     """Strikes ball ``cue`` (``speed`` m/s towards ``phi`` degrees; cue elevation ``theta``
     degrees; tip offsets ``a`` (side) and ``b`` (height) in ball radii) and plays the shot
@@ -87,7 +88,9 @@ def shot(
     that misses and for bad ``ball_ball`` numbers or keys, ``RuntimeError`` when the shot
     does not end within ``max_events`` events. With ``record``, the shot's run file is written
     to that path as it plays (``ccdsim verify``, ``ccdsim view`` and ``ccdsim export`` read
-    it; docs/run-files.md, "Pool shots")."""
+    it; docs/run-files.md, "Pool shots"). ``finder`` names how each event is found:
+    ``"all-pairs"`` (the oracle), ``"sedgewick"``, ``"cells"`` or ``"bvh"``; every finder gives
+    the same events, bit for bit (``ValueError`` for another name)."""
     model = None
     if ball_ball is not None:
         unknown = set(ball_ball) - {"restitution", "friction"}
@@ -109,6 +112,7 @@ def shot(
         int(max_events),
         model,
         None if record is None else str(record),
+        str(finder),
     )
     return Shot(
         events=[(t, k, list(agents)) for t, k, agents in d["events"]],

@@ -84,3 +84,19 @@ def test_a_recorded_shot_writes_its_run_file(tmp_path):
     with pytest.raises(ValueError, match="overlap"):
         billiards.shot([("cue", 0.5, 0.5), ("1", 0.51, 0.5)], 1.0, 0.0, record=str(tmp_path / "x"))
     assert not (tmp_path / "x").exists()
+
+
+def test_every_finder_plays_a_break_the_same_and_writes_the_same_file(tmp_path):
+    balls = billiards.rack("eight-ball", seed=4)
+    phi = billiards.aim(balls, "1")
+    files = {}
+    results = {}
+    for finder in ["all-pairs", "sedgewick", "cells", "bvh"]:
+        path = tmp_path / f"{finder}.ccd"
+        results[finder] = billiards.shot(balls, speed=8.0, phi=phi, record=str(path), finder=finder)
+        files[finder] = path.read_bytes()
+    assert len({bytes(f) for f in files.values()}) == 1
+    assert all(r == results["all-pairs"] for r in results.values())
+    assert len(results["cells"].events) > 1000
+    with pytest.raises(ValueError, match="unknown finder"):
+        billiards.shot(balls, speed=8.0, phi=phi, finder="grid")

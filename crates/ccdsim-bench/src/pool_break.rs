@@ -5,7 +5,7 @@
 use std::time::Instant;
 
 use ccdsim::billiards::{
-    rack, BallParams, Game, PocketTableSpecs, Shot, ShotError, ShotEventKind, Table,
+    rack, BallParams, Game, PocketTableSpecs, PoolFinder, Shot, ShotError, ShotEventKind, Table,
 };
 use ccdsim::motion::CueStrike;
 use ccdsim::Vector;
@@ -40,6 +40,8 @@ impl BreakLayout {
 /// What the break benchmark measured.
 #[derive(Clone, Debug, Serialize)]
 pub struct BreakReport {
+    /// The finder that found the events (`cells`, …).
+    pub finder: String,
     /// Breaks played.
     pub runs: usize,
     /// Median wall time of one break (set-up, strike and every event), seconds.
@@ -65,12 +67,17 @@ pub struct BreakReport {
     pub event_list: Vec<(String, Vec<String>, f64)>,
 }
 
-/// Plays `layout` `runs` times (at least once) and reports the median time per break.
+/// Plays `layout` `runs` times (at least once), each event found by `finder`, and reports
+/// the median time per break.
 ///
 /// # Errors
 /// The layout's balls are off the table or overlap, the strike misses, or the break does not
 /// end within a million events.
-pub fn pool_break(layout: &BreakLayout, runs: usize) -> Result<BreakReport, ShotError> {
+pub fn pool_break(
+    layout: &BreakLayout,
+    runs: usize,
+    finder: PoolFinder,
+) -> Result<BreakReport, ShotError> {
     let table = Table::pool(&PocketTableSpecs::default());
     let cue = layout
         .balls
@@ -83,6 +90,7 @@ pub fn pool_break(layout: &BreakLayout, runs: usize) -> Result<BreakReport, Shot
     for _ in 0..runs.max(1) {
         let start = Instant::now();
         let mut shot = Shot::new(table.clone(), BallParams::default(), &positions)?;
+        shot.set_finder(finder);
         shot.strike(cue, &layout.strike)?;
         shot.run(1_000_000)?;
         times.push(start.elapsed().as_secs_f64());
@@ -109,6 +117,7 @@ pub fn pool_break(layout: &BreakLayout, runs: usize) -> Result<BreakReport, Shot
         })
         .collect();
     Ok(BreakReport {
+        finder: finder.name().into(),
         runs: times.len(),
         median_seconds: times[times.len() / 2],
         min_seconds: times[0],

@@ -2,8 +2,8 @@
 //! (see the library's `billiards` module).
 
 use ccdsim::billiards::{
-    rack, record_shot, BallParams, Game, PocketTableSpecs, PoolBall, PoolBallBall, PoolRunWriter,
-    PoolScene, PoolSceneError, PoolSetup, PoolShot, Shot, Table,
+    rack, record_struck, BallParams, Game, PocketTableSpecs, PoolBall, PoolBallBall, PoolFinder,
+    PoolRunWriter, PoolScene, PoolSceneError, PoolSetup, PoolShot, Shot, Table,
 };
 use pyo3::exceptions::{PyOSError, PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
@@ -40,9 +40,11 @@ pub fn pool_rack(game: &str, seed: u64) -> PyResult<Vec<(String, f64, f64)>> {
 /// parted, and the joules that added). `ball_ball`, `(restitution, friction or None)`, makes
 /// balls meet by the frictional model (see `ccdsim::billiards::ball_impact`); without it they
 /// meet without friction, elastically. With `record`, the shot's run file is written there
-/// (format version 16: `ccdsim verify`, `view` and `export` read it). Runs without the GIL.
+/// (format version 16: `ccdsim verify`, `view` and `export` read it). `finder` names how each
+/// event is found (`all-pairs`, `sedgewick`, `cells`, `bvh`: the same events, bit for bit).
+/// Runs without the GIL.
 #[pyfunction]
-#[pyo3(signature = (balls, speed, phi, theta=0.0, a=0.0, b=0.0, cue="cue", max_events=1_000_000, ball_ball=None, record=None))]
+#[pyo3(signature = (balls, speed, phi, theta=0.0, a=0.0, b=0.0, cue="cue", max_events=1_000_000, ball_ball=None, record=None, finder="cells"))]
 #[allow(clippy::too_many_arguments)]
 pub fn pool_shot<'py>(
     py: Python<'py>,
@@ -56,7 +58,9 @@ pub fn pool_shot<'py>(
     max_events: usize,
     ball_ball: Option<(f64, Option<f64>)>,
     record: Option<std::path::PathBuf>,
+    finder: &str,
 ) -> PyResult<Bound<'py, PyDict>> {
+    let finder: PoolFinder = finder.parse().map_err(PyValueError::new_err)?;
     let names: Vec<String> = balls.iter().map(|(n, _, _)| n.clone()).collect();
     if !names.iter().any(|n| n == cue) {
         return Err(PyValueError::new_err(format!("no ball named {cue:?}")));
@@ -95,13 +99,14 @@ pub fn pool_shot<'py>(
         }
         None => None,
     };
-    let shot = scene.shot().map_err(refused)?;
+    let mut shot = scene.shot().map_err(refused)?;
+    shot.set_finder(finder);
     let shot = py
         .detach(move || -> Result<Shot, String> {
             match writer {
                 Some(w) => {
-                    let (shot, played) =
-                        record_shot(&scene, w, max_events).map_err(|e| e.to_string())?;
+                    let (shot, played) = record_struck(shot, scene.struck_ball(), w, max_events)
+                        .map_err(|e| e.to_string())?;
                     played.map(|_| shot).map_err(|e| e.describe(&scene.names()))
                 }
                 None => {

@@ -19,6 +19,11 @@ fn flag(option: &FinderOption) -> String {
 }
 
 impl FinderArgs {
+    /// Whether any finder option was given.
+    pub fn any_given(&self) -> bool {
+        !self.given.is_empty()
+    }
+
     /// The library's options: the defaults with the given ones set, checked; a bad one is
     /// named by its flag (`--bvh-grow`).
     pub fn options(&self) -> Result<FinderOptions> {

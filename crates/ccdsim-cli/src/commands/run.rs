@@ -225,10 +225,12 @@ pub fn run(args: Args) -> Result<ExitCode> {
     if let Some(path) = &args.scene {
         let text = std::fs::read_to_string(path).with_context(|| format!("{}", path.display()))?;
         if ccdsim::billiards::PoolScene::is_pool_json(&text) {
+            let finder: ccdsim::billiards::PoolFinder =
+                args.finder.parse().map_err(anyhow::Error::msg)?;
             let given = [
                 (
-                    "--finder (other than all-pairs)",
-                    args.finder != "cells" && args.finder != "all-pairs",
+                    "finder options (--bvh-grow, …)",
+                    args.finder_options.any_given(),
                 ),
                 ("--until", args.until.is_some()),
                 ("--events", args.events.is_some()),
@@ -242,11 +244,10 @@ pub fn run(args: Args) -> Result<ExitCode> {
                     .map(|(f, _)| *f)
                     .collect(),
             );
-            let afresh = args.finder == "all-pairs";
             super::run_pool::run(
                 &text,
                 &unsupported,
-                afresh,
+                finder,
                 args.record.as_deref(),
                 args.json,
             )

@@ -4,7 +4,7 @@
 use std::path::Path;
 
 use anyhow::{bail, Result};
-use ccdsim::billiards::{record_struck, PoolRunWriter, PoolScene, ShotEventKind};
+use ccdsim::billiards::{record_struck, PoolFinder, PoolRunWriter, PoolScene, ShotEventKind};
 use serde::Serialize;
 
 /// The `--json` summary of a pool shot; field names are an interface: extend, never rename.
@@ -38,24 +38,23 @@ pub struct Unsupported<'a>(pub Vec<&'a str>);
 /// Most events a shot may take.
 const MAX_EVENTS: usize = 1_000_000;
 
-/// Plays the pool scene `json` and prints its summary; with `afresh`, every event is found
-/// by the oracle (`--finder all-pairs`: every prediction computed afresh), else by the shot's
-/// kept predictions (the default; the same events, bit for bit). With `record`, writes its
-/// run file there as it goes (kept, with its end record, when the shot stops short).
+/// Plays the pool scene `json` and prints its summary, each event found by `finder` (every
+/// finder gives the same events, bit for bit). With `record`, writes its run file there as it
+/// goes (kept, with its end record, when the shot stops short).
 pub fn run(
     json: &str,
     unsupported: &Unsupported<'_>,
-    afresh: bool,
+    finder: PoolFinder,
     record: Option<&Path>,
     as_json: bool,
 ) -> Result<()> {
     if let Some(flag) = unsupported.0.first() {
-        bail!("{flag} is not available for pool scenes (trajectories, sensors and time limits are for ccdsim scenes; a pool shot's events are found by its kept predictions over every pair, the default, or afresh with --finder all-pairs)");
+        bail!("{flag} is not available for pool scenes (trajectories, sensors, time limits and finder options are for ccdsim scenes; a pool shot plays to its end, found by --finder all-pairs, sedgewick, cells or bvh)");
     }
     let scene = PoolScene::from_json(json)?;
     let names = scene.names();
     let mut shot = scene.shot()?;
-    shot.search_afresh(afresh);
+    shot.set_finder(finder);
     let (shot, played) = match record {
         Some(path) => {
             let out = PoolRunWriter::create(path, &scene)?;

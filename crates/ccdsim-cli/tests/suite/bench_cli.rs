@@ -165,6 +165,22 @@ fn bench_pool_break_plays_a_rack_and_a_layout_beside_pooltools_events() {
         v["ball_ball"].as_u64().unwrap() >= 9,
         "the break reaches every ball: {v}"
     );
+    assert_eq!(v["finder"], "cells");
+    // Another finder plays the same events.
+    let out = run_ok(ccdsim().args([
+        "bench",
+        "pool-break",
+        "--runs",
+        "1",
+        "--json",
+        "--finder",
+        "sedgewick",
+    ]));
+    let w: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(
+        (&w["finder"], &w["event_list"]),
+        (&"sedgewick".into(), &v["event_list"])
+    );
 
     // A layout with pooltool's events: one of the reference shots of the library's tests
     // (the cue ball onto one object ball), with a made-up pooltool time.

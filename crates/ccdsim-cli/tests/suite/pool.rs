@@ -118,27 +118,40 @@ fn a_recorded_shot_verifies_exports_and_fails_when_tampered_with() {
     assert_eq!(lines.last().unwrap()["type"], "end");
     assert_eq!(lines[2]["type"], "ball_ball");
 
-    // The oracle's search (every prediction afresh) writes the same file, byte for byte.
-    let oracle = common::scratch_file("pool-record", "oracle.ccd");
-    run_ok(
-        ccdsim()
+    // Every finder, the oracle's search (every prediction afresh) first, writes the same file,
+    // byte for byte.
+    for finder in ["all-pairs", "sedgewick", "cells", "bvh"] {
+        let other = common::scratch_file("pool-record", &format!("{finder}.ccd"));
+        run_ok(
+            ccdsim()
+                .arg("run")
+                .arg(&scene)
+                .args(["--finder", finder, "--record"])
+                .arg(&other),
+        );
+        assert_eq!(
+            std::fs::read(&other).unwrap(),
+            std::fs::read(&run).unwrap(),
+            "{finder}"
+        );
+    }
+    for (flags, says) in [
+        (
+            &["--finder", "grid"][..],
+            "all-pairs, sedgewick, cells, bvh",
+        ),
+        (&["--bvh-grow", "2"][..], "finder options"),
+    ] {
+        let out = ccdsim()
             .arg("run")
             .arg(&scene)
-            .args(["--finder", "all-pairs", "--record"])
-            .arg(&oracle),
-    );
-    assert_eq!(
-        std::fs::read(&oracle).unwrap(),
-        std::fs::read(&run).unwrap()
-    );
-    let out = ccdsim()
-        .arg("run")
-        .arg(&scene)
-        .args(["--finder", "bvh"])
-        .output()
-        .unwrap();
-    assert!(!out.status.success());
-    assert!(String::from_utf8_lossy(&out.stderr).contains("all-pairs"));
+            .args(flags)
+            .output()
+            .unwrap();
+        assert!(!out.status.success());
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert!(stderr.contains(says), "{stderr}");
+    }
 
     // PNG and GIF are for scenes' runs; the message says what plays a shot.
     let out = ccdsim()

@@ -13,7 +13,7 @@
 use super::table::{Jaw, LinearCushion, Pocket};
 use crate::contact::accelerated_contact::first_contact_accelerating;
 use crate::contact::quadratic::crossing;
-use crate::geom::Vector;
+use crate::geom::{Aabb, Vector};
 use crate::motion::{ClothBall, ClothParams, ClothState};
 
 /// A ball's path in its current state: where it is at `time`, its velocity and its constant
@@ -71,6 +71,34 @@ impl Flight {
         (speed * span + 0.5 * self.acc.norm() * span * span) * (1.0 + 1e-9)
     }
 
+    /// The box a ball of radius `radius` (m) sweeps over the whole flight, metres, padded for
+    /// rounding: no contact function of this module finds a contact between two flights, or a
+    /// flight and a table part ([`super::table::LinearCushion::bounds`] and the like), whose
+    /// boxes do not overlap. Infinite for a moving flight that never ends.
+    ///
+    /// The centre stays within [`Flight::reach`] of `pos` (with its relative room of 10⁻⁹),
+    /// and the box adds another 10⁻⁹ of the lengths involved: the contact functions'
+    /// rounding is of order ε times those, and a certified root lies where the computed
+    /// distance equals the contact distance.
+    #[must_use]
+    pub fn swept_box(&self, radius: f64) -> Aabb<2> {
+        let reach = if self.moves() {
+            self.reach(0.0, self.end)
+        } else {
+            0.0
+        };
+        let extent = radius + reach;
+        let half = extent + SWEEP_PAD * (extent + self.pos[0].abs().max(self.pos[1].abs()));
+        if half < f64::INFINITY {
+            Aabb::of_ball(self.pos, half)
+        } else {
+            Aabb {
+                min: Vector::splat(f64::NEG_INFINITY),
+                max: Vector::splat(f64::INFINITY),
+            }
+        }
+    }
+
     /// Position and velocity `dt` seconds after the flight's start.
     #[must_use]
     fn after(&self, dt: f64) -> (Vector<2>, Vector<2>) {
@@ -80,6 +108,9 @@ impl Flight {
         )
     }
 }
+
+/// Room a swept box leaves for rounding, relative to the lengths involved.
+const SWEEP_PAD: f64 = 1e-9;
 
 /// The time (seconds) two balls of radius `radius` (m) on these flights first touch while
 /// approaching, if that is before either flight ends. Both are taken to the later of their

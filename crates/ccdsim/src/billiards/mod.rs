@@ -25,7 +25,10 @@
 //! assert!(shot.events().len() > 3);
 //! ```
 
+mod ball_grid;
 pub mod ball_impact;
+mod box_tree;
+mod calendar;
 pub mod contact_time;
 pub mod cushion_impact;
 mod params;
@@ -33,6 +36,7 @@ pub mod pool_scene;
 pub mod rack;
 pub mod run_export;
 pub mod run_file;
+mod search;
 mod shot;
 pub mod table;
 
@@ -43,5 +47,6 @@ pub use run_export::export_pool_jsonl;
 pub use run_file::{
     open_pool_run, record_shot, record_struck, BallAfter, PoolRecord, PoolRunReader, PoolRunWriter,
 };
+pub use search::PoolFinder;
 pub use shot::{Shot, ShotError, ShotEvent, ShotEventKind, TableBall};
 pub use table::{Jaw, LinearCushion, Pocket, PocketTableSpecs, Table};

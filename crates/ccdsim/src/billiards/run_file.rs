@@ -299,7 +299,7 @@ pub fn record_shot<W: Write>(
 }
 
 /// [`record_shot`] for a shot already set up and struck (ball `struck`) from the scene `out`
-/// was created with: to play it with another search ([`Shot::search_afresh`]).
+/// was created with: to play it with another finder ([`Shot::set_finder`]).
 ///
 /// # Errors
 /// The file cannot be written.

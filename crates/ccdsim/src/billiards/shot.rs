@@ -14,20 +14,22 @@
 //! Each ball's state is stored as of its last event; the next event of every pair, of every
 //! ball against the table and of every ball's state is a pure function of the stored states,
 //! kept until one of its balls has an event. [`Shot::next_event_naive`] computes it all afresh
-//! and is the oracle the kept predictions must equal bit for bit. Ties in time go to the state
-//! change, then two balls, a cushion, a jaw, a pocket (pooltool's order), then to the lowest
-//! index.
+//! and is the oracle every finder ([`PoolFinder`]: an event calendar, a grid, hierarchies of
+//! swept boxes) must equal bit for bit. Ties in time go to the state change, then two balls, a
+//! cushion, a jaw, a pocket (pooltool's order), then to the lowest index.
 
 use std::cmp::Ordering;
 
 use thiserror::Error;
 
 use super::ball_impact::{exchange, frictional, part_pressed, rest_if_rounding};
+use super::calendar::Calendar;
 use super::contact_time::{self, Flight};
 use super::cushion_impact::{bounce, part_from_cushion};
 use super::params::{BallBallModel, BallParams};
+use super::search::{parts_of, BroadPhase, PoolFinder, TablePart};
 use super::table::Table;
-use crate::geom::Vector;
+use crate::geom::{Aabb, Vector};
 use crate::motion::cloth::settle;
 use crate::motion::{ClothBall, ClothState, CueStrike};
 
@@ -90,7 +92,7 @@ pub enum ShotEventKind {
 
 impl ShotEventKind {
     /// pooltool's rank for events at the same time: lower first.
-    fn rank(&self) -> (u8, usize, usize) {
+    pub(crate) fn rank(&self) -> (u8, usize, usize) {
         match *self {
             ShotEventKind::Transition { ball, .. } => (0, ball, 0),
             ShotEventKind::Balls { a, b } => (1, a, b),
@@ -138,7 +140,8 @@ pub struct ShotEvent {
     pub kind: ShotEventKind,
 }
 
-fn earlier(a: &ShotEvent, b: &ShotEvent) -> bool {
+/// Whether `a` comes before `b`: earlier, or at the same time and ranked lower.
+pub(crate) fn earlier(a: &ShotEvent, b: &ShotEvent) -> bool {
     match a.time.total_cmp(&b.time) {
         Ordering::Less => true,
         Ordering::Greater => false,
@@ -238,8 +241,19 @@ pub struct Shot {
     /// added (J).
     pressings: usize,
     pressing_energy: f64,
-    /// Whether [`Shot::step`] searches with the oracle ([`Shot::search_afresh`]).
-    afresh: bool,
+    /// How [`Shot::step`] finds the next event.
+    finder: PoolFinder,
+    /// The finder's broad phase, over `boxes`.
+    broad: BroadPhase,
+    /// Each ball's swept box over its flight ([`Aabb::EMPTY`] once pocketed).
+    boxes: Vec<Aabb<2>>,
+    /// The `sedgewick` finder's calendar of predictions.
+    calendar: Calendar,
+    /// The table's parts, in the broad phases' numbering.
+    parts: Vec<TablePart>,
+    /// Scratch: the balls and parts a ball's contacts are looked for among.
+    near_balls: Vec<usize>,
+    near_parts: Vec<usize>,
 }
 
 impl Shot {
@@ -278,6 +292,9 @@ impl Shot {
             })
             .collect();
         let n = balls.len();
+        let finder = PoolFinder::default();
+        let broad = BroadPhase::new(finder, &table, n, r);
+        let parts = parts_of(&table).0;
         let mut shot = Shot {
             table,
             params,
@@ -292,13 +309,37 @@ impl Shot {
             last_meeting: vec![None; n],
             pressings: 0,
             pressing_energy: 0.0,
-            afresh: false,
+            finder,
+            broad,
+            boxes: vec![Aabb::EMPTY; n],
+            calendar: Calendar::new(n),
+            parts,
+            near_balls: Vec::new(),
+            near_parts: Vec::new(),
         };
         shot.flights = (0..n).map(|i| shot.flight_of(i)).collect();
         for i in 0..n {
             shot.predict(i);
         }
         Ok(shot)
+    }
+
+    /// Makes [`Shot::step`] find each event with `finder` from now on (the default is
+    /// [`PoolFinder::Cells`]). Every finder gives the same events, bit for bit.
+    pub fn set_finder(&mut self, finder: PoolFinder) {
+        let n = self.balls.len();
+        self.finder = finder;
+        self.broad = BroadPhase::new(finder, &self.table, n, self.params.radius());
+        self.calendar = Calendar::new(n);
+        for i in 0..n {
+            self.predict(i);
+        }
+    }
+
+    /// How [`Shot::step`] finds each event.
+    #[must_use]
+    pub fn finder(&self) -> PoolFinder {
+        self.finder
     }
 
     /// Strikes ball `ball` with the cue now: it leaves sliding with the strike's velocity and
@@ -450,18 +491,23 @@ impl Shot {
     }
 
     /// Makes [`Shot::step`] find each event with the oracle, [`Shot::next_event_naive`] (every
-    /// prediction computed afresh: O(n²) quartics an event), instead of the kept predictions,
-    /// or back. The events are the same, bit for bit; the oracle is for checking that.
+    /// prediction computed afresh: O(n²) quartics an event; [`PoolFinder::AllPairs`]), or
+    /// back to the default finder. The events are the same, bit for bit; the oracle is for
+    /// checking that.
     pub fn search_afresh(&mut self, afresh: bool) {
-        self.afresh = afresh;
+        self.set_finder(if afresh {
+            PoolFinder::AllPairs
+        } else {
+            PoolFinder::default()
+        });
     }
 
     /// Plays the next event and returns it; `None` once every ball rests or is pocketed.
     pub fn step(&mut self) -> Option<ShotEvent> {
-        let event = if self.afresh {
-            self.next_event_naive()?
-        } else {
-            self.next_event()?
+        let event = match self.finder {
+            PoolFinder::AllPairs => self.next_event_naive()?,
+            PoolFinder::Sedgewick => self.calendar.first()?,
+            PoolFinder::Cells | PoolFinder::Bvh => self.next_event()?,
         };
         let t = event.time;
         self.time = t;
@@ -597,23 +643,67 @@ impl Shot {
     }
 
     /// Renews ball `i`'s state change, its next table event and its meetings with every other
-    /// ball, from its flight and theirs.
+    /// ball, from its flight and theirs: among the balls and table parts its finder's broad
+    /// phase puts near it (the others cannot be met: their predictions are none).
     fn predict(&mut self, i: usize) {
         let n = self.balls.len();
-        self.transitions[i] = self.transition_of(i);
-        self.rails[i] = self.rail_of(i, &self.flights[i]);
         let r = self.params.radius();
-        for j in 0..n {
-            if j == i {
-                continue;
-            }
+        self.transitions[i] = self.transition_of(i);
+        self.boxes[i] = if self.balls[i].pocket.is_some() {
+            Aabb::EMPTY
+        } else {
+            self.flights[i].swept_box(r)
+        };
+        self.broad.place(i, &self.boxes);
+        let mut near = std::mem::take(&mut self.near_balls);
+        let mut parts = std::mem::take(&mut self.near_parts);
+        let everything = self
+            .broad
+            .near(i, &self.boxes, &mut near, &mut parts)
+            .is_none();
+        let meeting = |shot: &Shot, j: usize| {
             let (a, b) = (i.min(j), i.max(j));
-            let off = self.balls[a].pocket.is_some() || self.balls[b].pocket.is_some();
-            self.pairs[a * n + b] = if off {
+            let off = shot.balls[a].pocket.is_some() || shot.balls[b].pocket.is_some();
+            if off {
                 None
             } else {
-                contact_time::ball_ball(&self.flights[a], &self.flights[b], r)
-            };
+                contact_time::ball_ball(&shot.flights[a], &shot.flights[b], r)
+            }
+        };
+        if everything {
+            for j in (0..n).filter(|&j| j != i) {
+                self.pairs[i.min(j) * n + i.max(j)] = meeting(self, j);
+            }
+            self.rails[i] = self.rail_of(i, &self.flights[i]);
+        } else {
+            for j in (0..n).filter(|&j| j != i) {
+                self.pairs[i.min(j) * n + i.max(j)] = None;
+            }
+            for &j in &near {
+                self.pairs[i.min(j) * n + i.max(j)] = meeting(self, j);
+            }
+            let f = self.flights[i];
+            self.rails[i] = parts.iter().fold(None, |best, &k| {
+                first(best, self.part_event(i, &f, self.parts[k]))
+            });
+        }
+        self.near_balls = near;
+        self.near_parts = parts;
+        if self.finder == PoolFinder::Sedgewick {
+            self.calendar.renew(i);
+            if let Some(e) = self.transitions[i] {
+                self.calendar.add(e, i, None);
+            }
+            if let Some(e) = self.rails[i] {
+                self.calendar.add(e, i, None);
+            }
+            for j in (0..n).filter(|&j| j != i) {
+                let (a, b) = (i.min(j), i.max(j));
+                if let Some(time) = self.pairs[a * n + b] {
+                    let kind = ShotEventKind::Balls { a, b };
+                    self.calendar.add(ShotEvent { time, kind }, a, Some(b));
+                }
+            }
         }
     }
 
@@ -640,36 +730,35 @@ impl Shot {
     }
 
     fn rail_of(&self, i: usize, f: &Flight) -> Option<ShotEvent> {
+        self.parts
+            .iter()
+            .fold(None, |best, &part| first(best, self.part_event(i, f, part)))
+    }
+
+    /// When ball `i` on flight `f` meets `part` of the table, if it does.
+    fn part_event(&self, i: usize, f: &Flight, part: TablePart) -> Option<ShotEvent> {
         if self.balls[i].pocket.is_some() || !f.moves() {
             return None;
         }
         let r = self.params.radius();
-        let mut best = None;
         let t = &self.table;
-        for (k, c) in t.cushions.iter().enumerate() {
-            let e = contact_time::cushion(f, c, r).map(|time| ShotEvent {
-                time,
-                kind: ShotEventKind::Cushion {
+        let (time, kind) = match part {
+            TablePart::Cushion(k) => (
+                contact_time::cushion(f, &t.cushions[k], r)?,
+                ShotEventKind::Cushion {
                     ball: i,
                     cushion: k,
                 },
-            });
-            best = first(best, e);
-        }
-        for (k, j) in t.jaws.iter().enumerate() {
-            let e = contact_time::jaw(f, j, r).map(|time| ShotEvent {
-                time,
-                kind: ShotEventKind::Jaw { ball: i, jaw: k },
-            });
-            best = first(best, e);
-        }
-        for (k, p) in t.pockets.iter().enumerate() {
-            let e = contact_time::pocket(f, p).map(|time| ShotEvent {
-                time,
-                kind: ShotEventKind::Pocket { ball: i, pocket: k },
-            });
-            best = first(best, e);
-        }
-        best
+            ),
+            TablePart::Jaw(k) => (
+                contact_time::jaw(f, &t.jaws[k], r)?,
+                ShotEventKind::Jaw { ball: i, jaw: k },
+            ),
+            TablePart::Pocket(k) => (
+                contact_time::pocket(f, &t.pockets[k])?,
+                ShotEventKind::Pocket { ball: i, pocket: k },
+            ),
+        };
+        Some(ShotEvent { time, kind })
     }
 }

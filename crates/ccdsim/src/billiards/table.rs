@@ -9,7 +9,7 @@
 //! from [`PocketTableSpecs`], with the names, dimensions and construction of pooltool 0.3.3's
 //! default table (`objects/table/layout.py`; diagram in Kiefl, "pooltool-alg", 2020).
 
-use crate::geom::Vector;
+use crate::geom::{Aabb, Vector};
 
 /// A straight cushion: the segment from `p1` to `p2` (metres) at height `height` above the
 /// cloth. A ball meets it when its centre is one radius from the segment, on either side.
@@ -32,6 +32,15 @@ impl LinearCushion {
         let d = self.p2 - self.p1;
         Vector([-d[1], d[0]]) * (1.0 / d.norm())
     }
+
+    /// The segment's bounding box, metres.
+    #[must_use]
+    pub fn bounds(&self) -> Aabb<2> {
+        Aabb {
+            min: self.p1.min(self.p2),
+            max: self.p1.max(self.p2),
+        }
+    }
 }
 
 /// A rounded cushion nose at a pocket's mouth: a circle of `radius` around `center`
@@ -48,6 +57,14 @@ pub struct Jaw {
     pub height: f64,
 }
 
+impl Jaw {
+    /// The circle's bounding box, metres.
+    #[must_use]
+    pub fn bounds(&self) -> Aabb<2> {
+        Aabb::of_ball(self.center, self.radius)
+    }
+}
+
 /// A pocket: a ball drops when its centre comes within `radius` of `center` (metres).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Pocket {
@@ -57,6 +74,14 @@ pub struct Pocket {
     pub center: Vector<2>,
     /// Radius, metres.
     pub radius: f64,
+}
+
+impl Pocket {
+    /// The circle's bounding box, metres.
+    #[must_use]
+    pub fn bounds(&self) -> Aabb<2> {
+        Aabb::of_ball(self.center, self.radius)
+    }
 }
 
 /// A table: its playing surface and everything a ball can meet at its edge.

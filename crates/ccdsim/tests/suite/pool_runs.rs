@@ -4,8 +4,8 @@
 
 use ccdsim::billiards::{
     rack_at, record_shot, record_struck, BallParams, Game, PocketTableSpecs, PoolBall,
-    PoolBallBall, PoolRecord, PoolRunReader, PoolRunWriter, PoolScene, PoolSetup, PoolShot,
-    ShotEventKind, Table,
+    PoolBallBall, PoolFinder, PoolRecord, PoolRunReader, PoolRunWriter, PoolScene, PoolSetup,
+    PoolShot, ShotEventKind, Table,
 };
 use ccdsim::record::Tail;
 use ccdsim::verify::{PoolReport, PoolVerifier, Violation};
@@ -89,18 +89,20 @@ fn break_scenes() -> Vec<PoolScene> {
 }
 
 /// The shot recorded, read back: its records, and how many events and pressings it had.
-/// Recorded again with every event found by the oracle, the file is the same, byte for byte.
+/// Recorded again with every finder (the oracle first), the file is the same, byte for byte.
 fn recorded(scene: &PoolScene) -> (Vec<PoolRecord>, usize, usize) {
     let mut bytes = Vec::new();
     let w = PoolRunWriter::new(&mut bytes, "mem".into(), scene).unwrap();
     let (shot, _) = record_shot(scene, w, 100_000).unwrap();
-    let mut oracle = Vec::new();
-    let w = PoolRunWriter::new(&mut oracle, "mem".into(), scene).unwrap();
-    let mut afresh = scene.shot().unwrap();
-    afresh.search_afresh(true);
-    let (_, played) = record_struck(afresh, scene.struck_ball(), w, 100_000).unwrap();
-    played.unwrap();
-    assert!(oracle == bytes, "the oracle's file differs");
+    for finder in PoolFinder::ALL {
+        let mut other = Vec::new();
+        let w = PoolRunWriter::new(&mut other, "mem".into(), scene).unwrap();
+        let mut again = scene.shot().unwrap();
+        again.set_finder(finder);
+        let (_, played) = record_struck(again, scene.struck_ball(), w, 100_000).unwrap();
+        played.unwrap();
+        assert!(other == bytes, "the {finder} finder's file differs");
+    }
     let mut r = PoolRunReader::new(&bytes[..], "mem".into()).unwrap();
     let mut recs = Vec::new();
     while let Some(rec) = r.next_record().unwrap() {

@@ -3,7 +3,7 @@
 //! (`scripts/pool-break-compare`).
 
 use anyhow::{anyhow, bail, Context, Result};
-use ccdsim::billiards::Game;
+use ccdsim::billiards::{Game, PoolFinder};
 use ccdsim::motion::CueStrike;
 use ccdsim::Vector;
 use ccdsim_bench::{pool_break, BreakLayout};
@@ -37,6 +37,10 @@ pub struct Args {
     /// pooltool's own timing of the same break.
     #[arg(long)]
     layout: Option<PathBuf>,
+    /// How each event is found: all-pairs, sedgewick, cells or bvh (the same events, bit for
+    /// bit).
+    #[arg(long, default_value = "cells")]
+    finder: String,
     /// Print the report as JSON.
     #[arg(long)]
     json: bool,
@@ -179,7 +183,8 @@ pub fn run(args: Args) -> Result<ExitCode> {
         }
     };
     let names: Vec<String> = layout.balls.iter().map(|(n, _)| n.clone()).collect();
-    let report = pool_break(&layout, args.runs).map_err(|e| anyhow!(e.describe(&names)))?;
+    let finder: PoolFinder = args.finder.parse().map_err(anyhow::Error::msg)?;
+    let report = pool_break(&layout, args.runs, finder).map_err(|e| anyhow!(e.describe(&names)))?;
     if args.json {
         let mut v = serde_json::to_value(&report)?;
         v["breaks_per_second"] = (1.0 / report.median_seconds).into();
@@ -210,8 +215,9 @@ pub fn run(args: Args) -> Result<ExitCode> {
         }
     )?;
     outln!(
-        "{} breaks: median {:.1} µs per break ({:.0} breaks/s), fastest {:.1} µs, slowest {:.1} µs",
+        "{} breaks, finder {}: median {:.1} µs per break ({:.0} breaks/s), fastest {:.1} µs, slowest {:.1} µs",
         report.runs,
+        report.finder,
         report.median_seconds * 1e6,
         1.0 / report.median_seconds,
         report.min_seconds * 1e6,
