@@ -5,7 +5,7 @@
 use std::cmp::{Ordering, Reverse};
 use std::collections::BinaryHeap;
 
-use super::shot::{earlier, ShotEvent};
+use super::shot_event::{earlier, ShotEvent};
 
 /// A prediction and the versions of its balls when it was made.
 #[derive(Clone, Copy, Debug)]

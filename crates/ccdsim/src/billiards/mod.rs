@@ -38,6 +38,7 @@ pub mod run_export;
 pub mod run_file;
 mod search;
 mod shot;
+mod shot_event;
 pub mod table;
 
 pub use params::{BallBallModel, BallFriction, BallParams};
@@ -48,5 +49,6 @@ pub use run_file::{
     open_pool_run, record_shot, record_struck, BallAfter, PoolRecord, PoolRunReader, PoolRunWriter,
 };
 pub use search::PoolFinder;
-pub use shot::{Shot, ShotError, ShotEvent, ShotEventKind, TableBall};
+pub use shot::{Shot, ShotError, TableBall};
+pub use shot_event::{ShotEvent, ShotEventKind};
 pub use table::{Jaw, LinearCushion, Pocket, PocketTableSpecs, Table};

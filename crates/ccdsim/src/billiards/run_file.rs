@@ -29,7 +29,8 @@ use std::io::{BufReader, BufWriter, Read, Write};
 use std::path::Path;
 
 use super::pool_scene::PoolScene;
-use super::shot::{Shot, ShotEvent, ShotEventKind};
+use super::shot::Shot;
+use super::shot_event::{ShotEvent, ShotEventKind};
 use super::table::{PocketTableSpecs, Table};
 use crate::geom::Vector;
 use crate::motion::{ClothBall, ClothState};
