@@ -8,6 +8,7 @@ use crate::case::Case;
 use crate::check::check_case_with;
 use crate::features::{features, FEATURES};
 use crate::genome;
+use crate::pool;
 use proptest::test_runner::{Config, RngAlgorithm, TestCaseError, TestError, TestRng, TestRunner};
 use std::cell::{Cell, RefCell};
 use std::collections::BTreeMap;
@@ -33,6 +34,9 @@ pub struct Settings {
     pub max_cases: Option<u64>,
     /// Bodies per scene, at most.
     pub max_bodies: usize,
+    /// One batch of cases in this many is of pool shots ([`crate::pool`]), the others of
+    /// scenes: 0 for none, 1 for pool shots only.
+    pub pool_every: u64,
     /// Replay each oracle run through `verify` too (else finders alone are compared).
     pub verify: bool,
     /// Threads, each with its own seeds.
@@ -240,7 +244,7 @@ fn run_thread(
         let mut runner = TestRunner::new_with_rng(config, rng);
         let shrinking = Cell::new(false);
         let first_failure = Cell::new(0u64);
-        let outcome = runner.run(&genome::case(s.max_bodies), |case| {
+        let test = |case: Case| {
             if !shrinking.get() && over() {
                 return Ok(());
             }
@@ -270,7 +274,13 @@ fn run_thread(
                     Err(TestCaseError::fail(f.to_string()))
                 }
             }
-        });
+        };
+        // The scene batches keep the seeds they had before pool batches joined them.
+        let outcome = if s.pool_every > 0 && batch % s.pool_every == s.pool_every - 1 {
+            runner.run(&pool::case(), test)
+        } else {
+            runner.run(&genome::case(s.max_bodies), test)
+        };
         if let Err(TestError::Fail(reason, mut case)) = outcome {
             progress.failures.fetch_add(1, Ordering::Relaxed);
             let origin = format!(

@@ -116,6 +116,15 @@ impl Case {
         }
     }
 
+    /// Whether the case is a pool shot: its scene is a pool scene (`{"pool": …}`), played to
+    /// its end with no schedule or edits (see [`crate::pool`]).
+    #[must_use]
+    pub fn is_pool(&self) -> bool {
+        self.scene
+            .as_object()
+            .is_some_and(|o| o.contains_key("pool"))
+    }
+
     /// Parses and validates the case's scene.
     pub fn any_scene(&self) -> Result<AnyScene, ccdsim::SceneError> {
         AnyScene::from_json(&self.scene.to_string())

@@ -233,7 +233,8 @@ pub fn check_scene<const D: usize>(
 
 /// Checks a case: `Ok(None)` when its scene is refused by the validator (nothing to compare),
 /// `Ok(Some(_))` when every finder agreed with the oracle and the oracle's run verified. A
-/// panic anywhere is a failure too, with its message.
+/// case holding a pool scene is a shot, checked by [`crate::pool::check_pool`]. A panic
+/// anywhere is a failure too, with its message.
 pub fn check_case(case: &Case) -> Result<Option<Checked>, Failure> {
     check_case_with(case, true)
 }
@@ -241,10 +242,15 @@ pub fn check_case(case: &Case) -> Result<Option<Checked>, Failure> {
 /// [`check_case`], replaying the oracle's run through `verify` only when `verify` is set (a
 /// campaign after finder mismatches alone goes faster without).
 pub fn check_case_with(case: &Case, verify: bool) -> Result<Option<Checked>, Failure> {
-    let checked = std::panic::catch_unwind(|| match case.any_scene() {
-        Err(_) => Ok(None),
-        Ok(AnyScene::D2(s)) => check_scene(case, &s, verify).map(Some),
-        Ok(AnyScene::D3(s)) => check_scene(case, &s, verify).map(Some),
+    let checked = std::panic::catch_unwind(|| {
+        if case.is_pool() {
+            return crate::pool::check_pool(case, verify);
+        }
+        match case.any_scene() {
+            Err(_) => Ok(None),
+            Ok(AnyScene::D2(s)) => check_scene(case, &s, verify).map(Some),
+            Ok(AnyScene::D3(s)) => check_scene(case, &s, verify).map(Some),
+        }
     });
     checked.unwrap_or_else(|payload| {
         let message = payload

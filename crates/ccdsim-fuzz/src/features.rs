@@ -5,7 +5,7 @@ use crate::case::{Case, EditOp, Schedule};
 use serde_json::Value;
 
 /// Every feature name [`features`] can report, in the order the coverage table prints them.
-pub const FEATURES: [&str; 31] = [
+pub const FEATURES: [&str; 34] = [
     "3D",
     "periodic",
     "sheared box",
@@ -37,6 +37,9 @@ pub const FEATURES: [&str; 31] = [
     "bodies added",
     "bodies removed",
     "filter or wall edits",
+    "pool shots",
+    "pool: balls touching",
+    "pool: frictional",
 ];
 
 fn nonzero(v: &Value) -> bool {
@@ -54,6 +57,9 @@ fn components(v: &Value) -> Vec<f64> {
 #[must_use]
 pub fn features(case: &Case) -> Vec<&'static str> {
     let s = &case.scene;
+    if case.is_pool() {
+        return pool_features(&s["pool"]);
+    }
     let mut out = Vec::new();
     let mut add = |on: bool, name: &'static str| {
         if on {
@@ -159,5 +165,33 @@ pub fn features(case: &Case) -> Vec<&'static str> {
         has(|e| matches!(e, EditOp::Filter { .. } | EditOp::WallVelocity { .. })),
         "filter or wall edits",
     );
+    out
+}
+
+/// The features of a pool case (its scene's `pool` object).
+fn pool_features(pool: &Value) -> Vec<&'static str> {
+    let mut out = vec!["pool shots"];
+    let at: Vec<Vec<f64>> = pool["balls"]
+        .as_array()
+        .map(|a| a.iter().map(|b| components(&b["pos"])).collect())
+        .unwrap_or_default();
+    let diameter = 2.0 * ccdsim::billiards::BallParams::default().radius();
+    let touching = at.iter().enumerate().any(|(i, p)| {
+        at[..i].iter().any(|q| {
+            let d = p
+                .iter()
+                .zip(q)
+                .map(|(a, b)| (a - b).powi(2))
+                .sum::<f64>()
+                .sqrt();
+            (d - diameter).abs() <= 1e-12
+        })
+    });
+    if touching {
+        out.push("pool: balls touching");
+    }
+    if !pool["ball_ball"].is_null() {
+        out.push("pool: frictional");
+    }
     out
 }

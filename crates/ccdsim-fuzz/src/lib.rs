@@ -17,6 +17,7 @@ pub mod case;
 pub mod check;
 pub mod features;
 pub mod genome;
+pub mod pool;
 
 pub use case::{Case, EditOp, Schedule};
 pub use check::{check_case, check_case_with, Checked, Failure};

@@ -41,6 +41,10 @@ struct Cli {
     /// Bodies per scene, at most.
     #[arg(long, default_value_t = 24)]
     max_bodies: usize,
+    /// One batch of 64 cases in this many is of pool shots, every finder against the oracle
+    /// (0: none; 1: pool shots only).
+    #[arg(long, default_value_t = 8)]
+    pool_every: u64,
     /// Where failing cases are written.
     #[arg(long, default_value = concat!(env!("CARGO_MANIFEST_DIR"), "/regressions"))]
     out: PathBuf,
@@ -77,6 +81,7 @@ fn main() -> Result<()> {
         duration: Duration::from_secs_f64((minutes * 60.0).min(1e9)),
         max_cases: cli.cases,
         max_bodies: cli.max_bodies,
+        pool_every: cli.pool_every,
         verify: !cli.no_verify,
         threads: cli
             .threads

@@ -25,7 +25,6 @@ mod ledges;
 mod long_runs;
 mod moving_walls;
 mod narrow_properties;
-mod pool_fuzz;
 mod pool_runs;
 mod pooltool_issues;
 mod reference_json;

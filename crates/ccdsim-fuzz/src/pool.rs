@@ -1,25 +1,29 @@
-//! Adversarial pool shots: balls on a lattice of one diameter (touching each other and the
+//! Pool shots for the fuzzer: balls on a lattice of one diameter (touching each other and the
 //! rails), on half a diameter (some overlap and are refused), mirrored about the table's long
-//! axis, in blocks of touching balls (square or racked), or anywhere; struck slowly or hard,
-//! with and without spin and elevation; meeting with and without friction. Every shot must
-//! end, give the oracle's events bit for bit with every finder (the run files recorded with
-//! the default finder and with each finder, the oracle first, are the same, byte for byte)
-//! and pass `verify`.
-//! `CCDSIM_POOL_CASES` sets how many shots (64 by default).
+//! axis, in blocks of touching balls (square or racked) with the cue ball aimed at them, or
+//! anywhere; struck slowly or hard, with and without spin and elevation; meeting with and
+//! without friction. A pool case holds a pool scene where a scene case holds a scene
+//! (`ccdsim gen table` writes the same JSON); [`check_pool`] plays it with every finder
+//! ([`PoolFinder`]), compares the run files with the oracle's byte for byte and replays the
+//! oracle's through `verify`. Every shot must end.
 
+use crate::case::{Case, Schedule};
+use crate::check::{Checked, Failure};
 use ccdsim::billiards::{
-    record_shot, record_struck, PoolBall, PoolBallBall, PoolFinder, PoolRecord, PoolRunReader,
-    PoolRunWriter, PoolScene, PoolSetup, PoolShot,
+    record_struck, PoolBall, PoolBallBall, PoolFinder, PoolRecord, PoolRunReader, PoolRunWriter,
+    PoolScene, PoolSetup, PoolShot,
 };
 use ccdsim::verify::PoolVerifier;
 use proptest::prelude::*;
-use proptest::strategy::ValueTree;
-use std::sync::atomic::{AtomicU64, Ordering};
+
+/// Most events a fuzzed shot may take: every shot must end well within it.
+const MAX_EVENTS: u64 = 200_000;
 
 const R: f64 = 0.028575;
 const WIDTH: f64 = 0.9906;
 const LENGTH: f64 = 1.9812;
 
+/// Where the balls stand.
 #[derive(Clone, Debug)]
 enum Placement {
     /// Cells of one diameter from the rails: neighbours touch, the outer ones touch a rail.
@@ -103,6 +107,7 @@ fn positions(p: &Placement) -> Vec<[f64; 2]> {
     }
 }
 
+/// How the cue ball is struck.
 #[derive(Clone, Debug)]
 struct Strike {
     speed: f64,
@@ -172,95 +177,119 @@ fn scene(p: &Placement, s: &Strike, frictional: bool) -> PoolScene {
     }
 }
 
-/// Shots played (scenes the table accepted), and their events.
-static PLAYED: AtomicU64 = AtomicU64::new(0);
-static EVENTS: AtomicU64 = AtomicU64::new(0);
-
-/// Plays `scene` both ways and verifies it; `Ok(false)` when the scene is refused.
-fn check(scene: &PoolScene) -> Result<bool, String> {
-    if scene.shot().is_err() {
-        return Ok(false);
-    }
-    PLAYED.fetch_add(1, Ordering::Relaxed);
-    let mut kept = Vec::new();
-    let w = PoolRunWriter::new(&mut kept, "kept".into(), scene).map_err(|e| e.to_string())?;
-    let (_, played) = record_shot(scene, w, 200_000).map_err(|e| e.to_string())?;
-    let events = played.map_err(|e| format!("the shot did not end: {e}"))?;
-    EVENTS.fetch_add(events as u64, Ordering::Relaxed);
-    for finder in PoolFinder::ALL {
-        let mut other = Vec::new();
-        let w = PoolRunWriter::new(&mut other, "other".into(), scene).map_err(|e| e.to_string())?;
-        let mut shot = scene.shot().map_err(|e| e.to_string())?;
-        shot.set_finder(finder);
-        let (_, again) =
-            record_struck(shot, scene.struck_ball(), w, 200_000).map_err(|e| e.to_string())?;
-        again.map_err(|e| format!("the shot did not end with the {finder} finder: {e}"))?;
-        if kept != other {
-            return Err(format!(
-                "the default finder's run file differs from the {finder} finder's"
-            ));
+/// The strategy of pool cases: a placement, a strike and a ball–ball model.
+pub fn case() -> impl Strategy<Value = Case> {
+    (placement(), strike(), any::<bool>()).prop_map(|(p, s, frictional)| {
+        let scene = scene(&p, &s, frictional);
+        Case {
+            scene: serde_json::from_str(&scene.to_json()).expect("a pool scene serialises"),
+            // A shot is played to its end: no schedule, no edits.
+            schedule: Schedule::Events { every: 1 },
+            edits: Vec::new(),
+            max_events: MAX_EVENTS,
+            duration: 0.0,
+            note: None,
         }
-    }
-    let mut reader = PoolRunReader::new(&kept[..], "kept".into()).map_err(|e| e.to_string())?;
+    })
+}
+
+/// The shot of `scene` recorded with `finder`, and its event count if it ended within
+/// `max_events` (the file then holds as much as was played, and why it stopped).
+fn recorded(
+    scene: &PoolScene,
+    finder: PoolFinder,
+    max_events: u64,
+) -> Result<(Vec<u8>, Result<u64, String>), Failure> {
+    let failed = |e: &dyn std::fmt::Display| Failure::Panic(format!("pool, {finder}: {e}"));
+    let mut bytes = Vec::new();
+    let w = PoolRunWriter::new(&mut bytes, finder.name().into(), scene).map_err(|e| failed(&e))?;
+    let mut shot = scene.shot().map_err(|e| failed(&e))?;
+    shot.set_finder(finder);
+    let limit = usize::try_from(max_events).unwrap_or(usize::MAX);
+    let (_, played) = record_struck(shot, scene.struck_ball(), w, limit).map_err(|e| failed(&e))?;
+    let events = played
+        .map(|n| n as u64)
+        .map_err(|e| e.describe(&scene.names()));
+    Ok((bytes, events))
+}
+
+/// Replays a pool run file through `verify`; every ball must be still at its end.
+fn verify_pool(scene: &PoolScene, bytes: &[u8]) -> Result<(), String> {
+    let mut reader = PoolRunReader::new(bytes, "oracle".into()).map_err(|e| e.to_string())?;
     let mut v = PoolVerifier::new(scene)?;
     let mut end = 0.0;
     while let Some(rec) = reader.next_record().map_err(|e| e.to_string())? {
-        v.check(&rec).map_err(|e| format!("verify: {e}"))?;
+        v.check(&rec).map_err(|e| e.to_string())?;
         end = rec.time();
         if let PoolRecord::End(_) = rec {
             break;
         }
     }
-    let report = v.finish(end).map_err(|e| format!("verify: {e}"))?;
-    if !report.still {
-        return Err("balls still move at the end".into());
+    let report = v.finish(end).map_err(|e| e.to_string())?;
+    if report.still {
+        Ok(())
+    } else {
+        Err("balls still move at the end".into())
     }
-    Ok(true)
 }
 
-fn cases() -> u32 {
-    std::env::var("CCDSIM_POOL_CASES")
-        .ok()
-        .and_then(|v| v.parse().ok())
-        .unwrap_or(64)
+/// Checks a pool case: `Ok(None)` when the table refuses its balls (off the table,
+/// overlapping) or its strike (a miss), else every finder's run file must be the oracle's,
+/// byte for byte, and with `verify` the oracle's must verify.
+pub fn check_pool(case: &Case, verify: bool) -> Result<Option<Checked>, Failure> {
+    let Ok(scene) = PoolScene::from_json(&case.scene.to_string()) else {
+        return Ok(None);
+    };
+    if scene.shot().is_err() {
+        return Ok(None);
+    }
+    let (oracle, events) = recorded(&scene, PoolFinder::AllPairs, case.max_events)?;
+    let events =
+        events.map_err(|why| Failure::Verify(format!("pool: the shot did not end: {why}")))?;
+    let others = &PoolFinder::ALL[1..];
+    for &finder in others {
+        let (got, _) = recorded(&scene, finder, case.max_events)?;
+        if got != oracle {
+            let at = got
+                .iter()
+                .zip(&oracle)
+                .position(|(a, b)| a != b)
+                .unwrap_or(got.len().min(oracle.len()));
+            return Err(Failure::Mismatch(format!(
+                "pool, {finder}: run files differ from byte {at}"
+            )));
+        }
+    }
+    if verify {
+        verify_pool(&scene, &oracle).map_err(Failure::Verify)?;
+    }
+    Ok(Some(Checked {
+        events,
+        runs: others.len(),
+    }))
 }
 
-proptest! {
-    #![proptest_config(ProptestConfig { cases: cases(), ..ProptestConfig::default() })]
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::strategy::ValueTree;
 
+    /// Most drawn shots are accepted and play events: pool fuzzing is not all refusals.
     #[test]
-    fn adversarial_shots_match_the_oracle_and_verify(
-        p in placement(),
-        s in strike(),
-        frictional in any::<bool>(),
-    ) {
-        let scene = scene(&p, &s, frictional);
-        if let Err(why) = check(&scene) {
-            prop_assert!(false, "{why}\n{}", scene.to_json());
+    fn most_drawn_shots_are_played() {
+        let mut runner = proptest::test_runner::TestRunner::deterministic();
+        let (mut accepted, mut events) = (0, 0);
+        for _ in 0..64 {
+            let case = case().new_tree(&mut runner).unwrap().current();
+            if let Some(checked) = check_pool(&case, true).unwrap() {
+                accepted += 1;
+                events += checked.events;
+            }
         }
-        if std::env::var_os("CCDSIM_POOL_STATS").is_some() {
-            eprintln!("played {} events {}", PLAYED.load(Ordering::Relaxed), EVENTS.load(Ordering::Relaxed));
-        }
+        assert!(accepted >= 32, "{accepted} of 64 accepted");
+        assert!(
+            events >= 8 * accepted,
+            "{events} events in {accepted} shots"
+        );
     }
-}
-
-/// Most drawn shots are accepted and play events: the fuzzing above is not all refusals.
-#[test]
-fn most_adversarial_shots_are_played() {
-    let mut runner = proptest::test_runner::TestRunner::deterministic();
-    let strategy = (placement(), strike(), any::<bool>());
-    let (mut accepted, mut events) = (0, 0);
-    for _ in 0..64 {
-        let (p, s, frictional) = strategy.new_tree(&mut runner).unwrap().current();
-        let scene = scene(&p, &s, frictional);
-        if let Ok(mut shot) = scene.shot() {
-            accepted += 1;
-            events += shot.run(200_000).unwrap();
-        }
-    }
-    assert!(accepted >= 32, "{accepted} of 64 accepted");
-    assert!(
-        events >= 8 * accepted,
-        "{events} events in {accepted} shots"
-    );
 }
