@@ -3,6 +3,7 @@
 //! how each run ended. The oracle's run file is then read back and replayed by `verify`.
 
 use crate::case::{Case, Schedule};
+pub use crate::verdict::{Checked, Failure};
 use ccdsim::finder::{make_finder, FinderOptions, FINDER_NAMES};
 use ccdsim::record::{RunReader, RunWriter};
 use ccdsim::verify::Verifier;
@@ -19,36 +20,6 @@ pub struct Outcome {
     pub sensors: Vec<String>,
     /// How the run ended (`Halt`, if any), as text.
     pub halt: String,
-}
-
-/// Why a case failed.
-#[derive(Clone, Debug, PartialEq)]
-pub enum Failure {
-    /// A finder's run differs from the oracle's.
-    Mismatch(String),
-    /// The oracle's run file fails `verify` (or cannot be read back).
-    Verify(String),
-    /// Something panicked (the simulation, a finder, the recorder or `verify`).
-    Panic(String),
-}
-
-impl std::fmt::Display for Failure {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        match self {
-            Failure::Mismatch(m) => write!(f, "finder mismatch: {m}"),
-            Failure::Verify(m) => write!(f, "verify: {m}"),
-            Failure::Panic(m) => write!(f, "panic: {m}"),
-        }
-    }
-}
-
-/// The result of a case that the scene validator accepted.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Checked {
-    /// Events of the oracle's run.
-    pub events: u64,
-    /// Finder runs compared with it.
-    pub runs: usize,
 }
 
 /// Every finder but the oracle with every mode its options select: `cells` with automatic

@@ -18,6 +18,7 @@ pub mod check;
 pub mod features;
 pub mod genome;
 pub mod pool;
+pub mod verdict;
 
 pub use case::{Case, EditOp, Schedule};
 pub use check::{check_case, check_case_with, Checked, Failure};

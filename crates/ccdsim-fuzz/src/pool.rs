@@ -8,7 +8,7 @@
 //! oracle's through `verify`. Every shot must end.
 
 use crate::case::{Case, Schedule};
-use crate::check::{Checked, Failure};
+use crate::verdict::{Checked, Failure};
 use ccdsim::billiards::{
     record_struck, PoolBall, PoolBallBall, PoolFinder, PoolRecord, PoolRunReader, PoolRunWriter,
     PoolScene, PoolSetup, PoolShot,
