@@ -12,7 +12,8 @@
 //! contact sticks (the slip is removed), else it slides with friction `f_c` (Han's Eqs. 14–20).
 //! The ball's vertical velocity change is dropped: it stays on the cloth.
 
-use super::ball_impact::{closing_speed, rounding_floor};
+use super::ball_impact::{closing_speed, rest_if_rounding, rounding_floor};
+use super::params::BallParams;
 use crate::geom::Vector;
 use crate::motion::{ClothBall, ClothParams};
 
@@ -110,6 +111,33 @@ pub fn part_from_cushion(
     let before = b.vel.norm_sq();
     b.vel -= toward * (target - leaving);
     pressed.then(|| 0.5 * (b.vel.norm_sq() - before))
+}
+
+/// Ball `b` after meeting a cushion nose at `height` (m) in the direction `toward` (a unit
+/// vector from its centre to the contact), as a shot plays it with the ball parameters `p`:
+/// Han's bounce ([`bounce`]), speeds of rounding set to rest
+/// ([`super::ball_impact::rest_if_rounding`]), then parted from the cushion if pressed against
+/// it ([`part_from_cushion`]). Returns the ball and the kinetic energy that parting added
+/// (joules), if it did.
+#[must_use]
+pub fn bounce_as_played(
+    b: &ClothBall,
+    toward: Vector<2>,
+    height: f64,
+    p: &BallParams,
+) -> (ClothBall, Option<f64>) {
+    let mut after = bounce(
+        b,
+        toward,
+        p.radius(),
+        p.mass,
+        height,
+        p.cushion_restitution,
+        p.cushion_friction,
+    );
+    rest_if_rounding(&mut after, p.radius());
+    let added = part_from_cushion(&mut after, toward, &p.cloth, p.contact_time).map(|e| p.mass * e);
+    (after, added)
 }
 
 #[cfg(test)]

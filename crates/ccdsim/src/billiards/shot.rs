@@ -23,7 +23,7 @@ use thiserror::Error;
 use super::ball_impact::{exchange, frictional, part_pressed, rest_if_rounding};
 use super::calendar::Calendar;
 use super::contact_time::{self, Flight};
-use super::cushion_impact::{bounce, part_from_cushion};
+use super::cushion_impact::bounce_as_played;
 use super::params::{BallBallModel, BallParams};
 use super::search::{parts_of, BroadPhase, PoolFinder, TablePart};
 use super::shot_event::{first, ShotEvent, ShotEventKind};
@@ -501,21 +501,12 @@ impl Shot {
 
     /// Ball `i` bounces now off a cushion nose at `height` (m) in the direction `toward` (a
     /// unit vector from its centre to the contact; Han 2005), parted from it if pressed
-    /// against it ([`part_from_cushion`]), and slides on.
+    /// against it ([`bounce_as_played`]), and slides on.
     fn bounce_off(&mut self, i: usize, toward: Vector<2>, height: f64) {
-        let p = self.params;
-        let mut b = bounce(
-            &self.ball_at(i, self.time),
-            toward,
-            p.radius(),
-            p.mass,
-            height,
-            p.cushion_restitution,
-            p.cushion_friction,
-        );
-        rest_if_rounding(&mut b, p.radius());
-        if let Some(added) = part_from_cushion(&mut b, toward, &p.cloth, p.contact_time) {
-            self.pressing_energy += p.mass * added;
+        let (b, added) =
+            bounce_as_played(&self.ball_at(i, self.time), toward, height, &self.params);
+        if let Some(added) = added {
+            self.pressing_energy += added;
             self.pressings += 1;
         }
         self.set(i, b, ClothState::Sliding);

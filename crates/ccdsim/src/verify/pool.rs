@@ -27,7 +27,7 @@ use super::Violation;
 use crate::billiards::ball_impact::{
     exchange, frictional, part_pressed, rest_if_rounding, rounding_floor,
 };
-use crate::billiards::cushion_impact::{bounce, part_from_cushion};
+use crate::billiards::cushion_impact::bounce_as_played;
 use crate::billiards::{
     BallAfter, BallBallModel, BallParams, PoolRecord, PoolScene, ShotEventKind, Table,
 };
@@ -599,19 +599,7 @@ impl PoolVerifier {
         height: f64,
         after: &BallAfter,
     ) -> Result<(), Violation> {
-        let p = &self.params;
-        let mut han = bounce(
-            b,
-            toward,
-            p.radius(),
-            p.mass,
-            height,
-            p.cushion_restitution,
-            p.cushion_friction,
-        );
-        rest_if_rounding(&mut han, p.radius());
-        let added =
-            part_from_cushion(&mut han, toward, &p.cloth, p.contact_time).map(|e| p.mass * e);
+        let (han, added) = bounce_as_played(b, toward, height, &self.params);
         if !close2(after.ball.vel, han.vel) || !close3(after.ball.spin, han.spin) {
             return Err(self.fail(
                 t,
