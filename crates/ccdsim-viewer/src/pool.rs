@@ -72,6 +72,70 @@ impl PoolPlayback {
         &self.records
     }
 
+    /// The table.
+    #[must_use]
+    pub fn table(&self) -> &Table {
+        &self.table
+    }
+
+    /// The balls' radius, metres.
+    #[must_use]
+    pub fn radius(&self) -> f64 {
+        self.cloth.radius
+    }
+
+    /// The balls' names (`cue`, `1`, …), in the scene's order.
+    #[must_use]
+    pub fn names(&self) -> Vec<String> {
+        self.scene.names()
+    }
+
+    /// Where each ball is at time `t` (seconds from the strike), or `None` for a ball that
+    /// dropped into a pocket at or before `t`.
+    #[must_use]
+    pub fn balls_at(&self, t: f64) -> Vec<Option<[f64; 2]>> {
+        let mut balls = self.start_states();
+        let mut pocketed = vec![false; balls.len()];
+        for rec in self.records.iter().take_while(|r| r.time() <= t) {
+            apply_record(rec, &mut balls);
+            if let PoolRecord::Event { event, .. } = rec {
+                if let ccdsim::billiards::ShotEventKind::Pocket { ball, .. } = event.kind {
+                    pocketed[ball] = true;
+                }
+            }
+        }
+        balls
+            .iter()
+            .zip(pocketed)
+            .map(|((b, since), gone)| {
+                let at = self.cloth.evolve(&b.ball, b.state, t - since);
+                (!gone).then_some([at.pos[0], at.pos[1]])
+            })
+            .collect()
+    }
+
+    /// Every ball at rest where the scene places it, as of time 0.
+    fn start_states(&self) -> Vec<(BallAfter, f64)> {
+        self.scene
+            .pool
+            .balls
+            .iter()
+            .map(|b| {
+                (
+                    BallAfter {
+                        ball: ccdsim::motion::ClothBall {
+                            pos: Vector(b.pos),
+                            vel: Vector::ZERO,
+                            spin: Vector::ZERO,
+                        },
+                        state: ccdsim::motion::ClothState::Stationary,
+                    },
+                    0.0,
+                )
+            })
+            .collect()
+    }
+
     /// Everything the pool page draws, as JSON: `file`, `names`, `radius` (m), `table`
     /// (`width`, `length`, `cushions` `[x1, y1, x2, y2]`, `jaws` and `pockets` `[x, y, r]`,
     /// metres), `end` (s), `events` (`t`, `type`, `agents`, pooltool's names; the strike is
@@ -140,25 +204,7 @@ impl PoolPlayback {
             dt = self.end / MAX_FRAMES as f64;
         }
         let count = (self.end / dt).ceil() as usize + 1;
-        let mut balls: Vec<(BallAfter, f64)> = self
-            .scene
-            .pool
-            .balls
-            .iter()
-            .map(|b| {
-                (
-                    BallAfter {
-                        ball: ccdsim::motion::ClothBall {
-                            pos: Vector(b.pos),
-                            vel: Vector::ZERO,
-                            spin: Vector::ZERO,
-                        },
-                        state: ccdsim::motion::ClothState::Stationary,
-                    },
-                    0.0,
-                )
-            })
-            .collect();
+        let mut balls = self.start_states();
         // Each ball's marker starts straight up, tipped a little so that a spin about the
         // vertical shows too.
         let tip = 0.35f64;
@@ -171,33 +217,12 @@ impl PoolPlayback {
             marker: Vec::with_capacity(count * n * 3),
             state: Vec::with_capacity(count * n),
         };
-        let apply = |upto: f64, next: &mut usize, balls: &mut Vec<(BallAfter, f64)>| {
+        let apply = |upto: f64, next: &mut usize, balls: &mut [(BallAfter, f64)]| {
             while let Some(rec) = self.records.get(*next) {
                 if rec.time() > upto {
                     break;
                 }
-                match *rec {
-                    PoolRecord::Strike { time, ball, after } => balls[ball] = (after, time),
-                    PoolRecord::Event {
-                        event,
-                        after,
-                        after_b,
-                    } => {
-                        use ccdsim::billiards::ShotEventKind as K;
-                        let (a, b) = match event.kind {
-                            K::Balls { a, b } => (a, Some(b)),
-                            K::Transition { ball, .. }
-                            | K::Cushion { ball, .. }
-                            | K::Jaw { ball, .. }
-                            | K::Pocket { ball, .. } => (ball, None),
-                        };
-                        balls[a] = (after, event.time);
-                        if let (Some(b), Some(after_b)) = (b, after_b) {
-                            balls[b] = (after_b, event.time);
-                        }
-                    }
-                    PoolRecord::End(_) => {}
-                }
+                apply_record(rec, balls);
                 *next += 1;
             }
         };
@@ -236,6 +261,32 @@ impl PoolPlayback {
             }
         }
         out
+    }
+}
+
+/// The states `rec` leaves its balls in, each with the time it starts from.
+fn apply_record(rec: &PoolRecord, balls: &mut [(BallAfter, f64)]) {
+    match *rec {
+        PoolRecord::Strike { time, ball, after } => balls[ball] = (after, time),
+        PoolRecord::Event {
+            event,
+            after,
+            after_b,
+        } => {
+            use ccdsim::billiards::ShotEventKind as K;
+            let (a, b) = match event.kind {
+                K::Balls { a, b } => (a, Some(b)),
+                K::Transition { ball, .. }
+                | K::Cushion { ball, .. }
+                | K::Jaw { ball, .. }
+                | K::Pocket { ball, .. } => (ball, None),
+            };
+            balls[a] = (after, event.time);
+            if let (Some(b), Some(after_b)) = (b, after_b) {
+                balls[b] = (after_b, event.time);
+            }
+        }
+        PoolRecord::End(_) => {}
     }
 }
 

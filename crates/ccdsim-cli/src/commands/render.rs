@@ -63,13 +63,6 @@ pub struct Args {
 
 /// Runs the command and prints what was written.
 pub fn run(args: Args) -> Result<ExitCode> {
-    if ccdsim::record::run_file_version(&args.run)? == ccdsim::record::VERSION_POOL {
-        bail!(
-            "{}: a pool shot's run file: `ccdsim view` plays it in the browser (PNG and GIF \
-             rendering is for runs of ccdsim scenes)",
-            args.run.display()
-        );
-    }
     let colour: ColourBy = match args.colour.parse() {
         Ok(c) => c,
         Err(e) => bail!("--colour: {e}"),

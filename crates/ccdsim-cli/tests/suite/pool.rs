@@ -153,16 +153,6 @@ fn a_recorded_shot_verifies_exports_and_fails_when_tampered_with() {
         assert!(stderr.contains(says), "{stderr}");
     }
 
-    // PNG and GIF are for scenes' runs; the message says what plays a shot.
-    let out = ccdsim()
-        .arg("render")
-        .arg(&run)
-        .args(["--at", "1", "--out", "x.png"])
-        .output()
-        .unwrap();
-    assert_eq!(out.status.code(), Some(2));
-    assert!(String::from_utf8_lossy(&out.stderr).contains("ccdsim view"));
-
     // A record whose time moved (checksum made good): the physics fails, status 1.
     let bytes = std::fs::read(&run).unwrap();
     let header = u64::from_le_bytes(bytes[16..24].try_into().unwrap()) as usize;

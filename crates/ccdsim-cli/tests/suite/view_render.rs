@@ -71,6 +71,80 @@ fn render_writes_a_png_and_a_gif() {
 }
 
 #[test]
+fn render_draws_a_pool_shot_and_refuses_what_it_cannot_draw() {
+    let dir = tmp("render-pool");
+    let scene = dir.join("nine.json");
+    let run = dir.join("nine.ccd");
+    for args in [
+        vec!["gen".into(), "table".into(), "--out".into(), scene.clone()],
+        vec!["run".into(), scene.clone(), "--record".into(), run.clone()],
+    ] {
+        let out = ccdsim().args(&args).output().unwrap();
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+    }
+    let png = dir.join("nine.png");
+    let out = ccdsim()
+        .arg("render")
+        .arg(&run)
+        .args(["--at", "0.5", "--width", "400", "--out"])
+        .arg(&png)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let bytes = std::fs::read(&png).unwrap();
+    assert_eq!(&bytes[..8], b"\x89PNG\r\n\x1a\n");
+    let be = |k: usize| u32::from_be_bytes(bytes[k..k + 4].try_into().unwrap());
+    // The table's long side across: wider than high.
+    assert_eq!(be(16), 400);
+    assert!(be(20) < 300, "{}", be(20));
+    let gif = dir.join("nine.gif");
+    let out = ccdsim()
+        .arg("render")
+        .arg(&run)
+        .arg("--gif")
+        .arg(&gif)
+        .args(["--fps", "10", "--to", "1", "--width", "200"])
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let said = String::from_utf8(out.stdout).unwrap();
+    assert!(said.contains("(11 frames, 200×"), "{said}");
+    assert_eq!(&std::fs::read(&gif).unwrap()[..6], b"GIF89a");
+    std::fs::remove_file(&png).unwrap();
+    for (args, culprit) in [
+        (vec!["--at", "0.5", "--boxes"], "finder boxes"),
+        (vec!["--at", "0.5", "--colour", "speed"], "own colours"),
+        (vec!["--at", "1000"], "outside the shot"),
+    ] {
+        let out = ccdsim()
+            .arg("render")
+            .arg(&run)
+            .args(&args)
+            .arg("--out")
+            .arg(&png)
+            .output()
+            .unwrap();
+        assert_eq!(out.status.code(), Some(2), "{args:?}");
+        let err = String::from_utf8(out.stderr).unwrap();
+        assert_eq!(err.lines().count(), 1, "{err}");
+        assert!(err.contains(culprit), "{err}");
+        assert!(!png.exists());
+    }
+}
+
+#[test]
 fn render_refuses_bad_options_with_one_line_and_no_file() {
     let dir = tmp("render-bad");
     let run = record_break(&dir, "1");

@@ -10,6 +10,7 @@ use ccdsim::Collision;
 use std::fs::File;
 use std::io::BufWriter;
 use std::path::{Path, PathBuf};
+use tiny_skia::Pixmap;
 
 /// A rectangle of a frame, pixels.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -59,11 +60,8 @@ fn changed_rect(a: &[u8], b: &[u8], w: u16, h: u16) -> Rect {
     }
 }
 
-pub(crate) fn gif_file<const D: usize>(
-    p: &mut Playback<D>,
-    out: &Path,
-    o: &GifOptions,
-) -> Result<RenderReport, ViewerError> {
+/// Checks `o`'s frame rate and speed of time, and that `from ≤ to` are finite.
+pub(crate) fn check_gif_options(o: &GifOptions, from: f64, to: f64) -> Result<(), ViewerError> {
     if !(o.fps.is_finite() && o.fps > 0.0 && o.fps <= 100.0) {
         return Err(ViewerError::param(
             "fps",
@@ -76,21 +74,27 @@ pub(crate) fn gif_file<const D: usize>(
             format!("{} is not a positive number", o.speed),
         ));
     }
-    let from = o.from.unwrap_or(p.start_time());
-    let to = o.to.unwrap_or(p.end_time());
     if !(from.is_finite() && to.is_finite() && to >= from) {
         return Err(ViewerError::param(
             "from/to",
             format!("need finite from ≤ to, got {from} and {to}"),
         ));
     }
+    Ok(())
+}
+
+/// Runs `write` on a temporary file beside `out` and renames it to `out` when it succeeds,
+/// so that `out` appears only when complete; removes it when it fails.
+pub(crate) fn write_atomically<R>(
+    out: &Path,
+    write: impl FnOnce(&Path) -> Result<R, ViewerError>,
+) -> Result<R, ViewerError> {
     let tmp: PathBuf = {
         let mut s = out.as_os_str().to_owned();
         s.push(".partial");
         s.into()
     };
-    let result = write_gif(p, &tmp, from, to, o);
-    match result {
+    match write(&tmp) {
         Ok(report) => {
             std::fs::rename(&tmp, out).map_err(|source| ViewerError::Io {
                 what: out.display().to_string(),
@@ -105,6 +109,17 @@ pub(crate) fn gif_file<const D: usize>(
     }
 }
 
+pub(crate) fn gif_file<const D: usize>(
+    p: &mut Playback<D>,
+    out: &Path,
+    o: &GifOptions,
+) -> Result<RenderReport, ViewerError> {
+    let from = o.from.unwrap_or(p.start_time());
+    let to = o.to.unwrap_or(p.end_time());
+    check_gif_options(o, from, to)?;
+    write_atomically(out, |tmp| write_gif(p, tmp, from, to, o))
+}
+
 fn write_gif<const D: usize>(
     p: &mut Playback<D>,
     path: &Path,
@@ -114,28 +129,13 @@ fn write_gif<const D: usize>(
 ) -> Result<RenderReport, ViewerError> {
     let cam = camera(p, &o.render)?;
     let frames = gif_frame_count(from, to, o.fps, o.speed);
-    let io = |source| ViewerError::Io {
-        what: path.display().to_string(),
-        source,
-    };
-    let enc_err = |e: gif::EncodingError| ViewerError::Encode {
-        path: path.display().to_string(),
-        why: e.to_string(),
-    };
-    let file = BufWriter::new(File::create(path).map_err(io)?);
-    let (w, h) = (cam.width as u16, cam.height as u16);
-    let mut enc = gif::Encoder::new(file, w, h, &palette::palette()).map_err(enc_err)?;
-    enc.set_repeat(gif::Repeat::Infinite).map_err(enc_err)?;
-    let delay = (100.0 / o.fps).round().max(1.0) as u16;
     let step = o.speed / o.fps;
     let flash_window = step.max(0.15 * o.speed);
     // One snapshot, then events applied forward as the frames' time advances.
     let mut snap = p.snapshot_at(from)?;
     let mut events = EventCursor::new(snap.applied);
-    let mut indices = vec![0u8; usize::from(w) * usize::from(h)];
-    let mut previous = indices.clone();
     let mut last_t = from;
-    for k in 0..frames {
+    encode_gif(path, cam.width, cam.height, o.fps, frames, |k| {
         let t = from + k as f64 * step;
         while let Some(c) = events.peek(p)?.filter(|c| c.event.time <= t) {
             snap.states.apply(&c);
@@ -146,10 +146,48 @@ fn write_gif<const D: usize>(
         snap.time = t;
         last_t = t;
         let boxes = boxes_for(p, &snap, &o.render)?;
-        let pm = draw_frame(
+        Ok(draw_frame(
             &cam,
             &frame_input(p, &snap, &boxes, &o.render, flash_window),
-        );
+        ))
+    })?;
+    Ok(RenderReport {
+        frames,
+        width: cam.width,
+        height: cam.height,
+        from,
+        to: last_t,
+        events: snap.applied,
+    })
+}
+
+/// Writes an animated GIF of `frames` frames of `width`×`height` pixels, `fps` a second,
+/// looping, to `path`: frame `k` is what `draw(k)` paints, mapped to the fixed palette.
+pub(crate) fn encode_gif(
+    path: &Path,
+    width: u32,
+    height: u32,
+    fps: f64,
+    frames: u64,
+    mut draw: impl FnMut(u64) -> Result<Pixmap, ViewerError>,
+) -> Result<(), ViewerError> {
+    let io = |source| ViewerError::Io {
+        what: path.display().to_string(),
+        source,
+    };
+    let enc_err = |e: gif::EncodingError| ViewerError::Encode {
+        path: path.display().to_string(),
+        why: e.to_string(),
+    };
+    let file = BufWriter::new(File::create(path).map_err(io)?);
+    let (w, h) = (width as u16, height as u16);
+    let mut enc = gif::Encoder::new(file, w, h, &palette::palette()).map_err(enc_err)?;
+    enc.set_repeat(gif::Repeat::Infinite).map_err(enc_err)?;
+    let delay = (100.0 / fps).round().max(1.0) as u16;
+    let mut indices = vec![0u8; usize::from(w) * usize::from(h)];
+    let mut previous = indices.clone();
+    for k in 0..frames {
+        let pm = draw(k)?;
         for (dst, px) in indices.iter_mut().zip(pm.pixels()) {
             let c = px.demultiply();
             *dst = palette::index_of([c.red(), c.green(), c.blue()]);
@@ -189,14 +227,7 @@ fn write_gif<const D: usize>(
         .map_err(io)?
         .into_inner()
         .map_err(|e| io(e.into_error()))?;
-    Ok(RenderReport {
-        frames,
-        width: cam.width,
-        height: cam.height,
-        from,
-        to: last_t,
-        events: snap.applied,
-    })
+    Ok(())
 }
 
 /// Reads a run's events in order, a window at a time (a seek per event would throw the

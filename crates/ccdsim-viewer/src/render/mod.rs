@@ -5,6 +5,7 @@ pub mod colour;
 mod draw;
 mod gif_out;
 mod palette;
+mod pool_frame;
 mod time_label;
 
 pub use camera::Camera;
@@ -216,14 +217,23 @@ pub fn png_bytes<const D: usize>(
     Ok((bytes, report))
 }
 
+/// Whether the run file at `run` is a pool shot's (format version 16).
+fn is_pool_shot(run: &Path) -> Result<bool, ViewerError> {
+    Ok(ccdsim::record::run_file_version(run)? == ccdsim::record::VERSION_POOL)
+}
+
 /// Renders the run at `run` at simulated time `at` (seconds) to the PNG file `out`. Nothing
-/// is written when anything fails.
+/// is written when anything fails. A pool shot's run file is drawn as its table seen from
+/// above, `at` seconds after the strike (no finder boxes; the balls in their own colours).
 pub fn render_png(
     run: &Path,
     at: f64,
     out: &Path,
     o: &RenderOptions,
 ) -> Result<RenderReport, ViewerError> {
+    if is_pool_shot(run)? {
+        return pool_frame::pool_png(run, at, out, o);
+    }
     let (bytes, report) = match crate::AnyPlayback::open(run, &o.keyframes)? {
         crate::AnyPlayback::D2(mut p) => png_bytes(&mut p, at, o)?,
         crate::AnyPlayback::D3(mut p) => png_bytes(&mut p, at, o)?,
@@ -238,8 +248,12 @@ pub fn render_png(
 /// Renders the run at `run` to the animated GIF `out`: frames every `speed / fps` simulated
 /// seconds from `from` to `to` (see [`gif_frame_count`]), each showing the bodies that
 /// collided since the frame before (or within the last 0.15 s of animation) flashing. The
-/// file appears only when complete.
+/// file appears only when complete. A pool shot's run file is drawn as in [`render_png`],
+/// from the strike to the shot's end by default.
 pub fn render_gif(run: &Path, out: &Path, o: &GifOptions) -> Result<RenderReport, ViewerError> {
+    if is_pool_shot(run)? {
+        return pool_frame::pool_gif(run, out, o);
+    }
     match crate::AnyPlayback::open(run, &o.render.keyframes)? {
         crate::AnyPlayback::D2(mut p) => gif_out::gif_file(&mut p, out, o),
         crate::AnyPlayback::D3(mut p) => gif_out::gif_file(&mut p, out, o),
