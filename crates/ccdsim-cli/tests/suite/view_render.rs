@@ -3,7 +3,7 @@
 use crate::common;
 use std::io::{BufRead, BufReader, Read, Write};
 
-use common::ccdsim;
+use common::{ccdsim, run_ok};
 use std::path::{Path, PathBuf};
 use std::process::Stdio;
 
@@ -14,17 +14,30 @@ fn tmp(name: &str) -> common::ScratchDir {
 /// Records the built-in billiard break for `until` seconds.
 fn record_break(dir: &Path, until: &str) -> PathBuf {
     let run = dir.join("break.ccd");
-    let out = ccdsim()
-        .args(["run", "--until", until, "--quiet", "--record"])
-        .arg(&run)
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
+    run_ok(
+        ccdsim()
+            .args(["run", "--until", until, "--quiet", "--record"])
+            .arg(&run),
     );
     run
+}
+
+/// Runs `ccdsim render RUN ARGS --out PNG` and requires the usage status, one line on
+/// standard error naming `culprit`, and no file.
+fn refused(run: &Path, args: &[&str], png: &Path, culprit: &str) {
+    let out = ccdsim()
+        .arg("render")
+        .arg(run)
+        .args(args)
+        .arg("--out")
+        .arg(png)
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2), "{args:?}");
+    let err = String::from_utf8(out.stderr).unwrap();
+    assert_eq!(err.lines().count(), 1, "{err}");
+    assert!(err.contains(culprit), "{err}");
+    assert!(!png.exists());
 }
 
 #[test]
@@ -32,17 +45,12 @@ fn render_writes_a_png_and_a_gif() {
     let dir = tmp("render");
     let run = record_break(&dir, "3");
     let png = dir.join("frame.png");
-    let out = ccdsim()
-        .arg("render")
-        .arg(&run)
-        .args(["--at", "0.5", "--width", "320", "--out"])
-        .arg(&png)
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
+    run_ok(
+        ccdsim()
+            .arg("render")
+            .arg(&run)
+            .args(["--at", "0.5", "--width", "320", "--out"])
+            .arg(&png),
     );
     let bytes = std::fs::read(&png).unwrap();
     assert_eq!(&bytes[..8], b"\x89PNG\r\n\x1a\n");
@@ -79,25 +87,15 @@ fn render_draws_a_pool_shot_and_refuses_what_it_cannot_draw() {
         vec!["gen".into(), "table".into(), "--out".into(), scene.clone()],
         vec!["run".into(), scene.clone(), "--record".into(), run.clone()],
     ] {
-        let out = ccdsim().args(&args).output().unwrap();
-        assert!(
-            out.status.success(),
-            "{}",
-            String::from_utf8_lossy(&out.stderr)
-        );
+        run_ok(ccdsim().args(&args));
     }
     let png = dir.join("nine.png");
-    let out = ccdsim()
-        .arg("render")
-        .arg(&run)
-        .args(["--at", "0.5", "--width", "400", "--out"])
-        .arg(&png)
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
+    run_ok(
+        ccdsim()
+            .arg("render")
+            .arg(&run)
+            .args(["--at", "0.5", "--width", "400", "--out"])
+            .arg(&png),
     );
     let bytes = std::fs::read(&png).unwrap();
     assert_eq!(&bytes[..8], b"\x89PNG\r\n\x1a\n");
@@ -106,18 +104,13 @@ fn render_draws_a_pool_shot_and_refuses_what_it_cannot_draw() {
     assert_eq!(be(16), 400);
     assert!(be(20) < 300, "{}", be(20));
     let gif = dir.join("nine.gif");
-    let out = ccdsim()
-        .arg("render")
-        .arg(&run)
-        .arg("--gif")
-        .arg(&gif)
-        .args(["--fps", "10", "--to", "1", "--width", "200"])
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
+    let out = run_ok(
+        ccdsim()
+            .arg("render")
+            .arg(&run)
+            .arg("--gif")
+            .arg(&gif)
+            .args(["--fps", "10", "--to", "1", "--width", "200"]),
     );
     let said = String::from_utf8(out.stdout).unwrap();
     assert!(said.contains("(11 frames, 200×"), "{said}");
@@ -128,19 +121,7 @@ fn render_draws_a_pool_shot_and_refuses_what_it_cannot_draw() {
         (vec!["--at", "0.5", "--colour", "speed"], "own colours"),
         (vec!["--at", "1000"], "outside the shot"),
     ] {
-        let out = ccdsim()
-            .arg("render")
-            .arg(&run)
-            .args(&args)
-            .arg("--out")
-            .arg(&png)
-            .output()
-            .unwrap();
-        assert_eq!(out.status.code(), Some(2), "{args:?}");
-        let err = String::from_utf8(out.stderr).unwrap();
-        assert_eq!(err.lines().count(), 1, "{err}");
-        assert!(err.contains(culprit), "{err}");
-        assert!(!png.exists());
+        refused(&run, &args, &png, culprit);
     }
 }
 
@@ -160,19 +141,7 @@ fn render_refuses_bad_options_with_one_line_and_no_file() {
         (vec!["--at", "5"], "outside the run"),
         (vec!["--at", "-1"], "outside the run"),
     ] {
-        let out = ccdsim()
-            .arg("render")
-            .arg(&run)
-            .args(&args)
-            .arg("--out")
-            .arg(&png)
-            .output()
-            .unwrap();
-        assert_eq!(out.status.code(), Some(2), "{args:?}");
-        let err = String::from_utf8(out.stderr).unwrap();
-        assert_eq!(err.lines().count(), 1, "{err}");
-        assert!(err.contains(culprit), "{err}");
-        assert!(!png.exists());
+        refused(&run, &args, &png, culprit);
     }
     let out = ccdsim()
         .arg("render")
