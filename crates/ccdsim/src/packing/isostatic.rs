@@ -40,6 +40,10 @@ const MAX_RELOOKS: usize = 3;
 /// jammed (see [`finish_isostatic`]).
 const MARGINAL: f64 = 1e-2;
 
+/// The fraction of the jammed minimum's mean overlap below which a bracket counts as closed
+/// (see [`bracket_closed`]).
+const BRACKET_RESOLUTION: f64 = 1e-2;
+
 /// How [`finish_isostatic`] runs.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct IsostaticConfig {
@@ -189,7 +193,7 @@ pub fn finish_isostatic<const D: usize>(
             )));
         }
         let close = hi.minimum.mean_overlap <= config.overlap;
-        let mut unresolved = hi.scale - s_lo <= 4.0 * f64::EPSILON * hi.scale;
+        let mut unresolved = bracket_closed(&hi, s_lo);
         if unresolved && !close && !hi.strict && relooks < MAX_RELOOKS {
             // The bracket closed on a jammed minimum whose overlap is still far above the
             // target: the size below it was judged unjammed from other positions (a soft
@@ -346,6 +350,18 @@ fn counts_as_jammed<const D: usize>(
     m.jammed() && settled && !sliding && !marginal
 }
 
+/// Whether the bracket between the size judged unjammed, `s_lo`, and the jammed minimum `hi`
+/// is too narrow to search: sizes within it can lower `hi`'s mean overlap by at most
+/// [`BRACKET_RESOLUTION`] of itself (overlaps fall at most as fast as the radius factor, in
+/// relative terms: at fixed positions `δ = 1 − d/(sσ)` moves by `ds/s`), or it has shrunk to
+/// rounding. Bisecting further would spend rounds of minimisations that find the same minimum
+/// (they take no steps), up to [`MAX_ROUNDS`].
+fn bracket_closed<const D: usize>(hi: &Jammed<D>, s_lo: f64) -> bool {
+    let width = hi.scale - s_lo;
+    width <= 4.0 * f64::EPSILON * hi.scale
+        || width <= BRACKET_RESOLUTION * hi.minimum.mean_overlap * hi.scale
+}
+
 fn far_from_jammed() -> CompressError {
     CompressError::Config(
         "the packing does not jam when its radii grow by 30 %: it is far from jammed".into(),
@@ -378,6 +394,24 @@ mod tests {
             converged,
             rounding: 1e-12,
         }
+    }
+
+    #[test]
+    fn a_bracket_closes_when_bisecting_it_cannot_lower_the_overlap_by_a_hundredth() {
+        // The case an N = 10⁴ search once bisected forty times, every minimisation taking no
+        // step: a size judged unjammed (its minimisation ran out of steps) just below a jammed
+        // minimum whose overlap was still 7 × 10⁻⁶.
+        let hi = Jammed::<3>::new(1.0014121, minimum(6.8e-6, true), &[]);
+        assert!(bracket_closed(&hi, hi.scale - 5e-8));
+        assert!(!bracket_closed(&hi, hi.scale - 1e-6));
+        assert!(!bracket_closed(&hi, 1.0014042));
+        // Near the target the bracket narrows with the overlap; rounding closes it at last.
+        let tiny = Jammed::<3>::new(1.0014, minimum(1e-15, true), &[]);
+        assert!(!bracket_closed(&tiny, tiny.scale - 1e-14));
+        assert!(bracket_closed(
+            &tiny,
+            tiny.scale * (1.0 - 2.0 * f64::EPSILON)
+        ));
     }
 
     #[test]
