@@ -133,11 +133,8 @@ fn cells([x0, x1, y0, y1]: [usize; 4], width: usize) -> impl Iterator<Item = usi
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::billiards::lattice_boxes::lattice_box;
     use proptest::prelude::*;
-
-    fn boxed(c: (f64, f64), r: f64) -> Aabb<2> {
-        Aabb::of_ball(Vector([c.0, c.1]), r)
-    }
 
     proptest! {
         /// Balls and parts whose boxes overlap a ball's are found, on cell faces too
@@ -148,12 +145,10 @@ mod tests {
             parts in prop::collection::vec(((-6i32..6, -6i32..6), 0u8..3), 0..10),
             moves in prop::collection::vec((0usize..20, (-6i32..6, -6i32..6), 0u8..5), 0..10),
         ) {
-            let to_box = |((x, y), r): ((i32, i32), u8)| {
-                if r == 0 { Aabb::EMPTY } else { boxed((f64::from(x) * 0.5, f64::from(y) * 0.5), f64::from(r) * 0.5) }
-            };
+            let to_box = |b: ((i32, i32), u8)| lattice_box(b, 0.5);
             let part_boxes: Vec<Aabb<2>> = parts.iter().map(|&p| to_box((p.0, p.1 + 1))).collect();
             let mut boxes: Vec<Aabb<2>> = balls.iter().map(|&b| to_box(b)).collect();
-            let extent = boxed((0.0, 0.0), 2.0);
+            let extent = Aabb::of_ball(Vector([0.0, 0.0]), 2.0);
             let mut grid = BallGrid::new(extent, 1.0, boxes.len(), &part_boxes);
             for (i, b) in boxes.iter().enumerate() {
                 grid.place(i, b);

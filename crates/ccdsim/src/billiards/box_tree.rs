@@ -105,11 +105,12 @@ impl<const D: usize> BoxTree<D> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::billiards::lattice_boxes::lattice_box;
     use crate::geom::Vector;
     use proptest::prelude::*;
 
-    fn boxed(c: (f64, f64), r: f64) -> Aabb<2> {
-        Aabb::of_ball(Vector([c.0, c.1]), r)
+    fn ball(x: f64, y: f64, r: f64) -> Aabb<2> {
+        Aabb::of_ball(Vector([x, y]), r)
     }
 
     proptest! {
@@ -120,11 +121,9 @@ mod tests {
             query in ((-5i32..5, -5i32..5), 0u8..6),
         ) {
             // Integer and half-integer corners: boxes that touch exactly.
-            let boxes: Vec<Aabb<2>> = items
-                .iter()
-                .map(|&((x, y), r)| if r == 0 { Aabb::EMPTY } else { boxed((f64::from(x), f64::from(y)), f64::from(r) * 0.5) })
-                .collect();
-            let q = boxed((f64::from(query.0 .0), f64::from(query.0 .1)), f64::from(query.1) * 0.5);
+            let boxes: Vec<Aabb<2>> = items.iter().map(|&b| lattice_box(b, 1.0)).collect();
+            // A query of radius 0 is a point, not empty.
+            let q = ball(f64::from(query.0 .0), f64::from(query.0 .1), f64::from(query.1) * 0.5);
             let mut tree = BoxTree::default();
             tree.build(&boxes);
             let mut found = Vec::new();
@@ -141,11 +140,11 @@ mod tests {
             min: Vector::splat(f64::NEG_INFINITY),
             max: Vector::splat(f64::INFINITY),
         };
-        let boxes = [boxed((0.0, 0.0), 1.0), everywhere, boxed((9.0, 9.0), 1.0)];
+        let boxes = [ball(0.0, 0.0, 1.0), everywhere, ball(9.0, 9.0, 1.0)];
         let mut tree = BoxTree::default();
         tree.build(&boxes);
         let mut found = Vec::new();
-        tree.overlapping(&boxed((20.0, 20.0), 1.0), &mut found);
+        tree.overlapping(&ball(20.0, 20.0, 1.0), &mut found);
         assert_eq!(found, vec![1]);
     }
 }

@@ -31,6 +31,8 @@ mod box_tree;
 mod calendar;
 pub mod contact_time;
 pub mod cushion_impact;
+#[cfg(test)]
+mod lattice_boxes;
 mod params;
 pub mod pool_scene;
 pub mod rack;
