@@ -418,7 +418,7 @@ class Simulation:
 
     def rescale_velocities(self, factor: float) -> None:
         """Multiplies every velocity by ``factor`` from now on (growing packings heat up; this
-        cools them). O(n): the finder is rebuilt."""
+        cools them). O(n): every body's next events are computed anew."""
         self._sim.rescale_velocities(float(factor))
 
     def stop_growth(self) -> None:

@@ -254,7 +254,8 @@ impl PySimulation {
         })
     }
 
-    /// Multiplies every velocity by `factor` from now on (O(n): the finder is rebuilt).
+    /// Multiplies every velocity by `factor` from now on (O(n): every body's next events are
+    /// computed anew).
     fn rescale_velocities(&mut self, factor: f64) -> PyResult<()> {
         with_sim!(self, s, s.rescale_velocities(factor).map_err(value_error))
     }

@@ -883,7 +883,10 @@ impl<const D: usize> Simulation<D> {
     }
 
     /// Multiplies every body's velocity by `factor` from the current time on (growing
-    /// packings are cooled this way, see [`crate::contact::growth`]). O(n): the finder is rebuilt.
+    /// packings are cooled this way, see [`crate::contact::growth`]). O(n): every body's next
+    /// events are computed anew ([`Finder::all_changed`]: the `cells` finder keeps its grid
+    /// and lists). Journaled as one velocity edit per body when the journal is on
+    /// ([`Simulation::record_edits`]).
     pub fn rescale_velocities(&mut self, factor: f64) -> Result<(), SimError> {
         if !(factor.is_finite() && factor >= 0.0) {
             return Err(SimError::Input(format!(
@@ -891,7 +894,16 @@ impl<const D: usize> Simulation<D> {
             )));
         }
         self.world.scale_velocities(factor);
-        self.rebuild()
+        if self.edits.is_some() {
+            for i in 0..self.world.len() {
+                if !self.world.is_vacant(i) {
+                    self.journal_edit(i);
+                }
+            }
+        }
+        self.finder.all_changed(&self.world)?;
+        self.states_replaced();
+        Ok(())
     }
 
     /// Stops the growth of the radii at the current time: they keep their current values
@@ -983,10 +995,17 @@ impl<const D: usize> Simulation<D> {
     /// After a change of every body: the finder and the resolution guard start afresh.
     fn rebuild(&mut self) -> Result<(), SimError> {
         self.finder.init(&self.world)?;
+        self.sized_radius = body_slots::sized_radius(&self.world);
+        self.states_replaced();
+        Ok(())
+    }
+
+    /// After every body's stored state was replaced and the finder told: the moving walls',
+    /// sensors' and pivots' events are computed anew and the resolution guard starts afresh.
+    fn states_replaced(&mut self) {
         if let Some(m) = &mut self.moving {
             m.walls_changed(&self.world);
         }
-        self.sized_radius = body_slots::sized_radius(&self.world);
         if let Some(s) = &mut self.sensors {
             for i in 0..self.world.len() {
                 s.body_changed(&self.world, i);
@@ -998,7 +1017,6 @@ impl<const D: usize> Simulation<D> {
         self.halt = None;
         self.idle = [None; 2];
         self.instant = WallChain::NONE;
-        Ok(())
     }
 
     /// Resolves the next event if it happens at or before `t` and returns it; otherwise

@@ -65,6 +65,14 @@ pub trait Finder<const D: usize>: Send {
     /// edit); every other body is as it was.
     fn update(&mut self, world: &World<D>, changed: &[usize]);
 
+    /// Tells the finder that every body's stored state was replaced at the current time
+    /// (velocities rescaled, say), with radii, walls, filters and laws as they were. By
+    /// default a fresh `init`; a finder that can take in every body's new state for less
+    /// than a rebuild does that instead.
+    fn all_changed(&mut self, world: &World<D>) -> Result<(), FinderError> {
+        self.init(world)
+    }
+
     /// The next event under the total order, or `None` when no event will ever happen.
     fn next_event(&mut self, world: &World<D>) -> Option<Event>;
 

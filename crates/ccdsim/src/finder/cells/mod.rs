@@ -830,6 +830,18 @@ impl<const D: usize> Finder<D> for Cells<D> {
         }
     }
 
+    /// Every body recomputed through `update` (O(n) scans of its neighbourhood), keeping the
+    /// grid, the wall filing and, in list mode, every list whose body is still inside its
+    /// shell: a rebuild would file every body anew and build every list.
+    fn all_changed(&mut self, world: &World<D>) -> Result<(), FinderError> {
+        if world.len() != self.cached.len() {
+            return self.init(world);
+        }
+        let all: Vec<usize> = (0..world.len()).collect();
+        self.update(world, &all);
+        Ok(())
+    }
+
     fn next_event(&mut self, world: &World<D>) -> Option<Event> {
         loop {
             let Some(i) = self.queue.top() else {

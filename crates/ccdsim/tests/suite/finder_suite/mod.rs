@@ -150,6 +150,7 @@ impl Drive {
         matches!(
             self,
             Drive::Kicks { .. }
+                | Drive::Rescale { .. }
                 | Drive::Teleports { .. }
                 | Drive::FrameTeleports { .. }
                 | Drive::Filters { .. }
@@ -354,15 +355,15 @@ fn record_run<const D: usize>(
                 let _ = sim.set_collision_filter(i, f);
             }
         }
-        for edit in sim.take_edits() {
-            rec.write_event(&edit).expect("write");
-        }
         if let Drive::Rescale { every } = drive {
             if events % every == 0 {
                 let k0 = sim.stats().kinetic_energy_start;
                 let factor = (k0 / sim.world().kinetic_energy()).sqrt();
                 sim.rescale_velocities(factor).expect("rescale");
             }
+        }
+        for edit in sim.take_edits() {
+            rec.write_event(&edit).expect("write");
         }
     }
     let bytes = rec.finish(sim.time()).expect("finish");
