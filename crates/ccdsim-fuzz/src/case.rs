@@ -75,6 +75,11 @@ pub enum EditOp {
         /// New velocity, m/s.
         vel: Vec<f64>,
     },
+    /// `rescale_velocities(factor)`: every body's velocity times `factor` (a packing's cooling).
+    Rescale {
+        /// The factor, ≥ 0.
+        factor: f64,
+    },
 }
 
 /// A whole fuzz case.
@@ -207,6 +212,9 @@ impl EditOp {
                 if n > 0 {
                     let _ = sim.set_wall_velocity(wall % n, vector(vel));
                 }
+            }
+            EditOp::Rescale { factor } => {
+                let _ = sim.rescale_velocities(*factor);
             }
         }
     }

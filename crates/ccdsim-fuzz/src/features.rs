@@ -5,7 +5,7 @@ use crate::case::{Case, EditOp, Schedule};
 use serde_json::Value;
 
 /// Every feature name [`features`] can report, in the order the coverage table prints them.
-pub const FEATURES: [&str; 34] = [
+pub const FEATURES: [&str; 35] = [
     "3D",
     "periodic",
     "sheared box",
@@ -37,6 +37,7 @@ pub const FEATURES: [&str; 34] = [
     "bodies added",
     "bodies removed",
     "filter or wall edits",
+    "velocity rescales",
     "pool shots",
     "pool: balls touching",
     "pool: frictional",
@@ -164,6 +165,10 @@ pub fn features(case: &Case) -> Vec<&'static str> {
     add(
         has(|e| matches!(e, EditOp::Filter { .. } | EditOp::WallVelocity { .. })),
         "filter or wall edits",
+    );
+    add(
+        has(|e| matches!(e, EditOp::Rescale { .. })),
+        "velocity rescales",
     );
     out
 }

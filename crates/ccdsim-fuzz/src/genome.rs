@@ -18,7 +18,8 @@
 //!   bodies rest, slide and roll over segment ends), 3D rods, sensors, moving walls,
 //!   kinematic bodies, per-body restitution, mass and collision groups, arrivals (bodies
 //!   entering at lattice points, several at one instant, some onto bodies); and edits between
-//!   steps (velocities, teleports, bodies added and removed, filters, wall velocities), driven
+//!   steps (velocities, teleports, bodies added and removed, filters, wall velocities, every
+//!   velocity rescaled at once), driven
 //!   event by event or frame by frame as a game loop does.
 
 use crate::case::{Case, EditOp, Schedule};
@@ -126,7 +127,7 @@ fn body_gene() -> impl Strategy<Value = BodyGene> {
 
 fn edit_gene() -> impl Strategy<Value = EditGene> {
     (
-        0u8..6,
+        0u8..7,
         any::<u8>(),
         [0u8..12, 0u8..12, 0u8..12],
         any::<[u16; 3]>(),
@@ -558,6 +559,10 @@ impl<'a, const D: usize> Builder<'a, D> {
                 let (group, mask) = FILTERS[e.filter as usize % FILTERS.len()];
                 EditOp::Filter { body, group, mask }
             }
+            // Halving, doubling, stopping everything, and a factor with no short binary form.
+            6 => EditOp::Rescale {
+                factor: [0.5, 2.0, 0.0, 1.0 / 3.0][e.filter as usize % 4],
+            },
             _ => EditOp::WallVelocity {
                 wall: body,
                 vel: self.velocity(&e.vel, true).0.to_vec(),
