@@ -82,12 +82,13 @@ pub fn run(args: Args) -> Result<ExitCode> {
     if let (Some(at), Some(out)) = (args.at, &args.out) {
         let r = render_png(&args.run, at, out, &render)?;
         outln!(
-            "wrote {} ({}×{} px, t = {} s, {} events before)",
+            "wrote {} ({}×{} px, t = {} s, {} event{} before)",
             out.display(),
             r.width,
             r.height,
             r.from,
-            r.events
+            r.events,
+            if r.events == 1 { "" } else { "s" }
         )?;
     } else if let Some(gif) = &args.gif {
         let o = GifOptions {
