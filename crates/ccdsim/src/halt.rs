@@ -182,6 +182,10 @@ pub(crate) struct ResolutionGuard {
     m_min: f64,
     /// An upper bound of the kinetic energy, joules.
     kinetic: f64,
+    /// Kinetic energies up to which `fast_until` stays as it is, joules: the fast path's
+    /// bound moves in powers of two, so most additions leave it alone (growing worlds add
+    /// energy at every collision).
+    same_until: f64,
 }
 
 impl ResolutionGuard {
@@ -227,6 +231,7 @@ impl ResolutionGuard {
             m_min,
             // 1 % over the sum covers its rounding.
             kinetic: world.kinetic_energy() * 1.01,
+            same_until: f64::NEG_INFINITY,
         };
         guard.refresh();
         guard
@@ -235,20 +240,34 @@ impl ResolutionGuard {
     /// Body edits (a new velocity) may add up to `energy` joules of kinetic energy.
     pub(crate) fn add_energy(&mut self, energy: f64) {
         self.kinetic += energy.max(0.0) * 1.01;
-        self.refresh();
+        if self.kinetic > self.same_until {
+            self.refresh();
+        }
     }
 
     fn refresh(&mut self) {
         let speed_bound = (2.0 * self.kinetic / self.m_min).sqrt();
-        self.fast_until = if !(self.budget > 0.0 && speed_bound.is_finite()) {
-            f64::NEG_INFINITY
+        (self.fast_until, self.same_until) = if !(self.budget > 0.0 && speed_bound.is_finite()) {
+            // No fast path, whatever is added.
+            (f64::NEG_INFINITY, f64::INFINITY)
         } else if speed_bound == 0.0 {
-            f64::INFINITY
+            (f64::INFINITY, self.kinetic)
         } else {
             // The largest power of two whose ulp keeps `speed · ulp` within the budget: every
             // |t| below it has an ulp no larger.
-            let exponent = (self.budget / speed_bound).log2().floor() as i32 + 52;
-            2f64.powi(exponent.clamp(-1000, 1023))
+            let below = (self.budget / speed_bound).log2().floor() as i32;
+            let fast_until = 2f64.powi((below + 52).clamp(-1000, 1023));
+            // `below` stays while `budget / speed ≥ 2^below`: up to a speed of
+            // `budget · 2^−below`. A millionth short of it, so that the rounding of the
+            // logarithm never keeps a bound that should have moved.
+            let speed_max = self.budget * 2f64.powi(-below);
+            let same_until = 0.5 * self.m_min * speed_max * speed_max * (1.0 - 1e-6);
+            let same_until = if same_until.is_finite() {
+                same_until
+            } else {
+                self.kinetic
+            };
+            (fast_until, same_until)
         };
     }
 
@@ -448,6 +467,45 @@ mod tests {
     use super::*;
     use crate::generate::{gas, GasConfig};
     use crate::resolution::resolves;
+
+    /// Energy added in small steps (a growing world's collisions) leaves the guard's bound
+    /// where a bound computed afresh after every step would be: it skips recomputing only
+    /// while that cannot change it, across many powers of two of the speed.
+    #[test]
+    fn added_energy_moves_the_bound_as_a_fresh_one_would() {
+        let fresh = |g: &ResolutionGuard| {
+            let mut f = *g;
+            f.refresh();
+            f.fast_until
+        };
+        for (budget, m_min, start) in [(1e-9, 0.5, 1.0), (3.7e-7, 2.0, 1e-3), (1e-12, 1e-3, 0.0)] {
+            let mut g = ResolutionGuard {
+                fast_until: f64::NEG_INFINITY,
+                budget,
+                m_min,
+                kinetic: start,
+                same_until: f64::NEG_INFINITY,
+            };
+            g.refresh();
+            let first = g.fast_until;
+            let mut x = 0x9e37_79b9_7f4a_7c15u64;
+            let mut skipped = 0;
+            for _ in 0..20_000 {
+                x ^= x << 13;
+                x ^= x >> 7;
+                x ^= x << 17;
+                // Steps from 10⁻⁶ of the energy to about a fiftieth of it.
+                let step = (g.kinetic.max(1e-3)) * (x >> 11) as f64 / (1u64 << 53) as f64 * 0.02
+                    + 1e-6 * g.kinetic;
+                let before = g.fast_until;
+                g.add_energy(step);
+                skipped += usize::from(g.fast_until == before);
+                assert_eq!(g.fast_until.to_bits(), fresh(&g).to_bits(), "{g:?}");
+            }
+            assert!(g.fast_until > 0.0 && g.fast_until < first / 1e30, "{g:?}");
+            assert!(skipped > 0);
+        }
+    }
 
     /// Below the guard's `fast_until`, every body is resolved by the exact rule, at times as
     /// late as the guard allows, even with all the energy in one body.
