@@ -1,6 +1,7 @@
 //! Gases of non-overlapping bodies in a walled or periodic box: random or lattice starts,
 //! uniform-speed or Maxwell velocities.
 
+use super::place::place_balls;
 use super::{box_walls, random_direction, GenerateError, Lattice};
 use crate::geom::{ball_volume, Vector};
 use crate::scene::{BodySpec, Scene, MAX_MAGNITUDE};
@@ -12,7 +13,6 @@ const MAX_RADIUS: f64 = 1e30;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rand_distr::StandardNormal;
-use std::collections::HashMap;
 
 /// Parameters of [`gas`]. The defaults of the fields added after the first release
 /// (`periodic`, `lattice`, `temperature`) keep the original behaviour.
@@ -284,7 +284,7 @@ fn lattice_positions<const D: usize>(
     Ok((size, pos))
 }
 
-/// Random sequential placement in a cubic box of the given volume.
+/// Random sequential placement in a cubic box of the given volume (see [`place_balls`]).
 fn random_positions<const D: usize>(
     cfg: &GasConfig,
     radii: &[f64],
@@ -295,74 +295,7 @@ fn random_positions<const D: usize>(
         .powf(1.0 / D as f64)
         .max(2.0 * cfg.radius_max * 1.000001);
     let size = Vector::<D>::splat(side);
-    // Larger bodies first: they are the hardest to fit.
-    let mut order: Vec<usize> = (0..cfg.n).collect();
-    order.sort_by(|&a, &b| radii[b].total_cmp(&radii[a]));
-    // Cells at least 2·r_max wide; in a periodic box they tile it and keys wrap around.
-    let cells = ((side / (2.0 * cfg.radius_max)).floor() as i64).max(1);
-    let cell = if cfg.periodic {
-        side / cells as f64
-    } else {
-        2.0 * cfg.radius_max
-    };
-    let wrap = |k: i64| if cfg.periodic { k.rem_euclid(cells) } else { k };
-    let key = |p: Vector<D>| p.0.map(|x| wrap((x / cell).floor() as i64));
-    let mut grid: HashMap<[i64; D], Vec<usize>> = HashMap::new();
-    let mut pos = vec![Vector::<D>::ZERO; cfg.n];
-    let mut attempts: u64 = 0;
-    let max_attempts = 1000 * cfg.n as u64 + 100_000;
-    for (placed, &i) in order.iter().enumerate() {
-        let r = radii[i];
-        loop {
-            attempts += 1;
-            if attempts > max_attempts {
-                return Err(GenerateError::Jammed {
-                    placed,
-                    n: cfg.n,
-                    attempts,
-                });
-            }
-            let mut p = Vector::<D>::ZERO;
-            for k in 0..D {
-                p[k] = if cfg.periodic {
-                    rng.random_range(0.0..side)
-                } else {
-                    // A hair of clearance keeps rounding from putting a body into a wall.
-                    rng.random_range(r * (1.0 + 1e-9)..=side - r * (1.0 + 1e-9))
-                };
-            }
-            let k = key(p);
-            let mut free = true;
-            'scan: for code in 0..3usize.pow(D as u32) {
-                let mut nk = k;
-                let mut c = code;
-                for slot in nk.iter_mut() {
-                    *slot = wrap(*slot + (c % 3) as i64 - 1);
-                    c /= 3;
-                }
-                if let Some(list) = grid.get(&nk) {
-                    for &j in list {
-                        let sum = (r + radii[j]) * (1.0 + 1e-9);
-                        let dp = if cfg.periodic {
-                            crate::contact::periodic::min_image(pos[j] - p, &size)
-                        } else {
-                            pos[j] - p
-                        };
-                        if dp.norm_sq() < sum * sum {
-                            free = false;
-                            break 'scan;
-                        }
-                    }
-                }
-            }
-            if free {
-                pos[i] = p;
-                grid.entry(k).or_default().push(i);
-                break;
-            }
-        }
-    }
-    Ok((size, pos))
+    Ok((size, place_balls(radii, size, cfg.periodic, rng)?))
 }
 
 /// Maxwell–Boltzmann velocities at temperature `kt` for unit-density bodies of the given

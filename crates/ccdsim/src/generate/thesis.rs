@@ -168,7 +168,7 @@ pub fn thesis<const D: usize>(cfg: &ThesisConfig) -> Result<Scene<D>, GenerateEr
         .map(|_| rng.random_range(cfg.radius_min..=cfg.radius_max))
         .collect();
     let size = cfg.table::<D>();
-    let pos = place_balls(&radii, size, &mut rng)?;
+    let pos = place_balls(&radii, size, false, &mut rng)?;
     let v_max = cfg.max_speed::<D>();
     let bodies = (0..cfg.n)
         .map(|i| {
