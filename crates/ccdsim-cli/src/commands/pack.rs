@@ -53,7 +53,7 @@ pub struct Args {
     #[arg(long)]
     start_packing: Option<f64>,
     /// Contacts are gaps within this fraction of a contact distance (default 100·D divided
-    /// by --until-pressure: typical gaps are D / Z of a contact distance).
+    /// by --until-pressure, at most 0.1: typical gaps are D / Z of a contact distance).
     #[arg(long)]
     contact_tolerance: Option<f64>,
     /// Stop after this many events at the most.

@@ -56,7 +56,7 @@ pub struct CompressConfig {
     pub max_events: Option<u64>,
     /// Contacts are gaps within this fraction of the contact distance; 0 picks
     /// `100 · D / until_pressure` (typical gaps at a reduced pressure `Z` are `D / Z` of a
-    /// contact distance).
+    /// contact distance), at most [`MAX_DEFAULT_CONTACT_TOLERANCE`].
     pub contact_tolerance: f64,
 }
 
@@ -124,6 +124,12 @@ pub struct Packed<const D: usize> {
     /// What the isostatic finish did, when the packing had one ([`finish_isostatic`]).
     pub finish: Option<IsostaticFinish>,
 }
+
+/// The largest contact tolerance [`compress`] picks by itself, relative to the contact
+/// distance: below a reduced pressure of `1000 · D` the rule `100 · D / Z` would count as
+/// contacts gaps of whole diameters (thousands a body at `Z = 30`), which no one means by a
+/// contact.
+pub const MAX_DEFAULT_CONTACT_TOLERANCE: f64 = 0.1;
 
 /// Why [`compress`] cannot run.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -229,7 +235,7 @@ pub fn compress<const D: usize>(
     let tolerance = if config.contact_tolerance > 0.0 {
         config.contact_tolerance
     } else {
-        100.0 * D as f64 / config.until_pressure
+        (100.0 * D as f64 / config.until_pressure).min(MAX_DEFAULT_CONTACT_TOLERANCE)
     };
     let world = sim.world();
     let positions: Vec<Vector<D>> = (0..n).map(|i| sim.position(i)).collect();

@@ -3,7 +3,9 @@
 //! combined with moving walls, per-body restitution and kinematic bodies.
 
 use ccdsim::generate::{gas, GasConfig};
-use ccdsim::packing::{compress, dilute_start, CompressConfig, CompressStop, SizeMix};
+use ccdsim::packing::{
+    compress, dilute_start, CompressConfig, CompressStop, SizeMix, MAX_DEFAULT_CONTACT_TOLERANCE,
+};
 use ccdsim::record::RunWriter;
 use ccdsim::verify::VerifyReport;
 use ccdsim::Growth;
@@ -170,6 +172,35 @@ fn every_finder_compresses_to_the_same_packing() {
         let packed = compress(&scene, name, &config, |_| {}).unwrap();
         assert_eq!(packed, reference, "{name}");
     }
+}
+
+#[test]
+fn a_compression_stopped_at_a_low_pressure_counts_only_near_gaps_as_contacts() {
+    // 100 · D / Z would be 10 contact distances at Z = 30: every pair in reach a "contact".
+    let scene = dilute_start::<3>(300, 0.2, SizeMix::Monodisperse, true, 2).unwrap();
+    let config = CompressConfig {
+        rate: 0.05,
+        until_pressure: 30.0,
+        ..CompressConfig::default()
+    };
+    let packed = compress(&scene, "cells", &config, |_| {}).unwrap();
+    assert_eq!(packed.stop, CompressStop::Pressure);
+    assert_eq!(packed.contact_tolerance, MAX_DEFAULT_CONTACT_TOLERANCE);
+    // The nearest shell of neighbours (about 8 a body here), not every body in reach (the
+    // old rule counted all 299 others).
+    assert!(
+        packed.contacts.mean_contacts < 13.0,
+        "{}",
+        packed.contacts.mean_contacts
+    );
+    // Past a reduced pressure of 1000 · D the rule is unchanged.
+    let tight = CompressConfig {
+        until_pressure: 1e4,
+        max_events: Some(1),
+        ..config
+    };
+    let packed = compress(&scene, "cells", &tight, |_| {}).unwrap();
+    assert_eq!(packed.contact_tolerance, 100.0 * 3.0 / 1e4);
 }
 
 #[test]
